@@ -1,0 +1,65 @@
+# Makefile: one target per task; CMake does the work (STYLE §8).
+#   make        install missing Debian packages, build into build/
+#   make run    the main job: the full model comparison on the CURET data
+#   make test   build and run every test, plain and with ASan+UBSan
+#   make bench  run the benchmarks (never part of the tests)
+
+SHARED   ?= ../shared
+CURET    ?= $(SHARED)/data/curet
+REFERENCE ?= $(SHARED)/reference
+OUT      ?= out
+JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_FLAGS ?=
+
+BUILD      = build
+BUILD_ASAN = build-asan
+CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
+             -DBF_CURET_DIR="$(abspath $(CURET))" \
+             -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
+
+.PHONY: all deps build run test test-plain test-asan asan bench install \
+        format tidy clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	@$(CONFIGURE) -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	$(BUILD)/brdffit compare --data "$(CURET)" --samples paper \
+	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+
+test: test-plain test-asan
+
+test-plain: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+asan: deps
+	@$(CONFIGURE) -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug \
+	    -DBF_SANITIZERS=ON >/dev/null
+	@cmake --build $(BUILD_ASAN) -j $(JOBS)
+
+test-asan: asan
+	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	    ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD)/bench/bench_study --data "$(CURET)"
+
+install: build
+	cmake --install $(BUILD)
+
+format:
+	clang-format -i include/*.h src/*.[ch] src/*/*.[ch] cli/*.[ch] \
+	    tests/*.[ch] tests/*/*.[ch] bench/*.c
+
+tidy: build
+	clang-tidy -p $(BUILD) src/*.c src/*/*.c cli/*.c
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

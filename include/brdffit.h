@@ -1,0 +1,447 @@
+/* brdffit.h: the public API of libbrdffit -- rough-surface reflectance models,
+ * measured BRDF loaders and model fitting.
+ *
+ * Conventions (SPEC §1), stated once for the whole library:
+ *   - angles are in radians; zenith angles are measured from the surface normal;
+ *   - suffix i is the incident (illumination) direction, s the scattered
+ *     (viewing) direction;
+ *   - model formulas use Beckmann's frame: the incident beam's projection on the
+ *     tangent plane points along -X, i.e. phi_i = pi; the specular direction is
+ *     theta_s = theta_i, phi_s = 0 (SPEC §1.2);
+ *   - model values are radiances up to a constant factor; the study normalises
+ *     every curve by its maximum over the used configurations (SPEC §2).
+ *
+ * Errors: a function that can fail returns BF_OK (0) or a BF_E* code;
+ * constructors return NULL on failure. Loaders fill an optional bf_error with
+ * the file name, line and a short message. The library never prints, never
+ * exits and never reads argv.
+ *
+ * References:
+ *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann Model"
+ *       (equations (P1)-(P7) in SPEC.md).
+ *   [2] M. Oren, S. K. Nayar, "Generalization of the Lambertian model and
+ *       implications for machine vision", IJCV 14(3), 1995.
+ *   [3] E. P. F. Lafortune et al., "Non-linear approximation of reflectance
+ *       functions", SIGGRAPH 1997.
+ *   [4] K. J. Dana et al., "Reflectance and Texture of Real-World Surfaces",
+ *       ACM TOG 18(1), 1999 (the CURET database).
+ */
+#ifndef BRDFFIT_H
+#define BRDFFIT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ======================================================================
+ * --- version and errors ---
+ * ====================================================================== */
+
+#define BF_VERSION_MAJOR 0
+#define BF_VERSION_MINOR 1
+#define BF_VERSION_PATCH 0
+#define BF_VERSION_STRING "0.1.0"
+
+/* Returns the library's version string (static storage). */
+const char *bf_version(void);
+
+enum {
+    BF_OK = 0,   /* success */
+    BF_EINVAL,   /* invalid argument (bad parameter, NULL pointer, bad size) */
+    BF_EDOM,     /* outside the domain of a model or function */
+    BF_ENOMEM,   /* out of memory */
+    BF_EIO,      /* file could not be opened, read or written */
+    BF_EPARSE,   /* malformed input file */
+    BF_ENOCONV,  /* an iterative method did not converge */
+    BF_ENOTFOUND /* a named item (model, sample) does not exist */
+};
+
+/* Returns a static, human-readable text for an error code. */
+const char *bf_strerror(int code);
+
+#define BF_ERROR_FILE_MAX 512
+#define BF_ERROR_MSG_MAX 256
+
+/* Where and why a loader failed. line is 1-based; 0 means "the file as a
+ * whole" (e.g. empty file, missing rows). file is a copy of the name given
+ * to the loader. */
+typedef struct {
+    int code;                        /* BF_E* code, BF_OK when no error */
+    long line;                       /* 1-based line number, 0 if none */
+    char file[BF_ERROR_FILE_MAX];    /* file name as given to the loader */
+    char msg[BF_ERROR_MSG_MAX];      /* short description of the problem */
+} bf_error;
+
+/* Formats err as "file:line: msg" (or "file: msg" when line is 0) into buf
+ * of size len; returns buf. */
+char *bf_error_format(const bf_error *err, char *buf, size_t len);
+
+/* ======================================================================
+ * --- geometry (SPEC §1) ---
+ * ====================================================================== */
+
+/* One illumination/viewing configuration in Beckmann's frame. */
+typedef struct {
+    double theta_i; /* incidence zenith angle, [0, pi/2] */
+    double phi_i;   /* incidence azimuth; pi in Beckmann's frame */
+    double theta_s; /* scattering (viewing) zenith angle, [0, pi/2] */
+    double phi_s;   /* scattering azimuth, (-pi, pi]; 0 is specular */
+} bf_geom;
+
+/* Wraps an angle to (-pi, pi]. */
+double bf_wrap_angle(double a);
+
+/* Converts a configuration in CURET's sample frame (view theta_v, phi_v;
+ * illumination theta_i, phi_i) to Beckmann's frame (SPEC §1.3):
+ * theta_s = theta_v, phi_s = wrap(phi_v - phi_i - pi), phi_i = pi. */
+bf_geom bf_geom_from_curet(double theta_v, double phi_v, double theta_i,
+                           double phi_i);
+
+/* Tolerance of the specular test, SPEC §1.4 (radians). */
+#define BF_SPECULAR_TOL 1e-3
+
+/* Returns 1 when g is a specular configuration (SPEC §1.4):
+ * |theta_s - theta_i| < BF_SPECULAR_TOL and |phi_s| < BF_SPECULAR_TOL. */
+int bf_geom_is_specular(const bf_geom *g);
+
+/* ======================================================================
+ * --- Fresnel terms (SPEC §4) ---
+ * ====================================================================== */
+
+/* Unpolarised Fresnel reflectance f(alpha_i, r) for light arriving at angle
+ * alpha_i in [0, pi/2] on an interface of relative index r > 0 (SPEC §4.1,
+ * paper (P4) with the factor 1/2). Returns 1 beyond the critical angle (total
+ * internal reflection when r < 1), ((r-1)/(r+1))^2 at alpha_i = 0, 1 at
+ * alpha_i = pi/2 for r > 1, and 0 everywhere for r = 1 (no interface).
+ * Returns NaN when r <= 0, an argument is not finite or alpha_i is outside
+ * [0, pi/2]. */
+double bf_fresnel(double alpha_i, double r);
+
+/* Fresnel correction factor F_FC^2 of paper (P6), SPEC §4.2, for refractive
+ * index n >= 1 (n = 1 gives cos theta_i). Returns NaN when n < 1, an
+ * argument is not finite or an angle is outside [0, pi/2]. */
+double bf_fresnel_fc2(double theta_i, double theta_s, double n);
+
+/* ======================================================================
+ * --- models (SPEC §3-6) ---
+ * ====================================================================== */
+
+#define BF_MAX_PARAMS 4
+
+/* One parameter of a model. */
+typedef struct {
+    const char *name;   /* short name: "m", "n", "n_d", "rho", "sigma" */
+    const char *label;  /* label for tables and plots, e.g. "sigma/T (G)" */
+    const char *unit;   /* "1" for dimensionless, "rad" for radians */
+    double min, max;    /* valid domain, inclusive */
+    double value;       /* default value when the parameter is held fixed */
+    int fitted;         /* 1 if the paper's protocol fits it, 0 if an input */
+    double grid_lo;     /* paper grid: grid_lo + grid_step * i, */
+    double grid_step;   /*   i = 0 .. grid_n - 1 (SPEC §7.4) */
+    size_t grid_n;      /* 0 when the parameter has no grid */
+} bf_param;
+
+/* Evaluates a model at n configurations. param holds type->p values, already
+ * checked to lie in the domain. Writes n radiances (up to scale) to out.
+ * Returns BF_OK or BF_EDOM (out then holds NaN where undefined). */
+typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
+                          double *out);
+
+/* A model family: a constant type object (cf. gsl_rng_type). */
+typedef struct {
+    const char *name;        /* registry name, e.g. "FC-E" */
+    const char *title;       /* one-line description */
+    const char *reference;   /* equations implemented, e.g. "paper (P2),(P6)" */
+    size_t p;                /* number of parameters (<= BF_MAX_PARAMS) */
+    const bf_param *param;   /* p parameter descriptions */
+    bf_eval_fn eval;         /* evaluation function */
+} bf_model_type;
+
+extern const bf_model_type *const bf_model_bk_g;   /* BK-G  SPEC §3.1 */
+extern const bf_model_type *const bf_model_bk_e;   /* BK-E  SPEC §3.2 */
+extern const bf_model_type *const bf_model_vh_g;   /* VH-G  SPEC §3.3 */
+extern const bf_model_type *const bf_model_vh_e;   /* VH-E  SPEC §3.3 */
+extern const bf_model_type *const bf_model_fc_g;   /* FC-G  SPEC §3.3, §4.2 */
+extern const bf_model_type *const bf_model_fc_e;   /* FC-E  SPEC §3.3, §4.2 */
+extern const bf_model_type *const bf_model_on;     /* ON    SPEC §5 */
+extern const bf_model_type *const bf_model_lftg;   /* LFTG  SPEC §6 */
+extern const bf_model_type *const bf_model_lambert;/* LAMBERT SPEC §6a */
+
+/* The registry: number of models, the i-th model (NULL past the end). */
+size_t bf_model_count(void);
+const bf_model_type *bf_model_get(size_t i);
+
+/* Finds a model by name (case-insensitive); NULL if unknown. */
+const bf_model_type *bf_model_find(const char *name);
+
+/* Index of the parameter called name in type, or -1. */
+int bf_model_param_index(const bf_model_type *type, const char *name);
+
+/* Evaluates type at n configurations after checking every parameter against
+ * its domain (BF_EINVAL when out of range or not finite) and every geometry
+ * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
+ * Returns BF_EDOM when the model is undefined at a configuration, with NaN
+ * there and the other values filled:
+ *   - BK-G, BK-E at theta_i = pi/2 (F_BK diverges, SPEC §3.3);
+ *   - VH-G, VH-E (and FC with n = 1) at the single corner theta_i = theta_s
+ *     = pi/2, phi_s = 0, where the value has no limit (it is 0 along the
+ *     grazing boundary but 1/(4 m^2 cos theta_i) along the specular path).
+ * A zenith angle equal to the double nearest pi/2 (asin(1)) counts as
+ * exactly grazing (cos = 0), so the grazing limits are taken exactly. */
+int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
+                  const bf_geom *geom, double *out);
+
+/* ======================================================================
+ * --- data: CURET configuration table and BRDF files (SPEC §2) ---
+ * ====================================================================== */
+
+/* File syntax accepted by every reader below (src/data/lineio.c):
+ *   - LF or CRLF line ends, the last line with or without one; a CR not
+ *     followed by LF is an error (old Mac line ends are not supported);
+ *   - a UTF-8 byte order mark at the start of the file is skipped;
+ *   - blank lines (empty or only spaces/tabs) are skipped anywhere, but
+ *     counted, so reported line numbers are an editor's line numbers;
+ *   - trailing spaces and tabs are ignored;
+ *   - NUL bytes and lines longer than 1 MiB are errors (BF_EPARSE);
+ *   - numbers are decimal ([+-]digits[.digits][e[+-]digits]): hex floats,
+ *     nan, inf, values overflowing a double and trailing characters
+ *     ("1.5abc") are errors naming the field and quoting the text;
+ *   - sample numbers and indices are integers in [1, INT_MAX] ("1.5" and
+ *     "-3" are errors).
+ * The _load functions open the path (BF_EIO with the system's reason at
+ * line 0 when it cannot be opened; a directory, device or socket is also
+ * BF_EIO) and accept regular files and FIFOs/pipes. On any error *out is
+ * NULL and nothing leaks; err may be NULL. Readers never close fp. */
+
+/* The number of configurations in CURET's table.txt. */
+#define BF_CURET_NCONF 205
+
+/* A configuration table: rows "index theta_v phi_v theta_i phi_i" in CURET's
+ * sample frame (SPEC §1.3). Opaque; owns memory. */
+typedef struct bf_table bf_table;
+
+/* Reads a configuration table from fp (name is used in messages). Indices
+ * must run 1..N in order. Returns BF_OK and *out (free with bf_table_free),
+ * or BF_EPARSE/BF_EIO/BF_ENOMEM with err filled. Each row has exactly 5
+ * numbers; zeniths must lie in [0, pi/2] and azimuths in [-2 pi, 2 pi], up
+ * to 1e-9 rad (a zenith within that tolerance outside [0, pi/2] is clamped
+ * onto it). An empty file is BF_EPARSE "empty file" at line 0. */
+int bf_table_read(FILE *fp, const char *name, bf_table **out, bf_error *err);
+
+/* Opens path and calls bf_table_read. */
+int bf_table_load(const char *path, bf_table **out, bf_error *err);
+
+/* Frees t; NULL does nothing. */
+void bf_table_free(bf_table *t);
+
+/* Number of configurations. */
+size_t bf_table_size(const bf_table *t);
+
+/* Configuration k (0-based) in Beckmann's frame (bf_geom_from_curet).
+ * All fields are NaN when k >= bf_table_size(t). */
+bf_geom bf_table_geom(const bf_table *t, size_t k);
+
+/* Configuration k's raw CURET angles: theta_v, phi_v, theta_i, phi_i (NaN
+ * when k is out of range). */
+void bf_table_raw(const bf_table *t, size_t k, double raw[4]);
+
+/* Writes the 0-based indices of the configurations that are used by the
+ * study into sel (capacity bf_table_size(t)): every configuration that is
+ * not specular (SPEC §1.4) and whose theta_i and theta_v are both
+ * <= max_theta (pass a value >= pi/2 to keep all). Returns the count. */
+size_t bf_table_select(const bf_table *t, double max_theta, size_t *sel);
+
+/* A BRDF file with rows "sample v1 ... vN" (CURET abrdf/rbrdf/gbrdf/bbrdf
+ * layout). Opaque; owns memory. */
+typedef struct bf_brdf bf_brdf;
+
+/* Reads BRDF rows with exactly n_conf values each. Sample numbers must be
+ * positive, unique and run 1, 2, 3, ... without gaps. Values must be finite.
+ * Returns BF_OK and *out (free with bf_brdf_free) or an error with err.
+ * Rows may come in any order; they are stored sorted by sample number, so
+ * row r holds sample r + 1. Negative values are kept as measured. Errors
+ * (BF_EPARSE): wrong value count, bad number (field named), duplicate
+ * sample (at its second line, naming the first), missing sample (line 0,
+ * naming the smallest missing number), empty file. n_conf = 0: BF_EINVAL. */
+int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
+                 bf_error *err);
+int bf_brdf_load(const char *path, size_t n_conf, bf_brdf **out,
+                 bf_error *err);
+void bf_brdf_free(bf_brdf *b);
+
+size_t bf_brdf_count(const bf_brdf *b);      /* number of samples */
+size_t bf_brdf_nconf(const bf_brdf *b);      /* values per sample */
+int bf_brdf_sample(const bf_brdf *b, size_t row);  /* sample number, -1 if
+                                                      row is out of range */
+/* Values of a row (borrowed until bf_brdf_free); NULL if out of range. */
+const double *bf_brdf_values(const bf_brdf *b, size_t row);
+/* Row of sample number s, or -1. */
+long bf_brdf_find(const bf_brdf *b, int sample);
+
+/* Sample names: rows "sample name [flag]" of samples.tsv (tab-separated,
+ * header line). Opaque; owns memory. Fields are split at tabs only (names
+ * contain spaces), spaces around fields are trimmed; the first line is a
+ * header when its first field is not an integer; flag, when present, is 0
+ * or 1; sample numbers are unique, gaps allowed. */
+typedef struct bf_names bf_names;
+int bf_names_read(FILE *fp, const char *name, bf_names **out, bf_error *err);
+int bf_names_load(const char *path, bf_names **out, bf_error *err);
+void bf_names_free(bf_names *nm);
+/* Name of sample s (borrowed), or NULL when unknown or nm is NULL. */
+const char *bf_names_get(const bf_names *nm, int sample);
+
+/* A per-sample table of numbers: rows "sample x1 ... xk" with an optional
+ * header line (first field not a number). Used for the Oren-Nayar parameter
+ * file ("sample rho sigma", or CURET's op.dat "sample rho sigma kd") and the
+ * per-sample refractive index file ("sample n"). Opaque; owns memory. */
+typedef struct bf_sample_table bf_sample_table;
+
+/* Reads rows with between min_cols and max_cols numbers after the sample
+ * number; every value must be finite. Duplicate samples are errors. Every
+ * row must have the same number of values. A header line with no rows is
+ * BF_EPARSE "header line but no rows" (line 0). max_cols = 0 or
+ * min_cols > max_cols: BF_EINVAL. */
+int bf_sample_table_read(FILE *fp, const char *name, size_t min_cols,
+                         size_t max_cols, bf_sample_table **out,
+                         bf_error *err);
+int bf_sample_table_load(const char *path, size_t min_cols, size_t max_cols,
+                         bf_sample_table **out, bf_error *err);
+void bf_sample_table_free(bf_sample_table *st);
+size_t bf_sample_table_count(const bf_sample_table *st);
+/* Value of column col (0-based, after the sample number) for sample s.
+ * Returns BF_OK, or BF_ENOTFOUND when s is absent (BF_EINVAL when col >=
+ * bf_sample_table_cols(st)). */
+int bf_sample_table_get(const bf_sample_table *st, int sample, size_t col,
+                        double *value);
+/* Number of values per row (the same for every row). */
+size_t bf_sample_table_cols(const bf_sample_table *st);
+/* Sample number of row r (file order), or -1 when out of range. */
+int bf_sample_table_sample(const bf_sample_table *st, size_t row);
+
+/* Loads an Oren-Nayar parameter file (SPEC §5) and checks rho in [0, 1] and
+ * sigma in [0, pi/2] (BF_EPARSE with the line otherwise). */
+int bf_on_params_load(const char *path, bf_sample_table **out, bf_error *err);
+/* The same from a stream (name is used in messages). */
+int bf_on_params_read(FILE *fp, const char *name, bf_sample_table **out,
+                      bf_error *err);
+
+/* Loads a per-sample refractive index file ("sample n", n in (1, 10]). */
+int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err);
+/* The same from a stream (name is used in messages). */
+int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
+                   bf_error *err);
+
+/* ======================================================================
+ * --- fitting (SPEC §7) ---
+ * ====================================================================== */
+
+/* Divides in[0..n) by its maximum into out (may alias). Returns BF_EDOM when
+ * the maximum is not positive or a value is not finite; BF_EINVAL if n = 0. */
+int bf_normalise(size_t n, const double *in, double *out);
+
+/* Measured radiance of SPEC §2: out[j] = v[sel[j]] * cos(theta_i of
+ * configuration sel[j]), then normalised over the n selected values.
+ * Returns BF_EDOM when the maximum is not positive. */
+int bf_data_radiance(const bf_table *t, const double *v, size_t n,
+                     const size_t *sel, double *out);
+
+/* The result of one fit. */
+typedef struct {
+    double param[BF_MAX_PARAMS]; /* all parameters (fitted and fixed) */
+    double lse;                  /* sum of squared residuals (SPEC §7.3) */
+    unsigned bound_hit;          /* bit j set: fitted param j on a grid bound */
+    size_t n_eval;               /* model evaluations used */
+} bf_fit_result;
+
+/* Reusable workspace for fits on up to n configurations. */
+typedef struct bf_fit_workspace bf_fit_workspace;
+bf_fit_workspace *bf_fit_alloc(size_t n);
+void bf_fit_free(bf_fit_workspace *w);
+
+/* LSE of SPEC §7.3 for a model at param against normalised data:
+ * sum_k (L_model,k / max L_model - data_k)^2. BF_EDOM when the model is not
+ * normalisable there. */
+int bf_fit_lse(const bf_model_type *type, const double *param, size_t n,
+               const bf_geom *geom, const double *data, bf_fit_workspace *w,
+               double *lse);
+
+/* The paper's exhaustive search (SPEC §7.4): every fitted parameter (the
+ * ones with param[j].fitted, unless free_mask is nonzero, in which case bit j
+ * of free_mask selects parameter j) runs over its grid; the others keep the
+ * values of fixed[] (type->p values). Ties keep the first (smallest) grid
+ * point. result->bound_hit flags optima on a grid bound. A model with no free
+ * parameter is evaluated once. */
+int bf_fit_grid(const bf_model_type *type, const double *fixed,
+                unsigned free_mask, size_t n, const bf_geom *geom,
+                const double *data, bf_fit_workspace *w,
+                bf_fit_result *result);
+
+/* Precomputed normalised model curves at every point of a parameter grid on
+ * one set of configurations. Model curves do not depend on the sample, so a
+ * study computes them once and fits every sample against them; the result
+ * is bit-for-bit that of bf_fit_grid. Opaque; owns memory. */
+typedef struct bf_grid bf_grid;
+
+/* Builds the grid (arguments as bf_fit_grid). geom is read here and not
+ * kept. Returns NULL with *status set on failure. */
+bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
+                       unsigned free_mask, size_t n, const bf_geom *geom,
+                       int *status);
+void bf_grid_free(bf_grid *gr);
+/* Number of grid points. */
+size_t bf_grid_points(const bf_grid *gr);
+/* Best grid point against normalised data of the grid's n configurations. */
+int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result);
+
+/* ======================================================================
+ * --- the study (SPEC §7) ---
+ * ====================================================================== */
+
+/* What to fit: samples x models on one configuration selection. */
+typedef struct {
+    const bf_table *table;        /* configuration table */
+    const bf_brdf *brdf;          /* measured BRDF rows */
+    const size_t *sel;            /* used configurations (0-based) */
+    size_t n_sel;                 /* K, the number of used configurations */
+    const int *samples;           /* sample numbers to fit */
+    size_t n_samples;
+    const bf_model_type *const *models; /* models to fit */
+    size_t n_models;
+    double n_default;             /* refractive index for FC models */
+    const bf_sample_table *n_file;    /* per-sample n (NULL: n_default) */
+    const bf_sample_table *on_params; /* ON (rho, sigma) per sample */
+} bf_study_spec;
+
+/* The outcome of one (sample, model) pair. */
+typedef struct {
+    int sample;                   /* sample number */
+    const bf_model_type *type;    /* model */
+    int status;                   /* BF_OK; BF_ENOTFOUND when an input is
+                                     missing (ON without parameters) */
+    bf_fit_result fit;            /* valid when status == BF_OK */
+} bf_study_row;
+
+/* Runs the paper's protocol (SPEC §7) for every sample and model, writing
+ * n_samples * n_models rows (sample-major) into rows. A sample absent from
+ * the BRDF file, or whose data cannot be normalised, is an error (returned,
+ * with err->msg naming the sample); a model that cannot be evaluated for a
+ * sample for lack of inputs gets its row's status set and the study goes
+ * on. */
+int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
+                 bf_error *err);
+
+/* The 24 CURET samples of Ragheb & Hancock's study, in increasing order. */
+#define BF_STUDY_NSAMPLES 24
+extern const int bf_study_samples[BF_STUDY_NSAMPLES];
+
+/* The paper's default refractive index for FC models (SPEC §4.2). */
+#define BF_DEFAULT_N 1.7
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BRDFFIT_H */

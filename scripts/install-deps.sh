@@ -1,0 +1,30 @@
+#!/bin/sh
+# install-deps.sh: installs the Debian packages brdffit needs, only those
+# that are missing (idempotent). Runs apt-get as root, or through sudo.
+#
+#   scripts/install-deps.sh          build + test dependencies
+set -eu
+
+PACKAGES="pkg-config libgsl-dev libcriterion-dev"
+
+missing=""
+for p in $PACKAGES; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed"; then
+        missing="$missing $p"
+    fi
+done
+[ -z "$missing" ] && exit 0
+
+echo "install-deps: installing:$missing" >&2
+if [ "$(id -u)" -eq 0 ]; then
+    SUDO=""
+elif command -v sudo >/dev/null 2>&1; then
+    SUDO="sudo"
+else
+    echo "install-deps: need root (or sudo) to install:$missing" >&2
+    exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
