@@ -1,0 +1,191 @@
+/* internal.h: private declarations shared across libbrdffit's source files.
+ * Never installed. Private names use the bf__ prefix (STYLE §3). */
+#ifndef BF_INTERNAL_H
+#define BF_INTERNAL_H
+
+#include <stdio.h>
+
+#include "brdffit.h"
+
+#if defined(__GNUC__)
+#define BF__PRINTF(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define BF__PRINTF(fmt, args)
+#endif
+
+/* ======================================================================
+ * --- error reports (src/error.c) ---
+ * ====================================================================== */
+
+/* File name used in reports when a reader is given name == NULL. */
+#define BF__NONAME "(stream)"
+
+/* Resets err (may be NULL) to BF_OK, line 0, empty message, and copies name
+ * (truncated to BF_ERROR_FILE_MAX - 1 bytes; NULL gives BF__NONAME). Every
+ * loader calls it first. */
+void bf__error_clear(bf_error *err, const char *name);
+
+/* Sets err's code, line and printf-style message (truncated to
+ * BF_ERROR_MSG_MAX - 1 bytes); err->file is left as bf__error_clear set it.
+ * err may be NULL. Returns code, so callers can write
+ * `return bf__error_set(err, BF_EPARSE, line, "...")`. */
+int bf__error_set(bf_error *err, int code, long line, const char *fmt, ...)
+    BF__PRINTF(4, 5);
+
+/* ======================================================================
+ * --- line reader and strict number parsing (src/data/lineio.c) ---
+ * ====================================================================== */
+
+/* Longest accepted line, in bytes, without its line end. Longer lines are a
+ * BF_EPARSE error instead of an unbounded allocation. CURET's longest line
+ * (abrdf.dat) is about 1.7 KB. */
+#define BF__LINE_MAX ((size_t)1 << 20)
+
+/* At most this many bytes of an offending field are quoted in a message. */
+#define BF__QUOTE_MAX 24
+
+/* A line reader over a FILE * (see lineio.c for the accepted syntax: LF or
+ * CRLF line ends, optional final newline, optional UTF-8 BOM, blank lines
+ * skipped, trailing blanks ignored; NUL bytes, lone CRs and lines longer
+ * than BF__LINE_MAX are errors). Fields are split in place. */
+typedef struct {
+    FILE *fp;         /* the stream (not owned) */
+    long line;        /* 1-based number of the current line, 0 before any */
+    int started;      /* 1 once the BOM check has been done */
+    char *buf;        /* current line, NUL-terminated, line end removed */
+    size_t len;       /* its length in bytes */
+    size_t cap;       /* allocated size of buf */
+    char **field;     /* fields of the current line after a split */
+    size_t nfield;    /* number of fields */
+    size_t field_cap; /* allocated size of field */
+} bf__lines;
+
+/* Prepares r to read fp. Never fails (allocation happens on first use). */
+void bf__lines_init(bf__lines *r, FILE *fp);
+
+/* Frees r's buffers (not the stream). */
+void bf__lines_free(bf__lines *r);
+
+/* Reads the next non-blank line into r->buf (trailing spaces and tabs
+ * removed) and sets *have_line to 1, or to 0 at end of file. Returns BF_OK,
+ * BF_EPARSE (NUL byte, lone CR, line too long), BF_EIO (read error) or
+ * BF_ENOMEM, with err filled (line = the offending line). */
+int bf__lines_next(bf__lines *r, int *have_line, bf_error *err);
+
+/* Splits r->buf in place into fields separated by runs of spaces and tabs.
+ * Returns BF_OK or BF_ENOMEM (err filled). */
+int bf__lines_split_ws(bf__lines *r, bf_error *err);
+
+/* Splits r->buf in place at every tab (empty fields are kept) and trims
+ * spaces around each field. Returns BF_OK or BF_ENOMEM (err filled). */
+int bf__lines_split_tab(bf__lines *r, bf_error *err);
+
+/* Results of the strict number parsers. */
+enum {
+    BF__NUM_OK = 0,
+    BF__NUM_SYNTAX,    /* not a decimal number at all */
+    BF__NUM_TRAILING,  /* a number followed by other characters ("1.5abc") */
+    BF__NUM_HEX,       /* hexadecimal ("0x1p3") */
+    BF__NUM_NONFINITE, /* "nan", "inf", "infinity" in any case */
+    BF__NUM_RANGE,     /* overflows a double (1e999) or the integer range */
+    BF__NUM_NOTINT     /* a decimal number that is not an integer ("1.5") */
+};
+
+/* Parses text as a decimal floating-point number: [+-] digits [. digits]
+ * [(e|E) [+-] digits], at least one mantissa digit, nothing else. Values
+ * that underflow are accepted (rounded towards 0). Returns BF__NUM_*. */
+int bf__parse_double(const char *text, double *value);
+
+/* Parses text as a decimal integer in [min, max]: [+-] digits, nothing else.
+ * Returns BF__NUM_OK, BF__NUM_NOTINT ("1.5", "1e3"), BF__NUM_RANGE or one
+ * of the codes of bf__parse_double for non-numbers. */
+int bf__parse_long(const char *text, long min, long max, long *value);
+
+/* Parses field i (0-based) of r as a double; on failure fills err with
+ * BF_EPARSE at r->line: 'field <i+1> (<what>): <reason>: "<text>"'. */
+int bf__field_double(const bf__lines *r, size_t i, const char *what,
+                     double *value, bf_error *err);
+
+/* Same for an integer in [min, max]. */
+int bf__field_long(const bf__lines *r, size_t i, const char *what, long min,
+                   long max, long *value, bf_error *err);
+
+/* Fills err (BF_EPARSE, r->line) for a field whose parse returned status:
+ * 'field <i+1> (<what>): <reason>: "<quoted text>"'. min and max are used
+ * for BF__NUM_RANGE of integers (pass min > max for doubles). Returns
+ * BF_EPARSE. */
+int bf__field_error(const bf__lines *r, size_t i, const char *what,
+                    int status, long min, long max, bf_error *err);
+
+/* Opens path for reading for a _load function: BF_EIO (message with
+ * strerror(errno), line 0) when it cannot be opened, is a directory, or is
+ * neither a regular file nor a FIFO/pipe. On success *fp is the stream. */
+int bf__open(const char *path, FILE **fp, bf_error *err);
+
+/* ======================================================================
+ * --- geometry and model helpers (src/geometry.c, src/fresnel.c,
+ *     src/models/) ---
+ * ====================================================================== */
+
+#include <math.h>
+
+/* pi and pi/2 to double precision (M_PI is not part of strict C11). */
+#define BF__PI 3.14159265358979323846
+#define BF__PI_2 1.57079632679489661923
+
+/* Sine and cosine of a zenith angle theta in [0, pi/2]. The double nearest
+ * pi/2 (and anything above it) is treated as exactly grazing, sin = 1 and
+ * cos = 0, so that the grazing limits of SPEC §3.3, §4.1 and §5 are taken
+ * exactly: cos(1.5707963267948966) is 6.1e-17, not 0. Used by every model
+ * and by the Fresnel terms. */
+static inline void bf__zenith_sincos(double theta, double *s, double *c)
+{
+    if (theta >= BF__PI_2) {
+        *s = 1.0;
+        *c = 0.0;
+    } else {
+        *s = sin(theta);
+        *c = cos(theta);
+    }
+}
+
+/* Unpolarised Fresnel reflectance f of SPEC §4.1 from the sine s and cosine
+ * c (both >= 0) of the angle of arrival, relative index r > 0. Defined in
+ * src/fresnel.c; called by bf_fresnel, bf_fresnel_fc2 and the FC models,
+ * which already have s and c and so skip the trigonometry. */
+double bf__fresnel_sc(double s, double c, double r);
+
+/* Transmittances of F_FC^2 (SPEC §4.2, paper (P6)) from the sines and
+ * cosines of theta_i and theta_s (si, ci, ss, cs): returns
+ * [1 - f(theta_i, n)] * [1 - f(asin(sin theta_s / n), 1/n)] * cos theta_i.
+ * Defined in src/fresnel.c; used by bf_fresnel_fc2 and the FC models.
+ * n >= 1 is not checked. */
+double bf__fresnel_fc2_sc(double si, double ci, double ss, double cs,
+                          double n);
+
+/* ======================================================================
+ * --- fitting (src/fit) ---
+ * ====================================================================== */
+
+/* Which parameters a grid search varies, and the values of the others. */
+typedef struct {
+    double base[BF_MAX_PARAMS]; /* fixed values; free ones overwritten */
+    size_t free[BF_MAX_PARAMS]; /* indices of the free parameters */
+    size_t n_free;              /* number of free parameters */
+    size_t points;              /* product of the free grids' sizes */
+    unsigned mask;              /* bit j: parameter j is free */
+} bf__grid_layout_t;
+
+/* Checks type/fixed/free_mask and fills g (src/fit/grid.c). */
+int bf__grid_layout(const bf_model_type *type, const double *fixed,
+                    unsigned free_mask, bf__grid_layout_t *g);
+/* Parameter vector of grid point idx; returns its bound flags. */
+unsigned bf__grid_point(const bf_model_type *type, const bf__grid_layout_t *g,
+                        size_t idx, double *param);
+/* sum_k (curve_k - data_k)^2 in index order (SPEC §7.3). */
+double bf__sum_sq_diff(size_t n, const double *curve, const double *data);
+/* Model curve at param, normalised (SPEC §2); BF_EDOM when undefined. */
+int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
+                    const bf_geom *geom, double *curve);
+
+#endif
