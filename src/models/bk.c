@@ -1,0 +1,248 @@
+/* bk.c: the Beckmann-Kirchhoff family -- BK-G, BK-E (Beckmann's original
+ * geometric factor), VH-G, VH-E (Vernold-Harvey) and FC-G, FC-E (Fresnel
+ * correction), for Gaussian (G) and exponential (E) surface correlation
+ * (SPEC §3).
+ *
+ * References:
+ *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann Model"
+ *       (equations (P1)-(P3), (P6) and Table 1).
+ *   [2] P. Beckmann, A. Spizzichino, "The Scattering of Electromagnetic Waves
+ *       from Rough Surfaces", Pergamon, 1963 (F_BK, the frame of SPEC §1.2).
+ *   [3] C. L. Vernold, J. E. Harvey, "A modified Beckmann-Kirchhoff
+ *       scattering theory for non-paraxial angles", Proc. SPIE 3426, 1998.
+ *
+ * Equations (k = 2 pi / lambda cancels, k = 1; m = sigma / T):
+ *   vx = sin ti - sin ts cos ps,  vy = -sin ts sin ps,
+ *   vz = -(cos ti + cos ts),  vxy^2 = vx^2 + vy^2              SPEC §3
+ *   F_BK = (1 + cos ti cos ts - sin ti sin ts cos ps)
+ *          / (cos ti (cos ti + cos ts))                   (P3), SPEC §3
+ *   G:  L = (1/m^2) F^2 / vz^2 exp(-vxy^2 / (4 m^2 vz^2))  (P1), SPEC §3.1
+ *   E:  L = (2/m^2) F^2 / vz^2 (1 + vxy^2/(m^2 vz^2))^(-3/2)
+ *                                                         (P2), SPEC §3.2
+ *   F^2 = F_BK^2 (BK), cos ti (VH), F_FC^2 of (P6) (FC)   Table 1, SPEC §3.3
+ *
+ * Departures from the paper's printed forms, all algebraically exact:
+ *   - each variant computes its own factor F^2 directly instead of Table 1's
+ *     L_BK * F'/F_BK^2 (F_BK can vanish at grazing geometry; SPEC §3.3);
+ *   - (P2) is evaluated as 2 m F^2 |vz| / (m^2 vz^2 + vxy^2)^(3/2), which is
+ *     finite where vz -> 0 (multiply numerator and denominator by
+ *     (m |vz|)^3);
+ *   - where vz = 0 (theta_i = theta_s = pi/2) the formulas are 0/0 and the
+ *     limit is returned: 0 when vxy > 0 (the exponential decay wins);
+ *     see the note on the grazing corner below for vxy = 0.
+ *
+ * Domains: BK-G/BK-E are undefined at theta_i = pi/2 (F_BK ~ 1/cos ti; the
+ * Kirchhoff approximation fails there): NaN and BF_EDOM (SPEC §3.3).
+ */
+#include <math.h>
+
+#include "internal.h"
+
+/* Which factor replaces F_BK^2 (Table 1, SPEC §3.3). */
+typedef enum { FACTOR_BK, FACTOR_VH, FACTOR_FC } factor_kind;
+
+/* Which correlation function (SPEC §3.1, §3.2). */
+typedef enum { CORR_GAUSS, CORR_EXP } corr_kind;
+
+/* The grazing corner theta_i = theta_s = pi/2, phi_s = 0,
+ * where vz = 0 and vxy = 0. SPEC §3.3 resolves it: the VH and FC variants
+ * return the limit 0 there, never 0/0. For FC with n > 1 this is a true
+ * limit: both transmittances vanish like cos theta at grazing, F_FC^2 <=
+ * c^2 cos^2 ti cos ts, so L <= c' F_FC^2 / vz^2 <= c' c^2 cos ti -> 0 on
+ * every path. For VH (and FC with n = 1, which equals VH) the limit is
+ * path-dependent: 0 along the grazing boundary (theta_i = theta_s = pi/2,
+ * phi_s -> 0) but 1 / (4 m^2 cos ti) -> infinity along the specular path
+ * theta_s = theta_i -> pi/2, phi_s = 0 (tested). The corner value 0 is
+ * therefore SPEC's convention for VH, a single point that no measured
+ * configuration reaches. */
+
+/* Evaluates one member of the family at count configurations; m and n were
+ * checked by bf_model_eval (n is used by FC only). Called by the six eval
+ * functions below. Per configuration: three sine/cosine pairs, one exp or
+ * sqrt; no allocation. */
+static int bk_family(factor_kind kind, corr_kind corr, double m, double n,
+                     size_t count, const bf_geom *geom, double *out)
+{
+    int status = BF_OK;
+    double m2 = m * m;
+    size_t k;
+    for (k = 0; k < count; k++) {
+        double si;
+        double ci;
+        double ss;
+        double cs;
+        double sp = sin(geom[k].phi_s);
+        double cp = cos(geom[k].phi_s);
+        double vx;
+        double vy;
+        double vz;
+        double vxy2;
+        double vz2;
+        double f2;
+        bf__zenith_sincos(geom[k].theta_i, &si, &ci);
+        bf__zenith_sincos(geom[k].theta_s, &ss, &cs);
+        vx = si - (ss * cp); /* SPEC §3, k = 1 */
+        vy = -(ss * sp);     /* SPEC §3 */
+        vz = -(ci + cs);     /* SPEC §3 */
+        vxy2 = (vx * vx) + (vy * vy);
+        vz2 = vz * vz;
+
+        switch (kind) {
+        case FACTOR_BK: {
+            double f_bk;
+            if (ci == 0.0) { /* theta_i = pi/2: F_BK diverges, SPEC §3.3 */
+                out[k] = NAN;
+                status = BF_EDOM;
+                continue;
+            }
+            /* F_BK, paper (P3), SPEC §3 */
+            f_bk = (1.0 + (ci * cs) - (si * ss * cp)) / (ci * (ci + cs));
+            f2 = f_bk * f_bk;
+            break;
+        }
+        case FACTOR_VH:
+            f2 = ci; /* Vernold-Harvey, Table 1, SPEC §3.3 */
+            break;
+        default:
+            /* F_FC^2, paper (P6), SPEC §4.2 */
+            f2 = bf__fresnel_fc2_sc(si, ci, ss, cs, n);
+            break;
+        }
+
+        if (vz2 == 0.0) { /* theta_i = theta_s = pi/2 (only VH, FC get here) */
+            /* vxy > 0: the limit of exp(-c/vz^2)/vz^2 and of |vz| is 0;
+             * vxy = 0 (the corner, phi_s = 0): see the note above. */
+            out[k] = 0.0; /* SPEC §3.3 */
+            continue;
+        }
+        if (corr == CORR_GAUSS) {
+            /* (P1), SPEC §3.1 */
+            out[k] = f2 / (m2 * vz2) * exp(-vxy2 / (4.0 * m2 * vz2));
+        } else {
+            /* (P2), SPEC §3.2, rearranged: (2/m^2)(1/vz^2)(1 + x)^(-3/2)
+             * = 2 m |vz| / (m^2 vz^2 + vxy^2)^(3/2) */
+            double d = (m2 * vz2) + vxy2;
+            out[k] = 2.0 * m * f2 * fabs(vz) / (d * sqrt(d));
+        }
+    }
+    return status;
+}
+
+/* ---------------------------------------------------------------------- */
+/* The six eval functions: param[0] = m, FC also param[1] = n.             */
+/* ---------------------------------------------------------------------- */
+
+static int eval_bk_g(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_BK, CORR_GAUSS, param[0], 1.0, count, geom, out);
+}
+
+static int eval_bk_e(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_BK, CORR_EXP, param[0], 1.0, count, geom, out);
+}
+
+static int eval_vh_g(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_VH, CORR_GAUSS, param[0], 1.0, count, geom, out);
+}
+
+static int eval_vh_e(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_VH, CORR_EXP, param[0], 1.0, count, geom, out);
+}
+
+static int eval_fc_g(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_FC, CORR_GAUSS, param[0], param[1], count, geom,
+                     out);
+}
+
+static int eval_fc_e(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    return bk_family(FACTOR_FC, CORR_EXP, param[0], param[1], count, geom,
+                     out);
+}
+
+/* ---------------------------------------------------------------------- */
+/* Parameters and type objects                                            */
+/* ---------------------------------------------------------------------- */
+
+/* Domain of the slope m = sigma/T. Below 1e-3 the lobe is narrower than any
+ * measured configuration spacing and exp() underflows everywhere off
+ * specular; above 100 the lobe is flat to 1e-4 over the hemisphere. The
+ * paper's grid [0.1, 5.1] lies well inside. Grid: SPEC §7.4. */
+#define SLOPE_MIN 1e-3
+#define SLOPE_MAX 100.0
+#define SLOPE_DEFAULT 1.0
+#define SLOPE_GRID_LO 0.1
+#define SLOPE_GRID_STEP 0.01
+#define SLOPE_GRID_N 501
+
+/* Refractive index of FC: a fixed input (SPEC §4.2), default 1.7. n = 1 is
+ * allowed (no interface: FC reduces to VH). */
+#define N_MIN 1.0
+#define N_MAX 10.0
+
+static const bf_param param_g[1] = {
+    {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+};
+
+static const bf_param param_e[1] = {
+    {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+};
+
+static const bf_param param_fc_g[2] = {
+    {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+    {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
+     0},
+};
+
+static const bf_param param_fc_e[2] = {
+    {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+    {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
+     0},
+};
+
+static const bf_model_type bk_g = {
+    "BK-G", "Beckmann-Kirchhoff, Gaussian correlation",
+    "paper (P1),(P3), SPEC §3.1", 1, param_g, eval_bk_g};
+
+static const bf_model_type bk_e = {
+    "BK-E", "Beckmann-Kirchhoff, exponential correlation",
+    "paper (P2),(P3), SPEC §3.2", 1, param_e, eval_bk_e};
+
+static const bf_model_type vh_g = {
+    "VH-G", "Vernold-Harvey Beckmann-Kirchhoff, Gaussian correlation",
+    "paper (P1), Table 1, SPEC §3.1, §3.3", 1, param_g, eval_vh_g};
+
+static const bf_model_type vh_e = {
+    "VH-E", "Vernold-Harvey Beckmann-Kirchhoff, exponential correlation",
+    "paper (P2), Table 1, SPEC §3.2, §3.3", 1, param_e, eval_vh_e};
+
+static const bf_model_type fc_g = {
+    "FC-G", "Fresnel-corrected Beckmann-Kirchhoff, Gaussian correlation",
+    "paper (P1),(P4)-(P6), Table 1, SPEC §3.1, §3.3, §4", 2, param_fc_g,
+    eval_fc_g};
+
+static const bf_model_type fc_e = {
+    "FC-E", "Fresnel-corrected Beckmann-Kirchhoff, exponential correlation",
+    "paper (P2),(P4)-(P6), Table 1, SPEC §3.2, §3.3, §4", 2, param_fc_e,
+    eval_fc_e};
+
+const bf_model_type *const bf_model_bk_g = &bk_g;
+const bf_model_type *const bf_model_bk_e = &bk_e;
+const bf_model_type *const bf_model_vh_g = &vh_g;
+const bf_model_type *const bf_model_vh_e = &vh_e;
+const bf_model_type *const bf_model_fc_g = &fc_g;
+const bf_model_type *const bf_model_fc_e = &fc_e;

@@ -1,0 +1,49 @@
+/* lafortune.c: Lafortune's diffuse lobe, LFTG (SPEC §6).
+ *
+ * References:
+ *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann Model"
+ *       (equation (P7)).
+ *   [2] E. P. F. Lafortune, S.-C. Foo, K. E. Torrance, D. P. Greenberg,
+ *       "Non-linear approximation of reflectance functions", SIGGRAPH 1997.
+ *
+ * Equations:
+ *   L = (n_d + 2)/(2 pi) (cos ti cos ts)^n_d            (P7), SPEC §6
+ * (P7) is read as a radiance: no extra cos ti factor (SPEC §6). The albedo
+ * cancels in the normalisation (SPEC §2) and is not a parameter. At n_d = 0
+ * the value is the constant 1/pi, also at grazing (pow(0, 0) = 1 in C99).
+ */
+#include <math.h>
+
+#include "internal.h"
+
+/* Evaluates LFTG at param = {n_d}, checked by bf_model_eval. */
+static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
+                     double *out)
+{
+    double n_d = param[0];
+    double scale = (n_d + 2.0) / (2.0 * BF__PI);
+    size_t k;
+    for (k = 0; k < count; k++) {
+        double si;
+        double ci;
+        double ss;
+        double cs;
+        bf__zenith_sincos(geom[k].theta_i, &si, &ci);
+        bf__zenith_sincos(geom[k].theta_s, &ss, &cs);
+        out[k] = scale * pow(ci * cs, n_d); /* (P7), SPEC §6 */
+    }
+    return BF_OK;
+}
+
+/* n_d: grid 0.1 + 0.04 i, i = 0..500, i.e. [0.1, 20.1] (SPEC §7.4). The
+ * domain [0, 100] keeps the lobe representable: (cos ti cos ts)^100 is still
+ * above 1e-300 for cos > 1e-3. */
+static const bf_param param_lftg[1] = {
+    {"n_d", "exponent n_d", "1", 0.0, 100.0, 1.0, 1, 0.1, 0.04, 501},
+};
+
+static const bf_model_type lftg_type = {
+    "LFTG", "Lafortune diffuse lobe",
+    "paper (P7), Lafortune et al. 1997, SPEC §6", 1, param_lftg, eval_lftg};
+
+const bf_model_type *const bf_model_lftg = &lftg_type;

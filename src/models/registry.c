@@ -1,0 +1,127 @@
+/* registry.c: the table of model types, lookup by name and the checked
+ * evaluation entry point bf_model_eval (SPEC §3-6).
+ *
+ * References:
+ *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann Model"
+ *       (the models of its Table 1, plus ON and LFTG).
+ *
+ * Equations: none here; each model file lists its own.
+ */
+#include <ctype.h>
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* Registry order is part of the API (bf_model_get): the paper's six
+ * Beckmann variants, then ON, LFTG and the Lambert baseline. Adding a model
+ * means one new file and one line here. The addresses of the pointer
+ * variables are constant expressions; the pointers themselves are not. */
+static const bf_model_type *const *const registry[] = {
+    &bf_model_bk_g, &bf_model_bk_e, &bf_model_vh_g, &bf_model_vh_e,
+    &bf_model_fc_g, &bf_model_fc_e, &bf_model_on,   &bf_model_lftg,
+    &bf_model_lambert,
+};
+
+#define REGISTRY_N (sizeof registry / sizeof registry[0])
+
+size_t bf_model_count(void)
+{
+    return REGISTRY_N;
+}
+
+const bf_model_type *bf_model_get(size_t i)
+{
+    return (i < REGISTRY_N) ? *registry[i] : NULL;
+}
+
+/* ASCII case-insensitive equality (strcasecmp is POSIX, not C11, and is
+ * locale-dependent). */
+static int name_equal(const char *a, const char *b)
+{
+    while ((*a != '\0') && (*b != '\0')) {
+        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) {
+            return 0;
+        }
+        a++;
+        b++;
+    }
+    return (*a == '\0') && (*b == '\0');
+}
+
+const bf_model_type *bf_model_find(const char *name)
+{
+    size_t i;
+    if (name == NULL) {
+        return NULL;
+    }
+    for (i = 0; i < REGISTRY_N; i++) {
+        if (name_equal((*registry[i])->name, name)) {
+            return *registry[i];
+        }
+    }
+    return NULL;
+}
+
+int bf_model_param_index(const bf_model_type *type, const char *name)
+{
+    size_t j;
+    if ((type == NULL) || (name == NULL)) {
+        return -1;
+    }
+    for (j = 0; j < type->p; j++) {
+        if (strcmp(type->param[j].name, name) == 0) {
+            return (int)j;
+        }
+    }
+    return -1;
+}
+
+/* A zenith angle of the closed hemisphere [0, pi/2]; pi/2 is the double
+ * nearest it (what asin(1) and 2 atan(1) return). */
+static int zenith_ok(double theta)
+{
+    return (theta >= 0.0) && (theta <= BF__PI_2);
+}
+
+/* Checks inputs once (STYLE §4), then calls the model's eval. On BF_EINVAL
+ * out (when given) is filled with NaN so no stale value survives. */
+int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
+                  const bf_geom *geom, double *out)
+{
+    size_t j;
+    size_t k;
+    int status = BF_OK;
+    /* check inputs */
+    if ((type == NULL) || (type->eval == NULL) || (type->p > BF_MAX_PARAMS)
+        || ((type->p > 0) && (param == NULL))) {
+        status = BF_EINVAL;
+    }
+    if ((n > 0) && ((geom == NULL) || (out == NULL))) {
+        return BF_EINVAL; /* nowhere to write NaN */
+    }
+    for (j = 0; (status == BF_OK) && (j < type->p); j++) {
+        const bf_param *pj = &type->param[j];
+        if (!isfinite(param[j]) || (param[j] < pj->min)
+            || (param[j] > pj->max)) {
+            status = BF_EINVAL;
+        }
+    }
+    for (k = 0; (status == BF_OK) && (k < n); k++) {
+        const bf_geom *g = &geom[k];
+        if (!zenith_ok(g->theta_i) || !zenith_ok(g->theta_s)
+            || !isfinite(g->phi_i) || !isfinite(g->phi_s)) {
+            status = BF_EINVAL;
+        }
+    }
+    if (status != BF_OK) {
+        for (k = 0; k < n; k++) {
+            out[k] = NAN;
+        }
+        return status;
+    }
+    if (n == 0) {
+        return BF_OK;
+    }
+    return type->eval(param, n, geom, out);
+}
