@@ -1,0 +1,93 @@
+/* cli.h: shared pieces of the brdffit command-line tool -- exit codes,
+ * messages, argument lists, input loading and atomic output files. */
+#ifndef BF_CLI_H
+#define BF_CLI_H
+
+#include <stdio.h>
+
+#include "brdffit.h"
+
+/* Exit statuses (documented in README.md, --help and brdffit.1); values
+ * follow BSD sysexits.h. */
+enum {
+    BF_EXIT_OK = 0,        /* success */
+    BF_EXIT_USAGE = 64,    /* bad command line: unknown option, bad value */
+    BF_EXIT_DATAERR = 65,  /* malformed or unusable input data */
+    BF_EXIT_NOINPUT = 66,  /* an input file cannot be opened */
+    BF_EXIT_SOFTWARE = 70, /* internal error (a bug: please report it) */
+    BF_EXIT_CANTCREAT = 73,/* the output folder or a file cannot be created */
+    BF_EXIT_IOERR = 74     /* an output file cannot be written */
+};
+
+extern const char *bf_cli_prog; /* "brdffit" */
+
+/* Prints "brdffit: <message>" to stderr. */
+void bf_cli_err(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Prints a usage error and the hint to run --help; returns BF_EXIT_USAGE. */
+int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Maps a loader failure to a message on stderr and an exit status. */
+int bf_cli_load_error(const bf_error *err);
+
+/* Parses a list "1,5,7-9" of positive integers into a new array (caller
+ * frees). Returns 0 on success, -1 with a message in msg otherwise. */
+int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
+                          size_t msglen);
+
+/* Parses a finite double; returns 0 on success. */
+int bf_cli_parse_double(const char *s, double *out);
+
+/* The inputs of a study run. */
+typedef struct {
+    char table_path[4096];
+    char brdf_path[4096];
+    char names_path[4096];
+    bf_table *table;
+    bf_brdf *brdf;
+    bf_names *names;          /* NULL when samples.tsv is absent */
+    bf_sample_table *n_file;  /* NULL unless --n-file */
+    bf_sample_table *on_params;
+} bf_cli_inputs;
+
+/* Loads table.txt, the BRDF file (brdf_file, or DIR/abrdf.dat when NULL)
+ * and samples.tsv (optional) from data_dir, and the optional n and ON files.
+ * Returns BF_EXIT_OK or an exit status after printing the error. */
+int bf_cli_load_inputs(const char *data_dir, const char *brdf_file,
+                       const char *n_file, const char *on_file,
+                       bf_cli_inputs *in);
+void bf_cli_free_inputs(bf_cli_inputs *in);
+
+/* An output file written atomically: data go to a temporary file in the
+ * same folder, renamed over the final path by bf_out_commit. */
+typedef struct {
+    FILE *fp;
+    char path[4096];
+    char tmp[4096];
+} bf_out;
+
+/* Creates folder dir if missing (one level). Returns 0 or an exit status
+ * after printing the error. */
+int bf_cli_make_outdir(const char *dir);
+
+/* Opens dir/name for atomic writing. Returns 0 or an exit status. */
+int bf_out_open(bf_out *o, const char *dir, const char *name);
+/* Flushes, closes and renames into place. Returns 0 or an exit status; on
+ * failure the temporary file is removed and no output is left. */
+int bf_out_commit(bf_out *o);
+/* Abandons the file: closes and removes the temporary. */
+void bf_out_abort(bf_out *o);
+
+/* Subcommands. */
+int bf_cmd_compare(int argc, char **argv);
+int bf_cmd_models(int argc, char **argv);
+
+#endif

@@ -1,0 +1,299 @@
+/* common.c: messages, argument parsing, input loading and atomic output
+ * files shared by the brdffit subcommands. */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+const char *bf_cli_prog = "brdffit";
+
+void bf_cli_err(const char *fmt, ...)
+{
+    va_list ap;
+    fprintf(stderr, "%s: ", bf_cli_prog);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    fprintf(stderr, "%s: ", bf_cli_prog);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\nTry '%s %s--help' for more information.\n",
+            bf_cli_prog, cmd != NULL ? cmd : "");
+    return BF_EXIT_USAGE;
+}
+
+int bf_cli_load_error(const bf_error *err)
+{
+    char buf[BF_ERROR_FILE_MAX + BF_ERROR_MSG_MAX + 64];
+    bf_cli_err("%s", bf_error_format(err, buf, sizeof buf));
+    if (err->code == BF_EIO) {
+        return BF_EXIT_NOINPUT;
+    }
+    if (err->code == BF_ENOMEM) {
+        return BF_EXIT_SOFTWARE;
+    }
+    return BF_EXIT_DATAERR;
+}
+
+int bf_cli_parse_double(const char *s, double *out)
+{
+    char *end = NULL;
+    double v;
+    if (s == NULL || *s == '\0') {
+        return -1;
+    }
+    errno = 0;
+    v = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static int parse_pos_int(const char *s, const char **end, long *v)
+{
+    char *e = NULL;
+    if (*s < '0' || *s > '9') {
+        return -1;
+    }
+    errno = 0;
+    *v = strtol(s, &e, 10);
+    if (errno == ERANGE || *v <= 0 || *v > INT_MAX) {
+        return -1;
+    }
+    *end = e;
+    return 0;
+}
+
+int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
+                          size_t msglen)
+{
+    int *list = NULL;
+    size_t len = 0;
+    size_t cap = 0;
+    const char *p = s;
+
+    *out = NULL;
+    *n = 0;
+    if (s == NULL || *s == '\0') {
+        snprintf(msg, msglen, "empty list");
+        return -1;
+    }
+    while (*p != '\0') {
+        long lo;
+        long hi;
+        long v;
+        const char *e;
+        if (parse_pos_int(p, &e, &lo) != 0) {
+            snprintf(msg, msglen, "'%s': expected a positive number at '%s'",
+                     s, p);
+            goto fail;
+        }
+        hi = lo;
+        if (*e == '-') {
+            p = e + 1;
+            if (parse_pos_int(p, &e, &hi) != 0 || hi < lo) {
+                snprintf(msg, msglen, "'%s': bad range ending at '%s'", s, p);
+                goto fail;
+            }
+        }
+        if (*e != ',' && *e != '\0') {
+            snprintf(msg, msglen, "'%s': unexpected '%c'", s, *e);
+            goto fail;
+        }
+        if (hi - lo > 1000000) {
+            snprintf(msg, msglen, "'%s': range too long", s);
+            goto fail;
+        }
+        for (v = lo; v <= hi; v++) {
+            size_t i;
+            for (i = 0; i < len; i++) {
+                if (list[i] == (int)v) {
+                    snprintf(msg, msglen, "'%s': %ld is listed twice", s, v);
+                    goto fail;
+                }
+            }
+            if (len == cap) {
+                size_t ncap = cap ? 2 * cap : 16;
+                int *nl = realloc(list, ncap * sizeof *nl);
+                if (nl == NULL) {
+                    snprintf(msg, msglen, "out of memory");
+                    goto fail;
+                }
+                list = nl;
+                cap = ncap;
+            }
+            list[len++] = (int)v;
+        }
+        p = (*e == ',') ? e + 1 : e;
+        if (*e == ',' && *p == '\0') {
+            snprintf(msg, msglen, "'%s': trailing comma", s);
+            goto fail;
+        }
+    }
+    *out = list;
+    *n = len;
+    return 0;
+fail:
+    free(list);
+    return -1;
+}
+
+static int file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+int bf_cli_load_inputs(const char *data_dir, const char *brdf_file,
+                       const char *n_file, const char *on_file,
+                       bf_cli_inputs *in)
+{
+    bf_error err;
+    struct stat st;
+
+    memset(in, 0, sizeof *in);
+    if (stat(data_dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        bf_cli_err("%s: data folder not found (give --data DIR with CURET's "
+                   "table.txt and abrdf.dat; see README.md)",
+                   data_dir);
+        return BF_EXIT_NOINPUT;
+    }
+    snprintf(in->table_path, sizeof in->table_path, "%s/table.txt", data_dir);
+    if (brdf_file != NULL) {
+        snprintf(in->brdf_path, sizeof in->brdf_path, "%s", brdf_file);
+    } else {
+        snprintf(in->brdf_path, sizeof in->brdf_path, "%s/abrdf.dat",
+                 data_dir);
+    }
+    snprintf(in->names_path, sizeof in->names_path, "%s/samples.tsv",
+             data_dir);
+
+    if (bf_table_load(in->table_path, &in->table, &err) != BF_OK ||
+        bf_brdf_load(in->brdf_path, bf_table_size(in->table), &in->brdf,
+                     &err) != BF_OK) {
+        return bf_cli_load_error(&err);
+    }
+    if (file_exists(in->names_path) &&
+        bf_names_load(in->names_path, &in->names, &err) != BF_OK) {
+        return bf_cli_load_error(&err);
+    }
+    if (n_file != NULL && bf_n_file_load(n_file, &in->n_file, &err) != BF_OK) {
+        return bf_cli_load_error(&err);
+    }
+    if (on_file != NULL &&
+        bf_on_params_load(on_file, &in->on_params, &err) != BF_OK) {
+        return bf_cli_load_error(&err);
+    }
+    return BF_EXIT_OK;
+}
+
+void bf_cli_free_inputs(bf_cli_inputs *in)
+{
+    bf_table_free(in->table);
+    bf_brdf_free(in->brdf);
+    bf_names_free(in->names);
+    bf_sample_table_free(in->n_file);
+    bf_sample_table_free(in->on_params);
+    memset(in, 0, sizeof *in);
+}
+
+/* ==== atomic output files =============================================== */
+
+int bf_cli_make_outdir(const char *dir)
+{
+    struct stat st;
+    if (stat(dir, &st) == 0) {
+        if (!S_ISDIR(st.st_mode)) {
+            bf_cli_err("%s: output path exists and is not a folder", dir);
+            return BF_EXIT_CANTCREAT;
+        }
+    } else if (mkdir(dir, 0777) != 0) {
+        bf_cli_err("%s: cannot create output folder: %s", dir,
+                   strerror(errno));
+        return BF_EXIT_CANTCREAT;
+    }
+    if (access(dir, W_OK) != 0) {
+        bf_cli_err("%s: output folder is not writable: %s", dir,
+                   strerror(errno));
+        return BF_EXIT_CANTCREAT;
+    }
+    return BF_EXIT_OK;
+}
+
+int bf_out_open(bf_out *o, const char *dir, const char *name)
+{
+    int fd;
+    memset(o, 0, sizeof *o);
+    snprintf(o->path, sizeof o->path, "%s/%s", dir, name);
+    snprintf(o->tmp, sizeof o->tmp, "%s/.%s.XXXXXX", dir, name);
+    fd = mkstemp(o->tmp);
+    if (fd < 0) {
+        bf_cli_err("%s: cannot create: %s", o->path, strerror(errno));
+        o->tmp[0] = '\0';
+        return BF_EXIT_CANTCREAT;
+    }
+    (void)fchmod(fd, 0644);
+    o->fp = fdopen(fd, "w");
+    if (o->fp == NULL) {
+        bf_cli_err("%s: cannot open: %s", o->path, strerror(errno));
+        close(fd);
+        unlink(o->tmp);
+        o->tmp[0] = '\0';
+        return BF_EXIT_CANTCREAT;
+    }
+    return BF_EXIT_OK;
+}
+
+int bf_out_commit(bf_out *o)
+{
+    int bad = ferror(o->fp);
+    if (fflush(o->fp) != 0) {
+        bad = 1;
+    }
+    if (fsync(fileno(o->fp)) != 0 && errno != EINVAL) {
+        bad = 1;
+    }
+    if (fclose(o->fp) != 0) {
+        bad = 1;
+    }
+    o->fp = NULL;
+    if (bad) {
+        bf_cli_err("%s: write failed: %s", o->path, strerror(errno));
+        unlink(o->tmp);
+        return BF_EXIT_IOERR;
+    }
+    if (rename(o->tmp, o->path) != 0) {
+        bf_cli_err("%s: cannot rename into place: %s", o->path,
+                   strerror(errno));
+        unlink(o->tmp);
+        return BF_EXIT_IOERR;
+    }
+    return BF_EXIT_OK;
+}
+
+void bf_out_abort(bf_out *o)
+{
+    if (o->fp != NULL) {
+        fclose(o->fp);
+        o->fp = NULL;
+    }
+    if (o->tmp[0] != '\0') {
+        unlink(o->tmp);
+        o->tmp[0] = '\0';
+    }
+}
