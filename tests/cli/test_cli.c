@@ -1,0 +1,286 @@
+/* test_cli.c: the brdffit command line -- help and version, documented exit
+ * statuses, error messages naming file and line, atomic outputs (a failed
+ * run leaves no file), and `compare --samples all` on the real data. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli_run.h"
+#include "support.h"
+
+/* Exit statuses documented in README.md, --help and brdffit.1. */
+#define EXIT_USAGE 64
+#define EXIT_DATAERR 65
+#define EXIT_NOINPUT 66
+#define EXIT_CANTCREAT 73
+
+/* The columns of fits.csv (README.md). */
+#define CSV_HEADER "sample,name,model,parameter,unit,value,lse,bound_hit,k\n"
+
+static void write_file(const char *dir, const char *name, const char *text)
+{
+    char path[512];
+    FILE *fp;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    fp = fopen(path, "w");
+    cr_assert_not_null(fp, "cannot write %s", path);
+    fputs(text, fp);
+    fclose(fp);
+}
+
+static int exists(const char *dir, const char *name)
+{
+    char path[512];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return stat(path, &st) == 0;
+}
+
+/* A tiny data folder: 3 configurations (none specular), 2 samples. */
+static const char *tiny_data(const char *table, const char *brdf)
+{
+    const char *dir = bf_test_tmpdir();
+    static char copy[256];
+    write_file(dir, "table.txt",
+               table != NULL ? table
+                             : "1 0.2 0.0 0.3 1.0\n"
+                               "2 0.5 2.0 0.6 0.5\n"
+                               "3 0.9 -1.0 1.1 0.2\n");
+    write_file(dir, "abrdf.dat",
+               brdf != NULL ? brdf
+                            : "1 0.30 0.20 0.10\n"
+                              "2 0.25 0.35 0.05\n");
+    snprintf(copy, sizeof copy, "%s", dir);
+    return copy;
+}
+
+static size_t count_entries(const char *dir)
+{
+    char cmd[600];
+    FILE *p;
+    size_t n = 0;
+    int ch;
+    snprintf(cmd, sizeof cmd, "ls -A '%s'", dir);
+    p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    while ((ch = fgetc(p)) != EOF) {
+        n += ch == '\n';
+    }
+    pclose(p);
+    return n;
+}
+
+Test(cli, help_and_version_succeed_and_describe_the_tool)
+{
+    const char *out = NULL;
+    const char *a1[] = {"--help", NULL};
+    const char *a2[] = {"--version", NULL};
+    const char *a3[] = {"compare", "--help", NULL};
+    cr_assert_eq(bf_test_run_cli(a1, &out, NULL), 0);
+    cr_assert(strstr(out, "compare") != NULL);
+    cr_assert(strstr(out, "Exit status") != NULL);
+    cr_assert_eq(bf_test_run_cli(a2, &out, NULL), 0);
+    cr_assert(strncmp(out, "brdffit ", 8) == 0, "%s", out);
+    cr_assert(strstr(out, bf_version()) != NULL);
+    cr_assert_eq(bf_test_run_cli(a3, &out, NULL), 0);
+    cr_assert(strstr(out, "--samples") != NULL);
+    cr_assert(strstr(out, "--on-params") != NULL);
+}
+
+Test(cli, usage_errors_exit_64_with_a_one_line_reason_and_a_hint)
+{
+    const char *err = NULL;
+    const char *cases[][4] = {
+        {"compare", "--bogus", NULL, NULL},
+        {"compare", "--samples", NULL, NULL},
+        {"compare", "--n", "0.5", NULL},
+        {"compare", "--n", "abc", NULL},
+        {"compare", "--n", "1.5", "--n-file"},
+        {"compare", "--models", "XX", NULL},
+        {"compare", "--samples", "3-1", NULL},
+        {"compare", "--max-theta", "120", NULL},
+        {"nosuchcommand", NULL, NULL, NULL},
+    };
+    static const char *const expect[] = {
+        "unknown option '--bogus'", "needs a value", "refractive index",
+        "refractive index",         "needs a value", "unknown model 'XX'",
+        "bad range",                "--max-theta",   "unknown command",
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof *cases; i++) {
+        const char *argv[6] = {NULL};
+        memcpy(argv, cases[i], sizeof cases[i]);
+        cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE,
+                     "case %zu", i);
+        cr_assert(strstr(err, expect[i]) != NULL, "case %zu: %s", i, err);
+        cr_assert(strstr(err, "--help") != NULL, "case %zu: no hint: %s", i,
+                  err);
+    }
+}
+
+Test(cli, conflicting_n_and_n_file_are_rejected)
+{
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--n", "1.5", "--n-file", "x.tsv", NULL};
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE);
+    cr_assert(strstr(err, "cannot be combined") != NULL, "%s", err);
+}
+
+Test(cli, missing_data_folder_exits_66)
+{
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--data", "/nonexistent/curet", NULL};
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_NOINPUT);
+    cr_assert(strstr(err, "/nonexistent/curet") != NULL, "%s", err);
+}
+
+Test(cli, tiny_data_set_fits_and_writes_all_outputs)
+{
+    const char *data = tiny_data(NULL, NULL);
+    char out_dir[300];
+    const char *out = NULL;
+    const char *csv;
+    const char *argv[] = {"compare", "--data", data, "--samples", "1,2",
+                          "--models", "lambert,LFTG", "--out", out_dir, NULL};
+    snprintf(out_dir, sizeof out_dir, "%s/out", data);
+    cr_assert_eq(bf_test_run_cli(argv, &out, NULL), 0);
+    cr_assert(strstr(out, "K = 3 of 3") != NULL, "%s", out);
+    cr_assert(exists(out_dir, "fits.csv"));
+    cr_assert(exists(out_dir, "table2.md"));
+    cr_assert(exists(out_dir, "table3.md"));
+    cr_assert_eq(count_entries(out_dir), 3u, "no temporary file is left");
+    snprintf(out_dir + strlen(out_dir), 20, "/fits.csv");
+    csv = bf_test_slurp(out_dir, NULL);
+    cr_assert(strncmp(csv, CSV_HEADER, strlen(CSV_HEADER)) == 0, "%s", csv);
+    cr_assert(strstr(csv, "\n1,,LAMBERT,,,,") != NULL, "%s", csv);
+    cr_assert(strstr(csv, "\n2,,LFTG,n_d,1,") != NULL, "%s", csv);
+}
+
+Test(cli, malformed_input_names_file_and_line_and_leaves_no_output)
+{
+    const char *data = tiny_data(NULL, "1 0.30 0.20 0.10\n"
+                                       "2 0.25 oops 0.05\n");
+    char out_dir[300];
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--data", data, "--samples", "1,2",
+                          "--models", "LAMBERT", "--out", out_dir, NULL};
+    snprintf(out_dir, sizeof out_dir, "%s/out", data);
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_DATAERR);
+    cr_assert(strstr(err, "abrdf.dat:2:") != NULL, "%s", err);
+    cr_assert(strstr(err, "oops") != NULL, "%s", err);
+    cr_assert(!exists(data, "out"), "no output folder on failure");
+}
+
+Test(cli, sample_with_no_positive_radiance_is_a_data_error)
+{
+    const char *data = tiny_data(NULL, "1 0.30 0.20 0.10\n"
+                                       "2 0.00 -0.01 0.00\n");
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--data", data, "--samples", "2",
+                          "--models", "LAMBERT", "--out", "/nonexistent/x",
+                          NULL};
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_DATAERR);
+    cr_assert(strstr(err, "sample 2") != NULL, "%s", err);
+}
+
+Test(cli, unknown_sample_is_a_usage_error)
+{
+    const char *data = tiny_data(NULL, NULL);
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--data", data, "--samples", "3",
+                          "--models", "LAMBERT", NULL};
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE);
+    cr_assert(strstr(err, "sample 3 is not in the BRDF file") != NULL, "%s",
+              err);
+}
+
+Test(cli, output_folder_that_cannot_be_created_exits_73)
+{
+    const char *data = tiny_data(NULL, NULL);
+    const char *err = NULL;
+    const char *argv[] = {"compare", "--data", data, "--samples", "1",
+                          "--models", "LAMBERT", "--out",
+                          "/nonexistent/deeper/out", NULL};
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_CANTCREAT);
+    cr_assert(strstr(err, "/nonexistent/deeper/out") != NULL, "%s", err);
+}
+
+Test(cli, failed_run_keeps_the_previous_outputs_untouched)
+{
+    /* A second run that fails must not replace or truncate the first run's
+     * files (outputs are written by rename, after every check). */
+    const char *data = tiny_data(NULL, NULL);
+    char out_dir[300];
+    char csv_path[320];
+    char *before;
+    const char *after;
+    const char *ok[] = {"compare", "--data", data, "--samples", "1",
+                        "--models", "LAMBERT", "--out", out_dir, "-q", NULL};
+    const char *bad[] = {"compare", "--data", data, "--samples", "1",
+                         "--models", "LAMBERT", "--exclude", "1-3",
+                         "--out", out_dir, NULL};
+    snprintf(out_dir, sizeof out_dir, "%s/out", data);
+    snprintf(csv_path, sizeof csv_path, "%s/fits.csv", out_dir);
+    cr_assert_eq(bf_test_run_cli(ok, NULL, NULL), 0);
+    before = strdup(bf_test_slurp(csv_path, NULL));
+    cr_assert_eq(bf_test_run_cli(bad, NULL, NULL), EXIT_USAGE);
+    after = bf_test_slurp(csv_path, NULL);
+    cr_assert_str_eq(after, before);
+    cr_assert_eq(count_entries(out_dir), 3u);
+    free(before);
+}
+
+Test(cli, exclude_and_max_theta_shrink_the_reported_selection)
+{
+    const char *out = NULL;
+    char data[4096];
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", data, "--samples", "1",
+                          "--models", "LAMBERT", "--exclude", "1-4,17",
+                          "--out", dir, NULL};
+    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
+    cr_assert_eq(bf_test_run_cli(argv, &out, NULL), 0);
+    cr_assert(strstr(out, "K = 193 of 205 used; left out: 1 2 3 4 17 54 97 "
+                          "131 161 183 196 202") != NULL,
+              "%s", out);
+}
+
+Test(cli, all_61_samples_give_finite_results_for_every_model)
+{
+    char data[4096];
+    char csv_path[512];
+    const char *dir = bf_test_tmpdir();
+    const char *csv;
+    const char *line;
+    size_t rows = 0;
+    const char *argv[] = {"compare", "--data", data, "--samples", "all",
+                          "--models", "all", "--on-params", NULL, "--out",
+                          dir, "-q", NULL};
+    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
+    argv[8] = bf_test_reference_path("oren_nayar_params.tsv");
+    cr_assert_eq(bf_test_run_cli(argv, NULL, NULL), 0);
+    snprintf(csv_path, sizeof csv_path, "%s/fits.csv", dir);
+    csv = bf_test_slurp(csv_path, NULL);
+    cr_assert_not_null(csv);
+    for (line = strchr(csv, '\n'); line != NULL && line[1] != '\0';
+         line = strchr(line + 1, '\n')) {
+        char f[9][64];
+        int n = sscanf(line + 1,
+                       "%63[^,],%63[^,],%63[^,],%63[^,],%63[^,],%63[^,],"
+                       "%63[^,],%63[^,],%63[^\n]",
+                       f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8]);
+        rows++;
+        if (n == 9) { /* a fitted parameter: value and LSE finite */
+            cr_assert(isfinite(strtod(f[5], NULL)), "%.80s", line + 1);
+            cr_assert(isfinite(strtod(f[6], NULL)), "%.80s", line + 1);
+        }
+        cr_assert(strstr(line + 1, "nan") == NULL, "%.80s", line + 1);
+        cr_assert(strstr(line + 1, "inf") == NULL, "%.80s", line + 1);
+    }
+    /* 61 samples x (BK-G, BK-E, VH-G, VH-E, FC-G, FC-E, LFTG, LAMBERT) +
+     * ON for the 24 samples whose parameters are given. */
+    cr_assert_eq(rows, 61u * 8u + 24u);
+}

@@ -1,0 +1,106 @@
+/* cli_run.c: runs the brdffit binary from tests (see cli_run.h). */
+#include "cli_run.h"
+
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define CAPTURE_MAX (4u << 20)
+
+static char out_buf[CAPTURE_MAX];
+static char err_buf[CAPTURE_MAX];
+
+static void read_all(int fd, char *buf)
+{
+    size_t len = 0;
+    ssize_t r;
+    FILE *fp = fdopen(fd, "r");
+    cr_assert_not_null(fp);
+    rewind(fp);
+    while ((r = (ssize_t)fread(buf + len, 1, CAPTURE_MAX - 1 - len, fp)) > 0) {
+        len += (size_t)r;
+    }
+    buf[len] = '\0';
+    fclose(fp);
+}
+
+int bf_test_run_cli(const char *const *argv, const char **out,
+                    const char **err)
+{
+    FILE *fo = tmpfile();
+    FILE *fe = tmpfile();
+    const char *args[64];
+    size_t n = 0;
+    pid_t pid;
+    int status;
+
+    cr_assert(fo != NULL && fe != NULL);
+    args[n++] = BF_CLI_PATH;
+    while (argv[n - 1] != NULL) {
+        cr_assert_lt(n, 63);
+        args[n] = argv[n - 1];
+        n++;
+    }
+    args[n] = NULL;
+    fflush(NULL);
+    pid = fork();
+    cr_assert_geq(pid, 0, "fork failed");
+    if (pid == 0) {
+        int devnull = open("/dev/null", O_RDONLY);
+        dup2(devnull, 0);
+        dup2(fileno(fo), 1);
+        dup2(fileno(fe), 2);
+        execv(BF_CLI_PATH, (char *const *)(uintptr_t)args);
+        _exit(127);
+    }
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    read_all(dup(fileno(fo)), out_buf);
+    read_all(dup(fileno(fe)), err_buf);
+    fclose(fo);
+    fclose(fe);
+    if (out != NULL) {
+        *out = out_buf;
+    }
+    if (err != NULL) {
+        *err = err_buf;
+    }
+    if (!WIFEXITED(status)) {
+        cr_expect_fail("%s did not exit normally (signal %d); stderr:\n%s",
+                BF_CLI_PATH, WIFSIGNALED(status) ? WTERMSIG(status) : 0,
+                err_buf);
+        return -1;
+    }
+    return WEXITSTATUS(status);
+}
+
+const char *bf_test_tmpdir(void)
+{
+    static char dir[256];
+    const char *base = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/brdffit-test-XXXXXX",
+             base != NULL ? base : "/tmp");
+    cr_assert_not_null(mkdtemp(dir), "mkdtemp failed");
+    return dir;
+}
+
+const char *bf_test_slurp(const char *path, size_t *len)
+{
+    static char buf[8u << 20];
+    size_t n;
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL) {
+        return NULL;
+    }
+    n = fread(buf, 1, sizeof buf - 1, fp);
+    buf[n] = '\0';
+    fclose(fp);
+    if (len != NULL) {
+        *len = n;
+    }
+    return buf;
+}

@@ -1,0 +1,20 @@
+/* cli_run.h: runs the brdffit binary from tests and captures its outputs. */
+#ifndef BF_TEST_CLI_RUN_H
+#define BF_TEST_CLI_RUN_H
+
+#include <stddef.h>
+
+/* Runs BF_CLI_PATH with argv (NULL-terminated, argv[0] excluded), standard
+ * output and error captured into the static buffers returned through out and
+ * err (may be NULL). Returns the exit status, or -1 if it did not exit
+ * normally (a crash fails the calling test). */
+int bf_test_run_cli(const char *const *argv, const char **out,
+                    const char **err);
+
+/* Creates a fresh temporary folder (static buffer). */
+const char *bf_test_tmpdir(void);
+
+/* Reads a whole file into a static buffer; NULL when it does not exist. */
+const char *bf_test_slurp(const char *path, size_t *len);
+
+#endif

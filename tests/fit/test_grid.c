@@ -1,0 +1,387 @@
+/* test_grid.c: normalisation (SPEC §2), the LSE (SPEC §7.3), the paper's
+ * grid search (SPEC §7.4), round trips on the 198 CURET configurations and
+ * the agreement of the precomputed (study) path with the plain one. */
+#include <criterion/criterion.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "support.h"
+
+/* Noise level of the noisy round trip: 1% of the normalised maximum. */
+#define NOISE_SD 0.01
+/* A noisy fit recovers the parameter to within this many grid steps. */
+#define NOISY_STEPS 3
+
+static void setup(void)
+{
+    gsl_set_error_handler_off();
+}
+
+TestSuite(grid, .init = setup);
+
+/* The 198 non-specular CURET configurations in Beckmann's frame. */
+static size_t curet_geometry(bf_geom *geom)
+{
+    bf_table *t = bf_test_load_table();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    size_t k;
+    for (k = 0; k < n; k++) {
+        geom[k] = bf_table_geom(t, sel[k]);
+    }
+    bf_table_free(t);
+    return n;
+}
+
+static void defaults(const bf_model_type *type, double *param)
+{
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        param[j] = type->param[j].value;
+    }
+}
+
+Test(grid, normalise_divides_by_the_maximum)
+{
+    const double in[4] = {0.5, 2.0, -0.25, 1.0};
+    double out[4];
+    cr_assert_eq(bf_normalise(4, in, out), BF_OK);
+    bf_assert_rel(out[0], 0.25, TOL0);
+    bf_assert_rel(out[1], 1.0, TOL0);
+    bf_assert_rel(out[2], -0.125, TOL0);
+    bf_assert_rel(out[3], 0.5, TOL0);
+}
+
+Test(grid, normalise_rejects_a_non_positive_maximum_and_non_finite_values)
+{
+    const double zero[3] = {0.0, -1.0, 0.0};
+    const double nan_in[3] = {1.0, NAN, 0.5};
+    const double inf_in[2] = {1.0, INFINITY};
+    double out[3];
+    cr_assert_eq(bf_normalise(3, zero, out), BF_EDOM);
+    cr_assert_eq(bf_normalise(3, nan_in, out), BF_EDOM);
+    cr_assert_eq(bf_normalise(2, inf_in, out), BF_EDOM);
+    cr_assert_eq(bf_normalise(0, zero, out), BF_EINVAL);
+}
+
+Test(grid, data_radiance_is_brdf_times_cos_theta_i_over_its_maximum)
+{
+    /* SPEC §2 by hand on three configurations of a made-up table. */
+    FILE *fp = bf_test_memfile("1 0.3 0 0.2 0\n"
+                               "2 0.5 1 0.9 2\n"
+                               "3 0.7 2 1.3 3\n");
+    bf_table *t = NULL;
+    bf_error err;
+    const double v[3] = {2.0, 1.0, 4.0};
+    const size_t sel[3] = {0, 1, 2};
+    double out[3];
+    double l0 = 2.0 * cos(0.2);
+    double l1 = 1.0 * cos(0.9);
+    double l2 = 4.0 * cos(1.3);
+    double max = fmax(l0, fmax(l1, l2));
+    cr_assert_eq(bf_table_read(fp, "mem", &t, &err), BF_OK);
+    fclose(fp);
+    cr_assert_eq(bf_data_radiance(t, v, 3, sel, out), BF_OK);
+    bf_assert_rel(out[0], l0 / max, TOL1);
+    bf_assert_rel(out[1], l1 / max, TOL1);
+    bf_assert_rel(out[2], l2 / max, TOL1);
+    bf_table_free(t);
+}
+
+Test(grid, lse_is_the_sum_of_squared_differences_of_normalised_curves)
+{
+    /* LAMBERT normalised is cos(theta_i) / max cos(theta_i): compute the
+     * residual sum by hand against arbitrary data. */
+    const bf_geom g[3] = {{0.3, M_PI, 0.1, 0.0},
+                          {0.7313, M_PI, 0.4, 1.0},
+                          {1.2, M_PI, 0.9, 2.0}};
+    const double data[3] = {0.9, 0.5, 0.2};
+    bf_fit_workspace *w = bf_fit_alloc(3);
+    double lse = -1.0;
+    double c0 = cos(0.3);
+    double expect = 0.0;
+    size_t k;
+    for (k = 0; k < 3; k++) {
+        double r = cos(g[k].theta_i) / c0 - data[k];
+        expect += r * r;
+    }
+    cr_assert_eq(bf_fit_lse(bf_model_lambert, NULL, 3, g, data, w, &lse),
+                 BF_OK);
+    bf_assert_rel(lse, expect, TOL1);
+    bf_fit_free(w);
+}
+
+/* Synthesises each fitted model on the CURET configurations at a grid value
+ * and checks the grid search returns exactly that value with LSE 0. */
+Test(grid, round_trip_recovers_every_model_exactly_at_grid_values)
+{
+    bf_geom geom[BF_CURET_NCONF];
+    size_t n = curet_geometry(geom);
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    static const size_t picks[3] = {7, 137, 388}; /* grid indices */
+    size_t i;
+    int fitted_models = 0;
+
+    cr_assert_eq(n, 198u);
+    for (i = 0; i < bf_model_count(); i++) {
+        const bf_model_type *type = bf_model_get(i);
+        size_t j;
+        size_t q;
+        for (j = 0; j < type->p && !type->param[j].fitted; j++) {
+        }
+        if (j == type->p) {
+            continue;
+        }
+        fitted_models++;
+        for (q = 0; q < 3; q++) {
+            double param[BF_MAX_PARAMS];
+            double data[BF_CURET_NCONF];
+            bf_fit_result res;
+            const bf_param *pj = &type->param[j];
+            defaults(type, param);
+            param[j] = pj->grid_lo + pj->grid_step * (double)picks[q];
+            cr_assert_eq(bf_model_eval(type, param, n, geom, data), BF_OK);
+            cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+            cr_assert_eq(bf_fit_grid(type, param, 0, n, geom, data, w, &res),
+                         BF_OK, "%s", type->name);
+            cr_assert_eq(res.param[j], param[j],
+                         "%s: synthesised at %.17g, recovered %.17g",
+                         type->name, param[j], res.param[j]);
+            cr_assert_eq(res.lse, 0.0, "%s: LSE %g", type->name, res.lse);
+            cr_assert_eq(res.bound_hit, 0u);
+            cr_assert_eq(res.n_eval, pj->grid_n);
+        }
+    }
+    cr_assert_eq(fitted_models, 7, "BK-G..FC-E and LFTG have a fitted "
+                                   "parameter");
+    bf_fit_free(w);
+}
+
+/* With 1% Gaussian noise (fixed seed), the optimum stays within a few grid
+ * steps of the truth and the LSE is close to the noise energy n sd^2. */
+Test(grid, round_trip_with_fixed_seed_noise_recovers_within_three_steps)
+{
+    bf_geom geom[BF_CURET_NCONF];
+    size_t n = curet_geometry(geom);
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    static const char *const names[] = {"VH-G", "VH-E", "FC-G", "FC-E",
+                                        "LFTG"};
+    size_t i;
+
+    gsl_rng_set(rng, 20261122);
+    for (i = 0; i < sizeof names / sizeof *names; i++) {
+        const bf_model_type *type = bf_model_find(names[i]);
+        int jm = bf_model_param_index(type, strcmp(names[i], "LFTG") == 0
+                                                ? "n_d"
+                                                : "m");
+        const bf_param *pj = &type->param[jm];
+        double param[BF_MAX_PARAMS];
+        double data[BF_CURET_NCONF];
+        bf_fit_result res;
+        size_t k;
+        defaults(type, param);
+        param[jm] = pj->grid_lo + pj->grid_step * 73.0;
+        cr_assert_eq(bf_model_eval(type, param, n, geom, data), BF_OK);
+        cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+        for (k = 0; k < n; k++) {
+            data[k] += gsl_ran_gaussian(rng, NOISE_SD);
+        }
+        cr_assert_eq(bf_fit_grid(type, param, 0, n, geom, data, w, &res),
+                     BF_OK);
+        cr_assert_leq(fabs(res.param[jm] - param[jm]),
+                      NOISY_STEPS * pj->grid_step + 1e-12,
+                      "%s: truth %g, recovered %g", names[i], param[jm],
+                      res.param[jm]);
+        /* E[LSE] ~ n sd^2 = 0.0198; allow the chi-square spread and the
+         * small bias of re-normalising a noisy maximum. */
+        cr_assert(res.lse > 0.5 * (double)n * NOISE_SD * NOISE_SD &&
+                      res.lse < 2.0 * (double)n * NOISE_SD * NOISE_SD,
+                  "%s: LSE %g", names[i], res.lse);
+    }
+    gsl_rng_free(rng);
+    bf_fit_free(w);
+}
+
+Test(grid, optimum_on_the_grid_bound_is_flagged)
+{
+    /* Data from VH-G at m = 7 lie beyond the grid's upper end 5.1: the best
+     * grid value is the bound and is flagged; m = 0.05 gives the lower
+     * bound 0.1. */
+    bf_geom geom[BF_CURET_NCONF];
+    size_t n = curet_geometry(geom);
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    const bf_model_type *type = bf_model_vh_g;
+    double data[BF_CURET_NCONF];
+    double param[BF_MAX_PARAMS];
+    bf_fit_result res;
+
+    defaults(type, param);
+    param[0] = 7.0;
+    cr_assert_eq(bf_model_eval(type, param, n, geom, data), BF_OK);
+    cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+    cr_assert_eq(bf_fit_grid(type, param, 0, n, geom, data, w, &res), BF_OK);
+    bf_assert_rel(res.param[0], 5.1, TOL1);
+    cr_assert_eq(res.bound_hit, 1u);
+
+    param[0] = 0.05;
+    cr_assert_eq(bf_model_eval(type, param, n, geom, data), BF_OK);
+    cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+    cr_assert_eq(bf_fit_grid(type, param, 0, n, geom, data, w, &res), BF_OK);
+    bf_assert_rel(res.param[0], 0.1, TOL1);
+    cr_assert_eq(res.bound_hit, 1u);
+    bf_fit_free(w);
+}
+
+Test(grid, model_without_free_parameters_is_evaluated_once)
+{
+    bf_geom geom[BF_CURET_NCONF];
+    size_t n = curet_geometry(geom);
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    double data[BF_CURET_NCONF];
+    const double on[2] = {0.387, 0.415}; /* Felt, reference/ */
+    bf_fit_result res;
+    cr_assert_eq(bf_model_eval(bf_model_on, on, n, geom, data), BF_OK);
+    cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+    cr_assert_eq(bf_fit_grid(bf_model_on, on, 0, n, geom, data, w, &res),
+                 BF_OK);
+    cr_assert_eq(res.n_eval, 1u);
+    cr_assert_eq(res.lse, 0.0);
+    cr_assert_eq(res.param[0], on[0]);
+    cr_assert_eq(res.param[1], on[1]);
+    bf_fit_free(w);
+}
+
+Test(grid, invalid_fixed_inputs_and_masks_are_rejected)
+{
+    bf_geom geom[BF_CURET_NCONF];
+    size_t n = curet_geometry(geom);
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    double data[BF_CURET_NCONF];
+    double param[BF_MAX_PARAMS];
+    bf_fit_result res;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        data[k] = 0.5;
+    }
+    defaults(bf_model_fc_e, param);
+    param[bf_model_param_index(bf_model_fc_e, "n")] = 0.5; /* n < 1 */
+    cr_assert_eq(bf_fit_grid(bf_model_fc_e, param, 0, n, geom, data, w, &res),
+                 BF_EINVAL);
+    defaults(bf_model_fc_e, param);
+    cr_assert_eq(bf_fit_grid(bf_model_fc_e, param, 1u << 3, n, geom, data, w,
+                             &res),
+                 BF_EINVAL); /* no parameter 3 */
+    cr_assert_eq(bf_fit_grid(bf_model_fc_e, param, 0, n + 1, geom, data, w,
+                             &res),
+                 BF_EINVAL); /* larger than the workspace */
+    bf_fit_free(w);
+}
+
+/* The study's precomputed grids give bit-for-bit the plain grid search, on
+ * every one of CURET's 61 samples and every model with a grid. */
+Test(grid, study_path_equals_plain_path_on_all_61_samples)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    bf_geom geom[BF_CURET_NCONF];
+    const bf_model_type *models[8];
+    size_t n_models = 0;
+    int samples[64];
+    size_t n_samples = bf_brdf_count(b);
+    bf_study_row *rows;
+    bf_study_spec spec;
+    bf_error err;
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    size_t i;
+    size_t s;
+
+    for (i = 0; i < bf_model_count(); i++) {
+        const bf_model_type *type = bf_model_get(i);
+        if (type->p > 0 && type->param[0].fitted) {
+            models[n_models++] = type;
+        }
+    }
+    models[n_models++] = bf_model_lambert;
+    for (s = 0; s < n_samples; s++) {
+        samples[s] = bf_brdf_sample(b, s);
+    }
+    for (i = 0; i < n; i++) {
+        geom[i] = bf_table_geom(t, sel[i]);
+    }
+    memset(&spec, 0, sizeof spec);
+    spec.table = t;
+    spec.brdf = b;
+    spec.sel = sel;
+    spec.n_sel = n;
+    spec.samples = samples;
+    spec.n_samples = n_samples;
+    spec.models = models;
+    spec.n_models = n_models;
+    spec.n_default = BF_DEFAULT_N;
+    rows = calloc(n_samples * n_models, sizeof *rows);
+    cr_assert_eq(bf_study_run(&spec, rows, &err), BF_OK, "%s", err.msg);
+    for (s = 0; s < n_samples; s++) {
+        double data[BF_CURET_NCONF];
+        cr_assert_eq(bf_data_radiance(t, bf_brdf_values(b, s), n, sel, data),
+                     BF_OK);
+        for (i = 0; i < n_models; i++) {
+            const bf_study_row *r = &rows[s * n_models + i];
+            double param[BF_MAX_PARAMS];
+            bf_fit_result plain;
+            defaults(models[i], param);
+            cr_assert_eq(r->status, BF_OK);
+            cr_assert_eq(bf_fit_grid(models[i], param, 0, n, geom, data, w,
+                                     &plain),
+                         BF_OK);
+            cr_assert_eq(memcmp(r->fit.param, plain.param,
+                                sizeof plain.param),
+                         0, "sample %d %s", r->sample, models[i]->name);
+            cr_assert_eq(r->fit.lse, plain.lse, "sample %d %s: %.17g %.17g",
+                         r->sample, models[i]->name, r->fit.lse, plain.lse);
+            cr_assert(isfinite(r->fit.lse));
+        }
+    }
+    free(rows);
+    bf_fit_free(w);
+    bf_brdf_free(b);
+    bf_table_free(t);
+}
+
+Test(grid, study_reports_a_missing_sample_and_missing_on_parameters)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    const bf_model_type *models[1] = {bf_model_on};
+    int samples[1] = {62};
+    bf_study_row rows[1];
+    bf_study_spec spec;
+    bf_error err;
+
+    memset(&spec, 0, sizeof spec);
+    spec.table = t;
+    spec.brdf = b;
+    spec.sel = sel;
+    spec.n_sel = n;
+    spec.samples = samples;
+    spec.n_samples = 1;
+    spec.models = models;
+    spec.n_models = 1;
+    spec.n_default = BF_DEFAULT_N;
+    cr_assert_eq(bf_study_run(&spec, rows, &err), BF_ENOTFOUND);
+    cr_assert(strstr(err.msg, "sample 62") != NULL, "%s", err.msg);
+
+    samples[0] = 3; /* no ON parameters given: the row says so */
+    cr_assert_eq(bf_study_run(&spec, rows, &err), BF_OK);
+    cr_assert_eq(rows[0].status, BF_ENOTFOUND);
+    bf_brdf_free(b);
+    bf_table_free(t);
+}
