@@ -202,9 +202,10 @@ static int cmp_item(const void *a, const void *b)
 static int order_by_slope(const bf_cli_study *st, size_t *order)
 {
     long fc = model_index(st, "FC-E");
+    int jm = fc >= 0 ? bf_model_param_index(st->models[fc], "m") : -1;
     sort_item *it = malloc(st->n_samples * sizeof *it);
     size_t s;
-    int by_slope = fc >= 0;
+    int by_slope = jm >= 0;
     if (it == NULL) {
         return -1;
     }
@@ -214,9 +215,10 @@ static int order_by_slope(const bf_cli_study *st, size_t *order)
     for (s = 0; s < st->n_samples; s++) {
         it[s].sample = st->samples[s];
         it[s].s = s;
-        it[s].key = by_slope
-                        ? st->rows[s * st->n_models + (size_t)fc].fit.param[0]
-                        : (double)st->samples[s];
+        it[s].key =
+            by_slope
+                ? st->rows[s * st->n_models + (size_t)fc].fit.param[jm]
+                : (double)st->samples[s];
     }
     qsort(it, st->n_samples, sizeof *it, cmp_item);
     for (s = 0; s < st->n_samples; s++) {
