@@ -1,8 +1,11 @@
 # Makefile: one target per task; CMake does the work (STYLE §8).
 #   make        install missing Debian packages, build into build/
-#   make run    the main job: the full model comparison on the CURET data
+#   make run    the main job: the full model comparison on the CURET data,
+#               with every figure and out/report.html
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the benchmarks (never part of the tests)
+#   make screenshot  open out/report.html in headless Chromium (installed if
+#               missing), check every image loaded, save a screenshot
 
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
@@ -18,7 +21,7 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
 .PHONY: all deps build run test test-plain test-asan asan bench install \
-        format tidy clean
+        format tidy clean screenshot
 
 all: build
 
@@ -30,7 +33,7 @@ build: deps
 	@cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/brdffit compare --data "$(CURET)" --samples paper \
+	$(BUILD)/brdffit report --data "$(CURET)" --samples paper \
 	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
 
 test: test-plain test-asan
@@ -47,6 +50,9 @@ test-asan: asan
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    ctest --output-on-failure -j $(JOBS)
+
+screenshot: run
+	scripts/screenshot.sh "$(OUT)/report.html" "$(OUT)/report-screenshot.png"
 
 bench: build
 	$(BUILD)/bench/bench_study --data "$(CURET)"

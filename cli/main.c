@@ -16,6 +16,7 @@ static void usage(FILE *fp)
 "Commands:\n"
 "  compare   fit models to CURET samples; print Tables 2 and 3, write CSV\n"
 "  models    list the models, their parameters, ranges and equations\n"
+"  report    run compare and write every figure and report.html\n"
 "\n"
 "Options:\n"
 "  -h, --help     show this help ('brdffit COMMAND --help' for a command)\n"
@@ -47,6 +48,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "compare") == 0) {
         return bf_cmd_compare(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "report") == 0) {
+        return bf_cmd_report(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "models") == 0) {
         return bf_cmd_models(argc - 1, argv + 1);

@@ -382,9 +382,9 @@ void bf_cli_study_free(bf_cli_study *st)
 
 /* ==== tables ============================================================== */
 
-/* Whether Table 2 shows parameter j of type: fitted parameters, and the
- * inputs of a model that fits none (ON's tabulated rho, sigma). */
-static int shows_param(const bf_model_type *type, size_t j)
+/* Table 2 shows fitted parameters, or the inputs of a model that fits
+ * none (ON). */
+int bf_cli_shows_param(const bf_model_type *type, size_t j)
 {
     size_t i;
     if (type->param[j].fitted) {
@@ -451,7 +451,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
 
     for (m = 0; m < spec->n_models; m++) {
         for (j = 0; j < spec->models[m]->p; j++) {
-            ncols2 += (size_t)shows_param(spec->models[m], j);
+            ncols2 += (size_t)bf_cli_shows_param(spec->models[m], j);
         }
     }
     *t2 = bf_tt_alloc(ncols2);
@@ -470,7 +470,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         const bf_model_type *type = spec->models[m];
         char head[128];
         for (j = 0; j < type->p; j++) {
-            if (shows_param(type, j)) {
+            if (bf_cli_shows_param(type, j)) {
                 snprintf(head, sizeof head, "%s %s", type->name,
                          type->param[j].label);
                 bf_tt_header(*t2, c, head);
@@ -493,7 +493,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         for (m = 0; m < spec->n_models; m++) {
             const bf_study_row *r = &rows[s * spec->n_models + m];
             for (j = 0; j < r->type->p; j++) {
-                if (!shows_param(r->type, j)) {
+                if (!bf_cli_shows_param(r->type, j)) {
                     continue;
                 }
                 if (r->status != BF_OK) {

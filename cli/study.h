@@ -70,6 +70,10 @@ int bf_cli_study_run(bf_cli_study *st);
 /* Frees everything st owns. */
 void bf_cli_study_free(bf_cli_study *st);
 
+/* Whether Table 2 shows parameter j of type: fitted parameters, and the
+ * inputs of a model that fits none (ON's tabulated rho, sigma). */
+int bf_cli_shows_param(const bf_model_type *type, size_t j);
+
 /* Name of a sample from samples.tsv, or "" (borrowed). */
 const char *bf_cli_sample_name(const bf_cli_study *st, int sample);
 

@@ -5,7 +5,10 @@
 #   scripts/install-deps.sh          build + test dependencies
 set -eu
 
-PACKAGES="pkg-config libgsl-dev libcriterion-dev"
+# libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
+# figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font).
+PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
+plplot-driver-cairo fonts-dejavu-core"
 
 missing=""
 for p in $PACKAGES; do

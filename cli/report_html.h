@@ -1,0 +1,42 @@
+/* report_html.h: writes report.html -- one self-contained page (no
+ * network: inline style, images by relative path into the output folder)
+ * with the tables, the figures, the conventions of the run and its
+ * provenance (version, command line, SHA-256 of every input file). */
+#ifndef BF_CLI_REPORT_HTML_H
+#define BF_CLI_REPORT_HTML_H
+
+#include <stdio.h>
+
+#include "figures.h"
+#include "sha256.h"
+#include "study.h"
+
+/* An input file and its checksum. */
+typedef struct {
+    const char *role;         /* "configuration table", ... */
+    char path[4096];
+    long long size;           /* bytes */
+    char sha256[BF_SHA256_HEX];
+} bf_report_input;
+
+#define BF_REPORT_MAX_INPUTS 8
+
+/* Everything the page records besides the study and the figures. */
+typedef struct {
+    int argc;                 /* the command's arguments (argv[0] is the */
+    char **argv;              /*   subcommand name) */
+    bf_report_input inputs[BF_REPORT_MAX_INPUTS];
+    size_t n_inputs;
+    const bf_fig_opts *fig;   /* how the figures were drawn */
+} bf_report_meta;
+
+/* Fills meta->inputs with the input files of st and their SHA-256. Returns
+ * BF_EXIT_OK or an exit status after printing the error. */
+int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta);
+
+/* Writes the page to fp. Deterministic: the same run gives the same bytes
+ * (no dates). Returns 0, or -1 when a write failed. */
+int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
+                   const bf_report_meta *meta, FILE *fp);
+
+#endif

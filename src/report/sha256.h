@@ -1,0 +1,41 @@
+/* sha256.h: SHA-256 message digests (FIPS 180-4), used by the report to
+ * record checksums of the data files it was made from. Private: not
+ * installed. */
+#ifndef BF_REPORT_SHA256_H
+#define BF_REPORT_SHA256_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define BF_SHA256_SIZE 32 /* digest bytes */
+#define BF_SHA256_HEX (2 * BF_SHA256_SIZE + 1) /* hex digest + NUL */
+
+/* Running state of one digest. */
+typedef struct {
+    uint32_t h[8];      /* hash value H(i), FIPS 180-4 §6.2 */
+    uint8_t block[64];  /* pending message bytes */
+    size_t fill;        /* bytes in block */
+    uint64_t length;    /* message length so far, bytes */
+} bf_sha256;
+
+/* Starts a digest (initial hash value, FIPS 180-4 §5.3.3). */
+void bf_sha256_init(bf_sha256 *c);
+/* Adds len bytes of message. */
+void bf_sha256_update(bf_sha256 *c, const void *data, size_t len);
+/* Pads the message (FIPS 180-4 §5.1.1) and writes the digest. */
+void bf_sha256_final(bf_sha256 *c, uint8_t digest[BF_SHA256_SIZE]);
+
+/* Writes the digest as 64 lowercase hex digits and a NUL into hex. */
+void bf_sha256_hex(const uint8_t digest[BF_SHA256_SIZE],
+                   char hex[BF_SHA256_HEX]);
+
+/* Digest of everything left in fp, as hex. Returns BF_OK or BF_EIO on a
+ * read error. */
+int bf_sha256_stream(FILE *fp, char hex[BF_SHA256_HEX]);
+
+/* Digest of the file at path, as hex. Returns BF_OK, or BF_EIO when it
+ * cannot be opened or read. */
+int bf_sha256_file(const char *path, char hex[BF_SHA256_HEX]);
+
+#endif
