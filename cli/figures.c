@@ -724,8 +724,7 @@ static int fig_plane(render_ctx *c, size_t s, const bf_geom *geom,
         } else {
             p->xmin = -90.0;
             p->xmax = 90.0;
-            p->xlabel = "viewing angle θs in the plane of incidence "
-                        "(degrees; > 0 forward)";
+            p->xlabel = "θs in the plane of incidence (°; > 0 forward)";
             p->ylabel = "L/L_max (dimensionless)";
         }
     }
