@@ -280,7 +280,7 @@ Test(cli, all_61_samples_give_finite_results_for_every_model)
         cr_assert(strstr(line + 1, "nan") == NULL, "%.80s", line + 1);
         cr_assert(strstr(line + 1, "inf") == NULL, "%.80s", line + 1);
     }
-    /* 61 samples x (BK-G, BK-E, VH-G, VH-E, FC-G, FC-E, LFTG, LAMBERT) +
-     * ON for the 24 samples whose parameters are given. */
-    cr_assert_eq(rows, 61u * 8u + 24u);
+    /* 61 samples x (BK-G, BK-E, VH-G, VH-E, FC-G, FC-E, LFTG, LAMBERT,
+     * WNO) + ON for the 24 samples whose parameters are given. */
+    cr_assert_eq(rows, 61u * 9u + 24u);
 }
