@@ -117,6 +117,11 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     double nuisance[BF_MAX_PARAMS];
     memcpy(nuisance, p->start, sizeof nuisance);
     *at_limit = 0;
+    if (theta_hat == limit) { /* the optimum is on the search range */
+        *end = limit;
+        *at_limit = 1;
+        return BF_OK;
+    }
     for (iter = 0; iter < CI_MAXITER; iter++) {
         double next = limit > theta_hat ? x + d : x - d;
         double c;
