@@ -1,6 +1,7 @@
 # Makefile: one target per task; CMake does the work (STYLE §8).
 #   make        install missing Debian packages, build into build/
 #   make run    the main job: the full model comparison on the CURET data
+#   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the benchmarks (never part of the tests)
 
@@ -17,7 +18,7 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
-.PHONY: all deps build run test test-plain test-asan asan bench install \
+.PHONY: all deps build run rank test test-plain test-asan asan bench install \
         format tidy clean
 
 all: build
@@ -31,6 +32,10 @@ build: deps
 
 run: build
 	$(BUILD)/brdffit compare --data "$(CURET)" --samples paper \
+	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+
+rank: build
+	$(BUILD)/brdffit rank --data "$(CURET)" \
 	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
 
 test: test-plain test-asan
