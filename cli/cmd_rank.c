@@ -24,9 +24,11 @@ static void usage(FILE *fp)
 "\n"
 "Ranks reflectance models per CURET sample by AIC, BIC and K-fold\n"
 "cross-validated error (doc/methods.md), after fitting each model (by\n"
-"default with --fit exact, on all 61 samples, models " RANK_MODELS ").\n"
-"Prints the ranking and a summary ('FC-E best for 34 of 61 samples') and\n"
-"writes ranking.csv and ranking.md into the output folder.\n"
+"default with --fit exact, on all 61 samples, models\n"
+RANK_MODELS ").\n"
+"Prints the ranking and a summary over samples ('FC-E best for 32 of 61\n"
+"samples, ...') and writes ranking.csv and ranking.md into the output\n"
+"folder.\n"
 "\n"
 "Options:\n"
 "  --criterion C     aic, bic (default) or cv: the one the table and the\n"
@@ -93,16 +95,22 @@ static size_t rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
     return rank;
 }
 
-/* Index of the best model of sample s by c, or SIZE_MAX. */
+/* Index of the best model of sample s by c, or SIZE_MAX. Among models
+ * tied for rank 1 (ON at sigma = 0 is LAMBERT exactly) the one with fewer
+ * parameters wins, then the first listed. */
 static size_t best_of(const bf_cli_study *st, size_t s, int c)
 {
+    size_t best = (size_t)-1;
     size_t m;
     for (m = 0; m < st->n_models; m++) {
-        if (rank_of(st, s, m, c) == 1) {
-            return m;
+        if (rank_of(st, s, m, c) == 1 &&
+            (best == (size_t)-1 ||
+             st->stats[s * st->n_models + m].k <
+                 st->stats[s * st->n_models + best].k)) {
+            best = m;
         }
     }
-    return (size_t)-1;
+    return best;
 }
 
 static void write_csv(const bf_cli_study *st, FILE *fp)
