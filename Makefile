@@ -2,6 +2,7 @@
 #   make        install missing Debian packages, build into build/
 #   make run    the main job: the full model comparison on the CURET data,
 #               with every figure and out/report.html
+#   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the benchmarks (never part of the tests)
 #   make screenshot  open out/report.html in headless Chromium (installed if
@@ -20,7 +21,7 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
-.PHONY: all deps build run test test-plain test-asan asan bench install \
+.PHONY: all deps build run rank test test-plain test-asan asan bench install \
         format tidy clean screenshot
 
 all: build
@@ -34,6 +35,10 @@ build: deps
 
 run: build
 	$(BUILD)/brdffit report --data "$(CURET)" --samples paper \
+	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+
+rank: build
+	$(BUILD)/brdffit rank --data "$(CURET)" \
 	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
 
 test: test-plain test-asan

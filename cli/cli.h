@@ -90,5 +90,6 @@ void bf_out_abort(bf_out *o);
 int bf_cmd_compare(int argc, char **argv);
 int bf_cmd_models(int argc, char **argv);
 int bf_cmd_report(int argc, char **argv);
+int bf_cmd_rank(int argc, char **argv);
 
 #endif

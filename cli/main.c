@@ -17,6 +17,7 @@ static void usage(FILE *fp)
 "  compare   fit models to CURET samples; print Tables 2 and 3, write CSV\n"
 "  models    list the models, their parameters, ranges and equations\n"
 "  report    run compare and write every figure and report.html\n"
+"  rank      rank the models per sample by AIC, BIC and cross-validation\n"
 "\n"
 "Options:\n"
 "  -h, --help     show this help ('brdffit COMMAND --help' for a command)\n"
@@ -54,6 +55,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "models") == 0) {
         return bf_cmd_models(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "rank") == 0) {
+        return bf_cmd_rank(argc - 1, argv + 1);
     }
     return bf_cli_usage_error(NULL, "unknown command '%s'", cmd);
 }

@@ -3,6 +3,7 @@
  * (SPEC §1.4, §7), the run itself and the tables it writes (fits.csv,
  * table2.md, table3.md, and Tables 2 and 3 on standard output). */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,6 +35,17 @@ void bf_cli_opts_usage(FILE *fp)
 "                    7 specular ones, e.g. 1-4,17\n"
 "  --max-theta DEG   leave out configurations with theta_i or theta_v above\n"
 "                    DEG degrees (default 90: none)\n"
+"  --fit MODE        'paper' (the paper's grids; default of compare) or\n"
+"                    'exact' (grid, then GSL refinement; FC's n and ON's\n"
+"                    rho, sigma fitted too; default of rank)\n"
+"  --objective NAME  max (paper, default), scale, cosw or log (needs --fit\n"
+"                    exact unless max); see doc/methods.md\n"
+"  --range P=LO:HI   search range of parameter P, e.g. m=0.01:20 (grid\n"
+"                    keeps its step; repeatable)\n"
+"  --bootstrap N     also a percentile bootstrap interval, N resamples\n"
+"                    (default 0: profile intervals only)\n"
+"  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
+"  --seed S          seed of the bootstrap and the folds (default 1)\n"
 "  --out DIR         output folder (default out; created if missing)\n"
 "  -q, --quiet       do not print the tables\n"
 "  -h, --help        show this help\n",
@@ -47,7 +59,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
                       bf_cli_opts *o)
 {
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
-           O_EXCLUDE, O_MAXTHETA, O_OUT };
+           O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
+           O_BOOTSTRAP, O_FOLDS, O_SEED };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -59,6 +72,12 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         {"exclude", required_argument, NULL, O_EXCLUDE},
         {"max-theta", required_argument, NULL, O_MAXTHETA},
         {"out", required_argument, NULL, O_OUT},
+        {"fit", required_argument, NULL, O_FIT},
+        {"objective", required_argument, NULL, O_OBJECTIVE},
+        {"range", required_argument, NULL, O_RANGE},
+        {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
+        {"folds", required_argument, NULL, O_FOLDS},
+        {"seed", required_argument, NULL, O_SEED},
         {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'}};
     struct option longopts[64];
@@ -85,6 +104,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     o->out_dir = "out";
     o->n = BF_DEFAULT_N;
     o->max_theta = 90.0;
+    o->folds = 10;
+    o->seed = 1;
 
     opterr = 0;
     optind = 1;
@@ -92,7 +113,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         switch (c) {
         case O_DATA: o->data_dir = optarg; break;
         case O_BRDF: o->brdf_file = optarg; break;
-        case O_SAMPLES: o->samples = optarg; break;
+        case O_SAMPLES: o->samples = optarg; o->samples_given = 1; break;
         case O_MODELS: o->models = optarg; break;
         case O_NFILE: o->n_file = optarg; break;
         case O_ON: o->on_file = optarg; break;
@@ -117,6 +138,62 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
                                           optarg);
             }
             break;
+        case O_FIT:
+            if (strcmp(optarg, "paper") != 0 && strcmp(optarg, "exact") != 0) {
+                return bf_cli_usage_error(hint, "--fit: '%s' is not 'paper' "
+                                          "or 'exact'", optarg);
+            }
+            o->exact = strcmp(optarg, "exact") == 0;
+            o->fit_given = 1;
+            break;
+        case O_OBJECTIVE:
+            if (bf_objective_find(optarg, &o->objective) != BF_OK) {
+                return bf_cli_usage_error(hint, "--objective: '%s' is not "
+                                          "max, scale, cosw or log", optarg);
+            }
+            break;
+        case O_RANGE: {
+            char name[32];
+            char msg[128];
+            double lo;
+            double hi;
+            if (o->n_range == BF_CLI_MAX_RANGES) {
+                return bf_cli_usage_error(hint, "--range: at most %d",
+                                          BF_CLI_MAX_RANGES);
+            }
+            if (bf_cli_parse_range(optarg, name, sizeof name, &lo, &hi, msg,
+                                   sizeof msg) != 0) {
+                return bf_cli_usage_error(hint, "--range: %s", msg);
+            }
+            o->range[o->n_range++] = optarg;
+            break;
+        }
+        case O_BOOTSTRAP:
+        case O_FOLDS:
+        case O_SEED: {
+            int *list = NULL;
+            size_t count = 0;
+            char msg[128];
+            int zero = strcmp(optarg, "0") == 0;
+            if (!zero && (bf_cli_parse_int_list(optarg, &list, &count, msg,
+                                                sizeof msg) != 0 ||
+                          count != 1 || strchr(optarg, ',') != NULL ||
+                          strchr(optarg, '-') != NULL)) {
+                free(list);
+                return bf_cli_usage_error(hint, "%s: '%s' is not a "
+                                          "non-negative integer",
+                                          argv[optind - 2], optarg);
+            }
+            if (c == O_BOOTSTRAP) {
+                o->n_boot = zero ? 0 : (size_t)list[0];
+            } else if (c == O_FOLDS) {
+                o->folds = zero ? 0 : (size_t)list[0];
+            } else {
+                o->seed = zero ? 0 : (unsigned long)list[0];
+            }
+            free(list);
+            break;
+        }
         case ':':
             return bf_cli_usage_error(hint, "option '%s' needs a value",
                                       argv[optind - 1]);
@@ -140,6 +217,15 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     if (o->n_given && o->n_file != NULL) {
         return bf_cli_usage_error(hint,
                                   "--n and --n-file cannot be combined");
+    }
+    if (!o->exact && o->objective != BF_OBJ_MAX) {
+        return bf_cli_usage_error(hint, "--objective %s needs --fit exact "
+                                  "(the paper's protocol minimises max)",
+                                  bf_objective_name(o->objective));
+    }
+    if (o->n_boot == 1 || o->folds == 1) {
+        return bf_cli_usage_error(hint, "--bootstrap and --folds need at "
+                                  "least 2 (or 0 for none)");
     }
     return 0;
 }
@@ -316,6 +402,9 @@ int bf_cli_study_prepare(bf_cli_study *st)
 
     snprintf(hint, sizeof hint, "%s ", st->cmd);
     rc = select_models(hint, o, &st->models, &st->n_models);
+    if (rc == BF_EXIT_OK) {
+        rc = bf_cli_exact_models(st); /* variants of --fit exact, --range */
+    }
     if (rc != BF_EXIT_OK) {
         return rc;
     }
@@ -360,21 +449,26 @@ int bf_cli_study_prepare(bf_cli_study *st)
 int bf_cli_study_run(bf_cli_study *st)
 {
     bf_error err;
-    if (bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
+    if (!st->opts.exact &&
+        bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
         bf_cli_err("%s", err.msg);
         return err.code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
     }
-    return BF_EXIT_OK;
+    return bf_cli_exact_run(st); /* with --fit exact, the study itself */
 }
 
 void bf_cli_study_free(bf_cli_study *st)
 {
     free(st->rows);
+    free(st->stats);
+    free(st->variants);
     free(st->sel);
     free(st->models);
     free(st->samples);
     bf_cli_free_inputs(&st->in);
     st->rows = NULL;
+    st->stats = NULL;
+    st->variants = NULL;
     st->sel = NULL;
     st->models = NULL;
     st->samples = NULL;
@@ -426,15 +520,21 @@ void bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
     }
     fprintf(fp, "\nNormalisation: radiance = BRDF x cos(theta_i), divided by "
                 "its maximum over the K used configurations (SPEC §2)\n");
-    fprintf(fp, "Fit: exhaustive 501-point grids (SPEC §7.4), LSE = sum of "
-                "squared differences\n");
+    if (!o->exact) {
+        fprintf(fp, "Fit: exhaustive 501-point grids (SPEC §7.4), LSE = sum "
+                    "of squared differences\n");
+    }
+    bf_cli_exact_describe(st, fp);
     if (o->n_file != NULL) {
         fprintf(fp, "Refractive index (FC): per sample from %s\n", o->n_file);
-    } else {
+    } else if (!o->exact || o->n_given) {
         fprintf(fp, "Refractive index (FC): n = %g\n", o->n);
     }
     if (o->on_file != NULL) {
-        fprintf(fp, "Oren-Nayar: rho, sigma from %s\n", o->on_file);
+        fprintf(fp, "Oren-Nayar: rho, sigma %s %s\n",
+                o->exact ? "fitted; tabulated values (compared) from"
+                         : "from",
+                o->on_file);
     }
     fputc('\n', fp);
 }
@@ -498,6 +598,12 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
                 }
                 if (r->status != BF_OK) {
                     bf_tt_set(*t2, c++, "-");
+                } else if (st->opts.exact && r->type->param[j].fitted) {
+                    /* exact optimum (grid optimum), side by side */
+                    bf_tt_set(*t2, c++, "%.4f (%.2f)%s", r->fit.param[j],
+                              st->stats[s * spec->n_models + m]
+                                  .grid.param[j],
+                              (r->fit.bound_hit & (1u << j)) ? "*" : "");
                 } else {
                     bf_tt_set(*t2, c++, "%.2f%s", r->fit.param[j],
                               (r->fit.bound_hit & (1u << j)) ? "*" : "");
@@ -506,14 +612,15 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
             if (r->status != BF_OK) {
                 bf_tt_set(*t3, 2 + m, "-");
             } else {
-                bf_tt_set(*t3, 2 + m, "%.2f", r->fit.lse);
+                bf_tt_set(*t3, 2 + m, st->opts.exact ? "%.4f" : "%.2f",
+                          r->fit.lse);
             }
         }
     }
     return 0;
 }
 
-static void csv_field(FILE *fp, const char *s)
+void bf_cli_csv_field(FILE *fp, const char *s)
 {
     if (strpbrk(s, ",\"\n\r") == NULL) {
         fputs(s, fp);
@@ -536,7 +643,9 @@ static void write_csv(FILE *fp, const bf_cli_study *st)
     const bf_study_spec *spec = &st->spec;
     const bf_study_row *rows = st->rows;
     size_t i;
-    fputs("sample,name,model,parameter,unit,value,lse,bound_hit,k\n", fp);
+    fputs("sample,name,model,parameter,unit,value,lse,bound_hit,k", fp);
+    bf_cli_exact_csv_header(fp); /* columns added at the end */
+    fputc('\n', fp);
     for (i = 0; i < spec->n_samples * spec->n_models; i++) {
         const bf_study_row *r = &rows[i];
         size_t j;
@@ -550,17 +659,21 @@ static void write_csv(FILE *fp, const bf_cli_study *st)
             }
             any = 1;
             fprintf(fp, "%d,", r->sample);
-            csv_field(fp, bf_cli_sample_name(st, r->sample));
-            fprintf(fp, ",%s,%s,%s,%.10g,%.10g,%d,%zu\n", r->type->name,
+            bf_cli_csv_field(fp, bf_cli_sample_name(st, r->sample));
+            fprintf(fp, ",%s,%s,%s,%.10g,%.10g,%d,%zu", r->type->name,
                     r->type->param[j].name, r->type->param[j].unit,
                     r->fit.param[j], r->fit.lse,
                     (r->fit.bound_hit & (1u << j)) ? 1 : 0, spec->n_sel);
+            bf_cli_exact_csv_cols(st, i, j, fp);
+            fputc('\n', fp);
         }
         if (!any) {
             fprintf(fp, "%d,", r->sample);
-            csv_field(fp, bf_cli_sample_name(st, r->sample));
-            fprintf(fp, ",%s,,,,%.10g,0,%zu\n", r->type->name, r->fit.lse,
+            bf_cli_csv_field(fp, bf_cli_sample_name(st, r->sample));
+            fprintf(fp, ",%s,,,,%.10g,0,%zu", r->type->name, r->fit.lse,
                     spec->n_sel);
+            bf_cli_exact_csv_cols(st, i, SIZE_MAX, fp);
+            fputc('\n', fp);
         }
     }
 }
@@ -617,7 +730,10 @@ static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
         opened++;
     }
     write_csv(f[0].fp, st);
-    fputs("Table 2: fitted parameters (grid optima; * on a grid bound)\n\n",
+    fputs(o->exact ? "Table 2: fitted parameters (exact optimum (grid "
+                     "optimum); * on a bound of the search range)\n\n"
+                   : "Table 2: fitted parameters (grid optima; * on a grid "
+                     "bound)\n\n",
           f[1].fp);
     bf_tt_print(t2, f[1].fp);
     fputs("Table 3: LSE (sum over the K used configurations)\n\n", f[2].fp);
@@ -657,12 +773,18 @@ int bf_cli_study_write_tables(const bf_cli_study *st)
         goto done;
     }
     bf_cli_study_describe(st, stdout);
-    printf("Table 2: fitted parameters (grid optima%s)\n\n",
-           any_bound_hit(&st->spec, st->rows) ? "; * on a grid bound" : "");
+    printf("Table 2: fitted parameters (%s%s)\n\n",
+           st->opts.exact ? "exact optimum (grid optimum)" : "grid optima",
+           any_bound_hit(&st->spec, st->rows)
+               ? (st->opts.exact ? "; * on a bound of the search range"
+                                 : "; * on a grid bound")
+               : "");
     bf_tt_print(t2, stdout);
-    printf("\nTable 3: LSE (sum over the K = %zu used configurations)\n\n",
+    printf("\nTable 3: %s (sum over the K = %zu used configurations)\n\n",
+           st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S",
            st->n_sel);
     bf_tt_print(t3, stdout);
+    bf_cli_exact_on_compare(st, stdout);
     printf("\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
            st->opts.out_dir, st->opts.out_dir, st->opts.out_dir);
 done:

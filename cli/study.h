@@ -10,6 +10,9 @@
 
 #include "cli.h"
 
+/* At most this many --range options. */
+#define BF_CLI_MAX_RANGES 8
+
 /* The options every study command accepts (see bf_cli_study_usage). */
 typedef struct {
     const char *data_dir;
@@ -24,6 +27,16 @@ typedef struct {
     int n_given;
     double max_theta; /* degrees */
     int quiet;
+    /* beyond the paper (cli/exact.c, doc/methods.md) */
+    int exact;                /* --fit exact */
+    bf_objective objective;   /* --objective */
+    const char *range[BF_CLI_MAX_RANGES]; /* --range NAME=LO:HI */
+    size_t n_range;
+    size_t n_boot;            /* --bootstrap N */
+    size_t folds;             /* --folds K (0: no cross-validation) */
+    unsigned long seed;       /* --seed S */
+    int samples_given;        /* --samples was on the command line */
+    int fit_given;            /* --fit was on the command line */
 } bf_cli_opts;
 
 /* A command's own options: getopt_long entries (val >= 512) and a handler
@@ -58,6 +71,8 @@ typedef struct {
     size_t n_sel;
     bf_study_spec spec;
     bf_study_row *rows;   /* n_samples x n_models, sample-major */
+    bf_model_variant *variants; /* n_models derived types (cli/exact.c) */
+    bf_fit_stats *stats;  /* analysis of each row (cli/exact.c) */
 } bf_cli_study;
 
 /* Loads the inputs and resolves the selections of st->opts. Returns
@@ -84,5 +99,38 @@ void bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
  * folder and, unless quiet, prints the description and both tables. Returns
  * BF_EXIT_OK or an exit status after printing the error. */
 int bf_cli_study_write_tables(const bf_cli_study *st);
+
+/* ==== beyond the paper (cli/exact.c) ==================================== */
+
+/* Replaces st->models by variants: with --fit exact FC's n is fitted over
+ * [BF_FREE_N_LO, BF_FREE_N_HI] (unless --n or --n-file fixes it) and ON's
+ * rho and sigma are fitted; every --range applies. Returns BF_EXIT_OK or an
+ * exit status after printing the error. */
+int bf_cli_exact_models(bf_cli_study *st);
+
+/* Runs the analysis (refinement, intervals, criteria) after the study;
+ * with --fit exact it is the study. Returns BF_EXIT_OK or an exit status. */
+int bf_cli_exact_run(bf_cli_study *st);
+
+/* Prints the fit, objective, interval and selection lines of the
+ * description. */
+void bf_cli_exact_describe(const bf_cli_study *st, FILE *fp);
+
+/* With --fit exact and --on-params: prints ON's fitted rho, sigma (and
+ * their profile intervals) beside CURET's tabulated values. */
+void bf_cli_exact_on_compare(const bf_cli_study *st, FILE *fp);
+
+/* The columns fits.csv gains (header, and the values for row i and
+ * parameter j, j = SIZE_MAX for a model without fitted parameter). */
+void bf_cli_exact_csv_header(FILE *fp);
+void bf_cli_exact_csv_cols(const bf_cli_study *st, size_t i, size_t j,
+                           FILE *fp);
+
+/* Parses --range NAME=LO:HI. Returns 0, or -1 with a message in msg. */
+int bf_cli_parse_range(const char *s, char *name, size_t name_len,
+                       double *lo, double *hi, char *msg, size_t msg_len);
+
+/* Writes a field to a CSV file, quoted when needed (cli/study.c). */
+void bf_cli_csv_field(FILE *fp, const char *s);
 
 #endif

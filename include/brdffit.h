@@ -25,6 +25,10 @@
  *       functions", SIGGRAPH 1997.
  *   [4] K. J. Dana et al., "Reflectance and Texture of Real-World Surfaces",
  *       ACM TOG 18(1), 1999 (the CURET database).
+ *   [5] L. B. Wolff, S. K. Nayar, M. Oren, "Improved diffuse reflection
+ *       models for computer vision", IJCV 30(1), 1998; L. B. Wolff,
+ *       "Diffuse-reflectance model for smooth dielectric surfaces", JOSA A
+ *       11(11), 1994 (the WNO model).
  */
 #ifndef BRDFFIT_H
 #define BRDFFIT_H
@@ -169,6 +173,8 @@ extern const bf_model_type *const bf_model_fc_e;   /* FC-E  SPEC §3.3, §4.2 */
 extern const bf_model_type *const bf_model_on;     /* ON    SPEC §5 */
 extern const bf_model_type *const bf_model_lftg;   /* LFTG  SPEC §6 */
 extern const bf_model_type *const bf_model_lambert;/* LAMBERT SPEC §6a */
+extern const bf_model_type *const bf_model_wno;    /* WNO  Wolff's smooth
+                                                      dielectric, doc/methods.md */
 
 /* The registry: number of models, the i-th model (NULL past the end). */
 size_t bf_model_count(void);
@@ -397,6 +403,192 @@ size_t bf_grid_points(const bf_grid *gr);
 int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result);
 
 /* ======================================================================
+ * --- beyond the paper: objectives, exact refinement, uncertainty and
+ *     model selection (doc/methods.md) ---
+ * ====================================================================== */
+
+/* What a fit minimises. Every objective is a weighted sum of squared
+ * residuals S = sum_k w_k r_k^2 between the model curve L (normalised by
+ * its maximum over the used configurations, SPEC §2) and the normalised
+ * data D (doc/methods.md §1):
+ *   BF_OBJ_MAX    r_k = L_k - D_k, the paper's LSE (SPEC §7.3; default);
+ *   BF_OBJ_SCALE  r_k = s* L_k - D_k with the least-squares optimal scale
+ *                 s* = sum w L D / sum w L^2 (closed form, per evaluation);
+ *   BF_OBJ_COSW   r_k = sqrt(cos theta_i,k) (L_k - D_k);
+ *   BF_OBJ_LOG    r_k = ln max(L_k, BF_LOG_FLOOR) - ln max(D_k, BF_LOG_FLOOR)
+ *                 (non-positive and tiny values are floored, never dropped).
+ */
+typedef enum {
+    BF_OBJ_MAX = 0,
+    BF_OBJ_SCALE,
+    BF_OBJ_COSW,
+    BF_OBJ_LOG
+} bf_objective;
+
+/* Floor of the log objective, in units of the normalised maximum. */
+#define BF_LOG_FLOOR 1e-3
+
+/* Name of an objective ("max", "scale", "cosw", "log"; static storage),
+ * or NULL for an unknown value. */
+const char *bf_objective_name(bf_objective obj);
+
+/* Finds an objective by name; BF_ENOTFOUND when unknown. */
+int bf_objective_find(const char *name, bf_objective *obj);
+
+/* A fitting problem: one model on n configurations against normalised data,
+ * under an objective, with optional per-configuration weights (NULL: all 1;
+ * the bootstrap and cross-validation pass counts and 0/1 masks). Parameter
+ * j is free when bit j of free_mask is set; the others keep fixed[j]. A
+ * free parameter is searched in [lo[j], hi[j]], which must lie in its
+ * domain [min, max]. Plain value struct; owns nothing. */
+typedef struct {
+    const bf_model_type *type;
+    double fixed[BF_MAX_PARAMS]; /* values of every parameter (free ones:
+                                    a starting value) */
+    unsigned free_mask;          /* bit j: parameter j is fitted */
+    double lo[BF_MAX_PARAMS];    /* search range of the free parameters */
+    double hi[BF_MAX_PARAMS];
+    size_t n;                    /* configurations */
+    const bf_geom *geom;         /* n configurations */
+    const double *data;          /* n normalised measured values */
+    const double *weight;        /* n weights >= 0, or NULL for all 1 */
+    bf_objective objective;
+} bf_problem;
+
+/* Fills pb for type on (n, geom, data): free parameters are the ones the
+ * paper fits (param[j].fitted) with their grid range as search range,
+ * fixed[] copies fixed (type->p values; NULL: the defaults), objective
+ * BF_OBJ_MAX, no weights. Returns BF_EINVAL on bad arguments. */
+int bf_problem_init(bf_problem *pb, const bf_model_type *type,
+                    const double *fixed, size_t n, const bf_geom *geom,
+                    const double *data);
+
+/* Number of free parameters of pb. */
+size_t bf_problem_nfree(const bf_problem *pb);
+
+/* Objective S of pb at param (type->p values). work holds 2 n doubles.
+ * Returns BF_OK, BF_EDOM when the model is undefined or not normalisable
+ * there, or BF_EINVAL (parameter outside its domain, bad arguments). */
+int bf_problem_value(const bf_problem *pb, const double *param, double *work,
+                     double *value);
+
+/* Residuals r_k of pb at param (see bf_objective) into resid (n values;
+ * the objective is sum_k w_k r_k^2). work holds n doubles. */
+int bf_problem_residuals(const bf_problem *pb, const double *param,
+                         double *work, double *resid);
+
+/* Exact refinement (doc/methods.md §2): starting from start (a grid
+ * optimum), minimises pb's objective over the free parameters within
+ * [max(lo_j, x_j - step_j), min(hi_j, x_j + step_j)] (step_j: the
+ * parameter's grid step; the whole search range when it has none) with
+ * GSL's Brent minimiser for one free parameter and the Nelder-Mead simplex
+ * (nmsimplex2, on a sine-mapped box so that no trial point leaves it) for
+ * two or more, to |delta param| < BF_REFINE_TOL. The result never has a
+ * larger objective than start (the better of the two is kept) and never
+ * leaves the box. result->bound_hit flags free parameters that end on a
+ * bound of the search range [lo, hi]. Returns BF_OK, BF_ENOCONV (iteration
+ * limit; result holds the best point found), BF_EDOM or BF_EINVAL. */
+#define BF_REFINE_TOL 1e-6
+#define BF_REFINE_MAXITER 2000
+int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
+                  bf_fit_result *result);
+
+/* Minimises pb's objective over its free parameters within the whole search
+ * box [lo, hi], starting from start (used for the profile's nuisance
+ * parameters): 1 free parameter by a 17-point scan and Brent, more by the
+ * mapped simplex. Same contract as bf_fit_refine. */
+int bf_fit_minimise(const bf_problem *pb, const double *start,
+                    bf_fit_result *result);
+
+/* Normalised model curves at every point of the grid of pb's free
+ * parameters (their grid step, over [lo, hi]) for pb's configurations, so
+ * that the grid optimum of any data, weights and objective costs no model
+ * evaluation. Opaque; owns memory. */
+typedef struct bf_curves bf_curves;
+
+/* Builds the curves of pb (its data and weights are not used). NULL with
+ * *status (BF_EINVAL: a free parameter without grid; BF_ENOMEM) on
+ * failure. */
+bf_curves *bf_curves_alloc(const bf_problem *pb, int *status);
+void bf_curves_free(bf_curves *c);
+/* Number of grid points. */
+size_t bf_curves_points(const bf_curves *c);
+/* Grid optimum of pb (same type, free parameters, geometry as the curves)
+ * under its objective and weights; ties keep the first point; bound_hit
+ * flags optima on a bound of the grid. BF_EDOM when no point is defined. */
+int bf_curves_best(const bf_curves *c, const bf_problem *pb,
+                   bf_fit_result *result);
+
+/* Profile interval (doc/methods.md §3): the set of values theta_j for
+ * which n ln(S_p(theta_j) / S_min) <= chi2_1(level), where S_p is the
+ * objective minimised over the other free parameters and n the sum of the
+ * weights. best is the exact optimum (bf_fit_refine). The interval is
+ * clipped to [lo_j, hi_j]; *open gets bit 0 (low end) and bit 1 (high end)
+ * when it reaches the search range there. */
+int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
+                      size_t j, double level, double *low, double *high,
+                      unsigned *open);
+
+/* Percentile bootstrap over configurations (doc/methods.md §3): n_boot
+ * replicates, each resampling the n configurations with replacement
+ * (weights = counts; a GSL mt19937 generator seeded with seed), fitted by
+ * the grid optimum on curves and bf_fit_refine. low[j], high[j] get the
+ * (1 -+ level)/2 quantiles of the replicate estimates of every free
+ * parameter j (NaN for the others). pb->weight must be NULL. */
+int bf_fit_bootstrap(const bf_problem *pb, const bf_curves *curves,
+                     size_t n_boot, unsigned long seed, double level,
+                     double *low, double *high);
+
+/* Information criteria with Gaussian errors (doc/methods.md §4) for a
+ * residual sum of squares rss > 0 on n points with k parameters:
+ * AIC = n ln(rss/n) + 2k, BIC = n ln(rss/n) + k ln n. */
+double bf_aic(double rss, size_t n, size_t k);
+double bf_bic(double rss, size_t n, size_t k);
+
+/* Number of parameters counted by AIC/BIC for pb: its free parameters,
+ * plus 1 for the fitted scale of BF_OBJ_SCALE (the max-normalisation of
+ * the other objectives is not a parameter; doc/methods.md §4). */
+size_t bf_problem_nparams(const bf_problem *pb);
+
+/* Deterministic assignment of n configurations to folds (0..folds-1): a
+ * fixed-seed (seed) shuffle of 0..n-1, position p in fold p mod folds, so
+ * fold sizes differ by at most one. BF_EINVAL unless 2 <= folds <= n. */
+int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
+
+/* k-fold cross-validated error (doc/methods.md §5): for each fold the
+ * model is fitted to the other folds (grid optimum on curves, then
+ * bf_fit_refine) and the squared residuals r_k^2 of the held-out
+ * configurations under that fit are summed; *cv is that sum over all n
+ * configurations (comparable to the LSE, which is a sum too). */
+int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
+              unsigned long seed, double *cv);
+
+/* A model type with some parameters' status or search range changed (n
+ * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise
+ * with bf_model_variant_init and use &v->type; v must not be moved or
+ * copied afterwards (type.param points into it). Owns no memory. */
+typedef struct {
+    bf_model_type type;
+    bf_param param[BF_MAX_PARAMS];
+} bf_model_variant;
+
+/* Copies base into v (every parameter as in base). */
+void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
+
+/* Makes parameter name fitted over the grid lo, lo + step, ... (the last
+ * point is hi, rounded to the step; at most BF_VARIANT_MAX_GRID points).
+ * BF_ENOTFOUND for an unknown name, BF_EINVAL when lo < min, hi > max,
+ * lo >= hi, step <= 0 or too many points. */
+#define BF_VARIANT_MAX_GRID 100001
+int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
+                         double hi, double step);
+
+/* Ranges that --fit exact frees by default (doc/methods.md §6). */
+#define BF_FREE_N_LO 1.2
+#define BF_FREE_N_HI 2.5
+#define BF_FREE_N_STEP 0.05
+
+/* ======================================================================
  * --- the study (SPEC §7) ---
  * ====================================================================== */
 
@@ -439,6 +631,51 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
 
 /* The paper's default refractive index for FC models (SPEC §4.2). */
 #define BF_DEFAULT_N 1.7
+
+/* ======================================================================
+ * --- the study beyond the paper (doc/methods.md) ---
+ * ====================================================================== */
+
+/* What bf_study_analyse computes for each (sample, model). */
+typedef struct {
+    bf_objective objective; /* what is minimised */
+    int exact;              /* 1: rows' fit is the refined optimum */
+    double level;           /* interval level, e.g. 0.95 */
+    size_t n_boot;          /* bootstrap replicates, 0 for none */
+    size_t folds;           /* cross-validation folds, 0 for none */
+    unsigned long seed;     /* of the bootstrap and the folds */
+} bf_analysis_opts;
+
+/* The analysis of one (sample, model) pair. Fields of parameters that are
+ * not free are NaN. */
+typedef struct {
+    int done;                       /* 1 when filled */
+    bf_objective objective;
+    unsigned free_mask;             /* parameters fitted */
+    bf_fit_result grid;             /* grid optimum under the objective */
+    bf_fit_result refined;          /* exact optimum (bf_fit_refine) */
+    double ci_low[BF_MAX_PARAMS];   /* profile interval */
+    double ci_high[BF_MAX_PARAMS];
+    unsigned ci_open;               /* bits 2j, 2j+1: low/high end of param
+                                       j's interval at the search range */
+    double boot_low[BF_MAX_PARAMS]; /* bootstrap interval (NaN if none) */
+    double boot_high[BF_MAX_PARAMS];
+    size_t n;                       /* configurations */
+    size_t k;                       /* parameters counted by AIC/BIC */
+    double aic, bic;                /* of the refined optimum */
+    double cv;                      /* cross-validated error, NaN if none */
+} bf_fit_stats;
+
+/* Analyses every (sample, model) of spec under opts: grid optimum under
+ * the objective, exact refinement, profile (and bootstrap) intervals,
+ * AIC, BIC and cross-validated error, into stats (n_samples x n_models,
+ * sample-major, like rows; stats[i].done = 0 where a row could not be
+ * analysed). When opts->exact, each row's sample, type and status are set
+ * here and its fit is the refined optimum; otherwise rows are left as
+ * bf_study_run wrote them (the paper's grid optima) and only read. Errors
+ * as bf_study_run. */
+int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
+                     bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
 #ifdef __cplusplus
 }

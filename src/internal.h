@@ -188,4 +188,25 @@ double bf__sum_sq_diff(size_t n, const double *curve, const double *data);
 int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
                     const bf_geom *geom, double *curve);
 
+
+/* Fixed parameter values of type for one sample (src/fit/study.c):
+ * defaults, n from the n file or n_default, ON's rho, sigma from the
+ * parameter file; BF_ENOTFOUND when an input is missing. */
+int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
+                     int sample, double *fixed);
+/* Configurations of spec in Beckmann's frame (geom, n_sel values) and the
+ * normalised data of every sample (n_samples x n_sel, SPEC §2); err->msg
+ * names the sample on failure (src/fit/study.c). */
+int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
+                   bf_error *err);
+
+/* Objective of pb on a normalised model curve (src/fit/objective.c);
+ * scratch holds pb->n doubles. The max objective without weights sums
+ * exactly as bf__sum_sq_diff, so grid optima agree bit for bit. */
+double bf__objective_curve(const bf_problem *pb, const double *curve,
+                           double *scratch);
+/* Residuals r_k of pb on a normalised model curve. */
+void bf__objective_residuals(const bf_problem *pb, const double *curve,
+                             double *resid);
+
 #endif

@@ -13,6 +13,7 @@
  * the fitted ones from the fits.csv that the CLI writes. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -79,6 +80,10 @@ static void run_compare(void)
     const char *argv[] = {"compare", "--data", NULL, "--samples", "paper",
                           "--on-params", NULL, "--out", dir, "--quiet", NULL};
     char data_dir[4096];
+    size_t n_cols = 0;
+    size_t col_model = SIZE_MAX;
+    size_t col_value = SIZE_MAX;
+    size_t col_lse = SIZE_MAX;
     int rc;
 
     snprintf(data_dir, sizeof data_dir, "%s", bf_test_curet_path("."));
@@ -93,19 +98,27 @@ static void run_compare(void)
     n_fits = 0;
     for (line = strtok_r(text, "\n", &save); line != NULL;
          line = strtok_r(NULL, "\n", &save)) {
-        char *f[16];
-        size_t nf = split(line, ',', f, 16);
-        if (strcmp(f[0], "sample") == 0) {
-            cr_assert_eq(nf, 9u);
-            cr_assert_str_eq(f[5], "value");
-            cr_assert_str_eq(f[6], "lse");
+        char *f[64];
+        size_t nf = split(line, ',', f, 64);
+        if (strcmp(f[0], "sample") == 0) { /* columns by header name */
+            size_t c;
+            n_cols = nf;
+            for (c = 0; c < nf; c++) {
+                col_model = strcmp(f[c], "model") == 0 ? c : col_model;
+                col_value = strcmp(f[c], "value") == 0 ? c : col_value;
+                col_lse = strcmp(f[c], "lse") == 0 ? c : col_lse;
+            }
+            cr_assert(col_model < nf && col_value < nf && col_lse < nf,
+                      "fits.csv header '%s'", line);
             continue;
         }
-        cr_assert_eq(nf, 9u, "fits.csv row '%s'", line);
+        cr_assert_eq(nf, n_cols, "fits.csv row '%s'", line);
         fits[n_fits].sample = atoi(f[0]);
-        snprintf(fits[n_fits].model, sizeof fits[n_fits].model, "%s", f[2]);
-        fits[n_fits].value = f[5][0] != '\0' ? strtod(f[5], NULL) : NAN;
-        fits[n_fits].lse = strtod(f[6], NULL);
+        snprintf(fits[n_fits].model, sizeof fits[n_fits].model, "%s",
+                 f[col_model]);
+        fits[n_fits].value =
+            f[col_value][0] != '\0' ? strtod(f[col_value], NULL) : NAN;
+        fits[n_fits].lse = strtod(f[col_lse], NULL);
         n_fits++;
     }
     free(text);

@@ -32,9 +32,9 @@ static void set_error(bf_error *err, int code, const char *fmt, ...)
 /* The fixed parameter values of type for one sample: defaults, with n from
  * the n file or spec->n_default (SPEC §4.2) and rho, sigma from the ON
  * parameter file (SPEC §5). Returns BF_ENOTFOUND when a needed input is
- * absent for this sample. */
-static int sample_inputs(const bf_study_spec *spec, const bf_model_type *type,
-                         int sample, double *fixed)
+ * absent for this sample. Also used by bf_study_analyse (analyse.c). */
+int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
+                     int sample, double *fixed)
 {
     size_t j;
     for (j = 0; j < type->p; j++) {
@@ -63,6 +63,47 @@ static int sample_inputs(const bf_study_spec *spec, const bf_model_type *type,
     return BF_OK;
 }
 
+/* The configurations of spec in Beckmann's frame (geom, n_sel values) and
+ * the normalised measured radiance of every sample (data, n_samples x
+ * n_sel, SPEC §2). Shared by bf_study_run and bf_study_analyse. */
+int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
+                   bf_error *err)
+{
+    size_t s;
+    size_t k;
+    int rc;
+    for (k = 0; k < spec->n_sel; k++) {
+        if (spec->sel[k] >= bf_table_size(spec->table)) {
+            set_error(err, BF_EINVAL, "configuration selection out of range");
+            return BF_EINVAL;
+        }
+        geom[k] = bf_table_geom(spec->table, spec->sel[k]);
+    }
+
+    /* SPEC §2: normalised measured radiance of every sample. */
+    for (s = 0; s < spec->n_samples; s++) {
+        long row = bf_brdf_find(spec->brdf, spec->samples[s]);
+        if (row < 0) {
+            rc = BF_ENOTFOUND;
+            set_error(err, rc, "sample %d is not in the BRDF file",
+                      spec->samples[s]);
+            return rc;
+        }
+        rc = bf_data_radiance(spec->table,
+                              bf_brdf_values(spec->brdf, (size_t)row),
+                              spec->n_sel, spec->sel,
+                              data + s * spec->n_sel);
+        if (rc != BF_OK) {
+            set_error(err, rc,
+                      "sample %d: the measured radiance has no positive "
+                      "maximum over the used configurations",
+                      spec->samples[s]);
+            return rc;
+        }
+    }
+    return BF_OK;
+}
+
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 {
     bf_geom *geom = NULL;
@@ -71,7 +112,6 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     double *grid_fixed = NULL;
     size_t s;
     size_t m;
-    size_t k;
     int rc = BF_OK;
 
     if (spec == NULL || rows == NULL || spec->table == NULL ||
@@ -92,35 +132,9 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         set_error(err, rc, "out of memory");
         goto done;
     }
-    for (k = 0; k < spec->n_sel; k++) {
-        if (spec->sel[k] >= bf_table_size(spec->table)) {
-            rc = BF_EINVAL;
-            set_error(err, rc, "configuration selection out of range");
-            goto done;
-        }
-        geom[k] = bf_table_geom(spec->table, spec->sel[k]);
-    }
-
-    /* SPEC §2: normalised measured radiance of every sample. */
-    for (s = 0; s < spec->n_samples; s++) {
-        long row = bf_brdf_find(spec->brdf, spec->samples[s]);
-        if (row < 0) {
-            rc = BF_ENOTFOUND;
-            set_error(err, rc, "sample %d is not in the BRDF file",
-                      spec->samples[s]);
-            goto done;
-        }
-        rc = bf_data_radiance(spec->table,
-                              bf_brdf_values(spec->brdf, (size_t)row),
-                              spec->n_sel, spec->sel,
-                              data + s * spec->n_sel);
-        if (rc != BF_OK) {
-            set_error(err, rc,
-                      "sample %d: the measured radiance has no positive "
-                      "maximum over the used configurations",
-                      spec->samples[s]);
-            goto done;
-        }
+    rc = bf__study_data(spec, geom, data, err);
+    if (rc != BF_OK) {
+        goto done;
     }
 
     /* SPEC §7.3-7.5: each model, each sample. The grid of a model is built
@@ -134,7 +148,7 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
             memset(r, 0, sizeof *r);
             r->sample = spec->samples[s];
             r->type = type;
-            r->status = sample_inputs(spec, type, r->sample, fixed);
+            r->status = bf__study_inputs(spec, type, r->sample, fixed);
             if (r->status != BF_OK) {
                 continue;
             }

@@ -17,8 +17,8 @@
 #define EXIT_NOINPUT 66
 #define EXIT_CANTCREAT 73
 
-/* The columns of fits.csv (README.md). */
-#define CSV_HEADER "sample,name,model,parameter,unit,value,lse,bound_hit,k\n"
+/* The first columns of fits.csv (README.md); the analysis columns follow. */
+#define CSV_HEADER "sample,name,model,parameter,unit,value,lse,bound_hit,k,"
 
 static void write_file(const char *dir, const char *name, const char *text)
 {
@@ -155,6 +155,7 @@ Test(cli, tiny_data_set_fits_and_writes_all_outputs)
     snprintf(out_dir + strlen(out_dir), 20, "/fits.csv");
     csv = bf_test_slurp(out_dir, NULL);
     cr_assert(strncmp(csv, CSV_HEADER, strlen(CSV_HEADER)) == 0, "%s", csv);
+    cr_assert(strstr(csv, ",ci_low,ci_high,") != NULL, "%s", csv);
     cr_assert(strstr(csv, "\n1,,LAMBERT,,,,") != NULL, "%s", csv);
     cr_assert(strstr(csv, "\n2,,LFTG,n_d,1,") != NULL, "%s", csv);
 }
@@ -280,7 +281,7 @@ Test(cli, all_61_samples_give_finite_results_for_every_model)
         cr_assert(strstr(line + 1, "nan") == NULL, "%.80s", line + 1);
         cr_assert(strstr(line + 1, "inf") == NULL, "%.80s", line + 1);
     }
-    /* 61 samples x (BK-G, BK-E, VH-G, VH-E, FC-G, FC-E, LFTG, LAMBERT) +
-     * ON for the 24 samples whose parameters are given. */
-    cr_assert_eq(rows, 61u * 8u + 24u);
+    /* 61 samples x (BK-G, BK-E, VH-G, VH-E, FC-G, FC-E, LFTG, LAMBERT,
+     * WNO) + ON for the 24 samples whose parameters are given. */
+    cr_assert_eq(rows, 61u * 9u + 24u);
 }

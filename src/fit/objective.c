@@ -1,0 +1,198 @@
+/* objective.c: the objectives a fit can minimise and the fitting problem
+ * that bundles model, data, weights and search ranges (doc/methods.md §1).
+ *
+ * [1] SPEC §2, §7.3: max-normalised curves, LSE as a sum (BF_OBJ_MAX).
+ * [2] doc/methods.md §1: the scale, cos-weighted and log objectives.
+ *
+ * Equations (L normalised model curve, D normalised data, w weights):
+ *   max    S = sum w (L - D)^2                                  SPEC §7.3
+ *   scale  s* = sum w L D / sum w L^2,  S = sum w (s* L - D)^2
+ *   cosw   S = sum w cos(theta_i) (L - D)^2
+ *   log    S = sum w (ln max(L, f) - ln max(D, f))^2,  f = BF_LOG_FLOOR
+ */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+static const char *const objective_names[] = {"max", "scale", "cosw", "log"};
+
+#define N_OBJECTIVES (sizeof objective_names / sizeof objective_names[0])
+
+const char *bf_objective_name(bf_objective obj)
+{
+    if ((unsigned)obj >= N_OBJECTIVES) {
+        return NULL;
+    }
+    return objective_names[obj];
+}
+
+int bf_objective_find(const char *name, bf_objective *obj)
+{
+    size_t i;
+    if (name == NULL || obj == NULL) {
+        return BF_EINVAL;
+    }
+    for (i = 0; i < N_OBJECTIVES; i++) {
+        if (strcmp(name, objective_names[i]) == 0) {
+            *obj = (bf_objective)i;
+            return BF_OK;
+        }
+    }
+    return BF_ENOTFOUND;
+}
+
+/* ==== the problem ======================================================== */
+
+int bf_problem_init(bf_problem *pb, const bf_model_type *type,
+                    const double *fixed, size_t n, const bf_geom *geom,
+                    const double *data)
+{
+    size_t j;
+    if (pb == NULL || type == NULL || type->p > BF_MAX_PARAMS || n == 0 ||
+        geom == NULL) {
+        return BF_EINVAL;
+    }
+    memset(pb, 0, sizeof *pb);
+    pb->type = type;
+    pb->n = n;
+    pb->geom = geom;
+    pb->data = data;
+    pb->objective = BF_OBJ_MAX;
+    for (j = 0; j < type->p; j++) {
+        const bf_param *pj = &type->param[j];
+        pb->fixed[j] = fixed != NULL ? fixed[j] : pj->value;
+        pb->lo[j] = pj->min;
+        pb->hi[j] = pj->max;
+        if (pj->fitted && pj->grid_n > 0) {
+            pb->free_mask |= 1u << j;
+            pb->lo[j] = pj->grid_lo;
+            pb->hi[j] = pj->grid_lo + pj->grid_step * (double)(pj->grid_n - 1);
+        }
+    }
+    return BF_OK;
+}
+
+size_t bf_problem_nfree(const bf_problem *pb)
+{
+    size_t j;
+    size_t count = 0;
+    for (j = 0; j < pb->type->p; j++) {
+        count += (pb->free_mask >> j) & 1u;
+    }
+    return count;
+}
+
+size_t bf_problem_nparams(const bf_problem *pb)
+{
+    return bf_problem_nfree(pb) + (pb->objective == BF_OBJ_SCALE ? 1u : 0u);
+}
+
+/* ==== objectives on a normalised curve =================================== */
+
+/* Weight of configuration k (1 without weights). */
+static double weight_of(const bf_problem *pb, size_t k)
+{
+    return pb->weight != NULL ? pb->weight[k] : 1.0;
+}
+
+/* The least-squares scale s* = sum w L D / sum w L^2 (0 when every weighted
+ * L is 0). */
+static double optimal_scale(const bf_problem *pb, const double *curve)
+{
+    double num = 0.0;
+    double den = 0.0;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double w = weight_of(pb, k);
+        num += w * curve[k] * pb->data[k];
+        den += w * curve[k] * curve[k];
+    }
+    return den > 0.0 ? num / den : 0.0;
+}
+
+void bf__objective_residuals(const bf_problem *pb, const double *curve,
+                             double *resid)
+{
+    size_t k;
+    double s = pb->objective == BF_OBJ_SCALE ? optimal_scale(pb, curve) : 1.0;
+    for (k = 0; k < pb->n; k++) {
+        double l = curve[k];
+        double d = pb->data[k];
+        switch (pb->objective) {
+        case BF_OBJ_SCALE:
+            resid[k] = s * l - d;
+            break;
+        case BF_OBJ_COSW: {
+            double si;
+            double ci;
+            bf__zenith_sincos(pb->geom[k].theta_i, &si, &ci);
+            resid[k] = sqrt(ci) * (l - d);
+            break;
+        }
+        case BF_OBJ_LOG:
+            resid[k] = log(l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR) -
+                       log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
+            break;
+        default:
+            resid[k] = l - d; /* SPEC §7.3 */
+            break;
+        }
+    }
+}
+
+double bf__objective_curve(const bf_problem *pb, const double *curve,
+                           double *scratch)
+{
+    double sum = 0.0;
+    size_t k;
+    if (pb->objective == BF_OBJ_MAX && pb->weight == NULL) {
+        /* the paper's LSE, summed exactly as the grid search sums it */
+        return bf__sum_sq_diff(pb->n, curve, pb->data);
+    }
+    bf__objective_residuals(pb, curve, scratch);
+    for (k = 0; k < pb->n; k++) {
+        sum += weight_of(pb, k) * scratch[k] * scratch[k];
+    }
+    return sum;
+}
+
+/* ==== objectives at a parameter vector =================================== */
+
+int bf_problem_value(const bf_problem *pb, const double *param, double *work,
+                     double *value)
+{
+    int rc;
+    if (pb == NULL || pb->data == NULL || work == NULL || value == NULL) {
+        return BF_EINVAL;
+    }
+    rc = bf_model_eval(pb->type, param, pb->n, pb->geom, work);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = bf_normalise(pb->n, work, work); /* SPEC §2 */
+    if (rc != BF_OK) {
+        return rc;
+    }
+    *value = bf__objective_curve(pb, work, work + pb->n);
+    return BF_OK;
+}
+
+int bf_problem_residuals(const bf_problem *pb, const double *param,
+                         double *work, double *resid)
+{
+    int rc;
+    if (pb == NULL || pb->data == NULL || work == NULL || resid == NULL) {
+        return BF_EINVAL;
+    }
+    rc = bf_model_eval(pb->type, param, pb->n, pb->geom, work);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = bf_normalise(pb->n, work, work);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    bf__objective_residuals(pb, work, resid);
+    return BF_OK;
+}

@@ -1,0 +1,349 @@
+/* refine.c: exact optima -- GSL minimisers started from the grid optimum
+ * (doc/methods.md §2).
+ *
+ * [1] GSL manual, "One Dimensional Minimization" (Brent's method,
+ *     gsl_min_fminimizer_brent) and "Multidimensional Minimization"
+ *     (Nelder-Mead simplex, gsl_multimin_fminimizer_nmsimplex2).
+ * [2] R. P. Brent, "Algorithms for Minimization without Derivatives", 1973.
+ *
+ * One free parameter: Brent on a bracket [a, b] around the best of a few
+ * sampled points, to an interval narrower than BF_REFINE_TOL. Two or more:
+ * Nelder-Mead on u in R^p with x_j = a_j + (b_j - a_j)(1 + sin u_j)/2, so
+ * every trial point lies in the box [a, b] and the model's domain (the
+ * box lies inside [lo, hi], which lies inside [min, max]); it stops when
+ * the simplex is smaller than BF_REFINE_TOL in parameter units.
+ */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_min.h>
+#include <gsl/gsl_multimin.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* Objective value given to GSL where the model is undefined: such points
+ * are never minima (GSL rejects non-finite function values). */
+#define UNDEFINED_VALUE 1e300
+/* Points sampled over the whole range before Brent (bf_fit_minimise). */
+#define SCAN_POINTS 17
+/* Initial simplex step in the mapped coordinates u (radians). */
+#define SIMPLEX_STEP 0.5
+
+/* The state shared with the GSL callbacks. */
+typedef struct {
+    const bf_problem *pb;
+    double param[BF_MAX_PARAMS]; /* current full parameter vector */
+    size_t free[BF_MAX_PARAMS];  /* indices of the moving parameters */
+    size_t n_free;
+    double a[BF_MAX_PARAMS];     /* box of each moving parameter */
+    double b[BF_MAX_PARAMS];
+    double *work;                /* 2 n doubles for bf_problem_value */
+    size_t n_eval;
+} ctx_t;
+
+/* Objective at the current parameter vector. */
+static double value_at(ctx_t *c)
+{
+    double v;
+    c->n_eval++;
+    if (bf_problem_value(c->pb, c->param, c->work, &v) != BF_OK ||
+        !isfinite(v)) {
+        return UNDEFINED_VALUE;
+    }
+    return v;
+}
+
+/* ==== one free parameter: Brent ========================================== */
+
+static double f_1d(double x, void *arg)
+{
+    ctx_t *c = arg;
+    c->param[c->free[0]] = x;
+    return value_at(c);
+}
+
+/* Brent on [lo, hi] from mid (f(mid) < f(lo), f(hi)). Sets *x to the
+ * minimiser. */
+static int brent(ctx_t *c, double lo, double mid, double hi, double f_lo,
+                 double f_mid, double f_hi, double *x)
+{
+    gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    gsl_function fn;
+    int status;
+    size_t iter = 0;
+    if (s == NULL) {
+        return BF_ENOMEM;
+    }
+    fn.function = f_1d;
+    fn.params = c;
+    status = gsl_min_fminimizer_set_with_values(s, &fn, mid, f_mid, lo, f_lo,
+                                                hi, f_hi);
+    while (status == GSL_SUCCESS && iter++ < BF_REFINE_MAXITER) {
+        status = gsl_min_fminimizer_iterate(s);
+        if (status != GSL_SUCCESS) {
+            break;
+        }
+        status = gsl_min_test_interval(gsl_min_fminimizer_x_lower(s),
+                                       gsl_min_fminimizer_x_upper(s),
+                                       BF_REFINE_TOL, 0.0);
+        if (status == GSL_SUCCESS) {
+            break;
+        }
+        status = GSL_SUCCESS; /* GSL_CONTINUE: iterate on */
+    }
+    *x = gsl_min_fminimizer_x_minimum(s);
+    gsl_min_fminimizer_free(s);
+    if (status != GSL_SUCCESS) {
+        return iter > BF_REFINE_MAXITER ? BF_ENOCONV : BF_EDOM;
+    }
+    return BF_OK;
+}
+
+/* Minimises over the single moving parameter from the sorted samples
+ * xs[0..m) (which include the box ends). */
+static int minimise_1d(ctx_t *c, const double *xs, size_t m, double *x)
+{
+    double fs[SCAN_POINTS + 2];
+    size_t i;
+    size_t best = 0;
+    for (i = 0; i < m; i++) {
+        fs[i] = f_1d(xs[i], c);
+        if (fs[i] < fs[best]) {
+            best = i;
+        }
+    }
+    if (best > 0 && best + 1 < m) {
+        if (fs[best] < fs[best - 1] && fs[best] < fs[best + 1]) {
+            return brent(c, xs[best - 1], xs[best], xs[best + 1],
+                         fs[best - 1], fs[best], fs[best + 1], x);
+        }
+        *x = xs[best]; /* flat: ties with a neighbour */
+        return BF_OK;
+    }
+    {
+        /* the best sample is an end of the box: a minimum on the bound,
+         * or one between the end and its neighbour */
+        size_t nb = best == 0 ? 1 : m - 2;
+        double end = xs[best];
+        double delta = (xs[nb] - end) * 1e-3;
+        double probe = end + delta;
+        double f_probe = f_1d(probe, c);
+        if (!(f_probe < fs[best]) || !(f_probe < fs[nb])) {
+            *x = end; /* minimum on the bound of the box */
+            return BF_OK;
+        }
+        if (best == 0) {
+            return brent(c, end, probe, xs[nb], fs[best], f_probe, fs[nb], x);
+        }
+        return brent(c, xs[nb], probe, end, fs[nb], f_probe, fs[best], x);
+    }
+}
+
+/* ==== two or more: Nelder-Mead on the sine-mapped box ===================== */
+
+static void unmap(const ctx_t *c, const gsl_vector *u, double *param)
+{
+    size_t i;
+    for (i = 0; i < c->n_free; i++) {
+        size_t j = c->free[i];
+        double t = 0.5 * (1.0 + sin(gsl_vector_get(u, i)));
+        param[j] = c->a[i] + (c->b[i] - c->a[i]) * t;
+    }
+}
+
+static double f_nd(const gsl_vector *u, void *arg)
+{
+    ctx_t *c = arg;
+    unmap(c, u, c->param);
+    return value_at(c);
+}
+
+static int minimise_nd(ctx_t *c, const double *x0)
+{
+    const gsl_multimin_fminimizer_type *T =
+        gsl_multimin_fminimizer_nmsimplex2;
+    gsl_multimin_fminimizer *s = NULL;
+    gsl_vector *u = gsl_vector_alloc(c->n_free);
+    gsl_vector *step = gsl_vector_alloc(c->n_free);
+    gsl_multimin_function fn;
+    double half = 0.0;
+    size_t i;
+    size_t iter = 0;
+    int status;
+    int rc = BF_OK;
+
+    s = gsl_multimin_fminimizer_alloc(T, c->n_free);
+    if (u == NULL || step == NULL || s == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    for (i = 0; i < c->n_free; i++) {
+        double w = c->b[i] - c->a[i];
+        double t = 2.0 * (x0[c->free[i]] - c->a[i]) / w - 1.0;
+        t = t < -1.0 ? -1.0 : (t > 1.0 ? 1.0 : t);
+        gsl_vector_set(u, i, asin(t));
+        gsl_vector_set(step, i, SIMPLEX_STEP);
+        if (0.5 * w > half) {
+            half = 0.5 * w;
+        }
+    }
+    fn.n = c->n_free;
+    fn.f = f_nd;
+    fn.params = c;
+    status = gsl_multimin_fminimizer_set(s, &fn, u, step);
+    while (status == GSL_SUCCESS && iter++ < BF_REFINE_MAXITER) {
+        status = gsl_multimin_fminimizer_iterate(s);
+        if (status != GSL_SUCCESS) {
+            break;
+        }
+        /* |dx| <= half-width * |du|: the simplex is below the tolerance
+         * in parameter units */
+        status = gsl_multimin_test_size(gsl_multimin_fminimizer_size(s),
+                                        BF_REFINE_TOL / half);
+        if (status == GSL_SUCCESS) {
+            break;
+        }
+        status = GSL_SUCCESS;
+    }
+    unmap(c, gsl_multimin_fminimizer_x(s), c->param);
+    if (status != GSL_SUCCESS) {
+        rc = iter > BF_REFINE_MAXITER ? BF_ENOCONV : BF_EDOM;
+    }
+done:
+    gsl_multimin_fminimizer_free(s);
+    gsl_vector_free(u);
+    gsl_vector_free(step);
+    return rc;
+}
+
+/* ==== drivers ============================================================= */
+
+/* Minimises pb from x0 over the box [a, b] of its free parameters. scan:
+ * sample the 1-D box at SCAN_POINTS points first (else only a, x0, b). */
+static int minimise_box(const bf_problem *pb, const double *x0,
+                        const double *a, const double *b, int scan,
+                        bf_fit_result *result)
+{
+    ctx_t c;
+    double f0;
+    double f1;
+    double xs[SCAN_POINTS + 2];
+    int rc = BF_OK;
+    size_t j;
+
+    memset(&c, 0, sizeof c);
+    memset(result, 0, sizeof *result);
+    c.pb = pb;
+    c.work = malloc(2 * pb->n * sizeof *c.work);
+    if (c.work == NULL) {
+        return BF_ENOMEM;
+    }
+    memcpy(c.param, pb->fixed, sizeof c.param);
+    for (j = 0; j < pb->type->p; j++) {
+        if ((pb->free_mask >> j) & 1u) {
+            if (!(x0[j] >= a[j] && x0[j] <= b[j])) {
+                rc = BF_EINVAL;
+                goto done;
+            }
+            c.param[j] = x0[j];
+            if (b[j] > a[j]) {
+                c.a[c.n_free] = a[j];
+                c.b[c.n_free] = b[j];
+                c.free[c.n_free++] = j;
+            }
+        }
+    }
+    f0 = value_at(&c);
+    memcpy(result->param, c.param, sizeof c.param);
+    if (c.n_free == 1) {
+        size_t m = 0;
+        size_t i;
+        double x;
+        double lo = c.a[0];
+        double hi = c.b[0];
+        double xstart = x0[c.free[0]];
+        size_t pts = scan ? SCAN_POINTS : 2;
+        for (i = 0; i < pts; i++) {
+            double xi = lo + (hi - lo) * (double)i / (double)(pts - 1);
+            if (m > 0 && xs[m - 1] < xstart && xstart < xi) {
+                xs[m++] = xstart;
+            }
+            xs[m++] = i + 1 == pts ? hi : xi;
+        }
+        rc = minimise_1d(&c, xs, m, &x);
+        c.param[c.free[0]] = x;
+    } else if (c.n_free > 1) {
+        rc = minimise_nd(&c, x0);
+    }
+    f1 = value_at(&c);
+    if (f1 <= f0) { /* keep the better of start and minimiser */
+        memcpy(result->param, c.param, sizeof c.param);
+        result->lse = f1;
+    } else {
+        result->lse = f0;
+    }
+    if (result->lse >= UNDEFINED_VALUE) {
+        rc = BF_EDOM;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        if (((pb->free_mask >> j) & 1u) &&
+            (result->param[j] <= pb->lo[j] + BF_REFINE_TOL ||
+             result->param[j] >= pb->hi[j] - BF_REFINE_TOL)) {
+            result->bound_hit |= 1u << j;
+        }
+    }
+    result->n_eval = c.n_eval;
+done:
+    free(c.work);
+    return rc;
+}
+
+/* Checks pb's search ranges against the model's domain. */
+static int check_problem(const bf_problem *pb)
+{
+    size_t j;
+    if (pb == NULL || pb->type == NULL || pb->data == NULL ||
+        pb->geom == NULL || pb->n == 0 || pb->type->p > BF_MAX_PARAMS) {
+        return BF_EINVAL;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        const bf_param *pj = &pb->type->param[j];
+        if (((pb->free_mask >> j) & 1u) &&
+            !(pb->lo[j] >= pj->min && pb->hi[j] <= pj->max &&
+              pb->lo[j] <= pb->hi[j])) {
+            return BF_EINVAL;
+        }
+    }
+    return BF_OK;
+}
+
+int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
+                  bf_fit_result *result)
+{
+    double a[BF_MAX_PARAMS] = {0};
+    double b[BF_MAX_PARAMS] = {0};
+    size_t j;
+    int rc = check_problem(pb);
+    if (rc != BF_OK || start == NULL || result == NULL) {
+        return BF_EINVAL;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        const bf_param *pj = &pb->type->param[j];
+        double step = pj->grid_n > 0 ? pj->grid_step : pb->hi[j] - pb->lo[j];
+        double x = start->param[j];
+        a[j] = x - step > pb->lo[j] ? x - step : pb->lo[j];
+        b[j] = x + step < pb->hi[j] ? x + step : pb->hi[j];
+    }
+    return minimise_box(pb, start->param, a, b, 0, result);
+}
+
+int bf_fit_minimise(const bf_problem *pb, const double *start,
+                    bf_fit_result *result)
+{
+    int rc = check_problem(pb);
+    if (rc != BF_OK || start == NULL || result == NULL) {
+        return BF_EINVAL;
+    }
+    return minimise_box(pb, start, pb->lo, pb->hi, 1, result);
+}

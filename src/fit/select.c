@@ -1,0 +1,119 @@
+/* select.c: model selection -- information criteria and k-fold
+ * cross-validation over configurations (doc/methods.md §4, §5).
+ *
+ * [1] H. Akaike, "A new look at the statistical model identification",
+ *     IEEE TAC 19(6), 1974.
+ * [2] G. Schwarz, "Estimating the dimension of a model", Ann. Stat. 6(2),
+ *     1978.
+ * [3] T. Hastie, R. Tibshirani, J. Friedman, "The Elements of Statistical
+ *     Learning", 2nd ed., §7.10 (k-fold cross-validation).
+ *
+ * Equations (Gaussian errors of unknown variance, maximised likelihood;
+ * the constant n (1 + ln 2 pi) common to all models is dropped):
+ *   AIC = n ln(RSS/n) + 2k                                      [1]
+ *   BIC = n ln(RSS/n) + k ln n                                  [2]
+ *   CV  = sum over folds f, over k in f, of r_k(theta_-f)^2      [3]
+ */
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+double bf_aic(double rss, size_t n, size_t k)
+{
+    double dn = (double)n;
+    return dn * log(rss / dn) + 2.0 * (double)k; /* [1] */
+}
+
+double bf_bic(double rss, size_t n, size_t k)
+{
+    double dn = (double)n;
+    return dn * log(rss / dn) + (double)k * log(dn); /* [2] */
+}
+
+int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
+{
+    gsl_rng *rng;
+    size_t *perm;
+    size_t p;
+    if (fold == NULL || folds < 2 || folds > n) {
+        return BF_EINVAL;
+    }
+    rng = gsl_rng_alloc(gsl_rng_mt19937);
+    perm = malloc(n * sizeof *perm);
+    if (rng == NULL || perm == NULL) {
+        gsl_rng_free(rng);
+        free(perm);
+        return BF_ENOMEM;
+    }
+    gsl_rng_set(rng, seed);
+    for (p = 0; p < n; p++) {
+        perm[p] = p;
+    }
+    gsl_ran_shuffle(rng, perm, n, sizeof *perm);
+    for (p = 0; p < n; p++) {
+        fold[perm[p]] = p % folds;
+    }
+    gsl_rng_free(rng);
+    free(perm);
+    return BF_OK;
+}
+
+int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
+              unsigned long seed, double *cv)
+{
+    size_t *fold = NULL;
+    double *w = NULL;
+    double *work = NULL;
+    double *resid = NULL;
+    double sum = 0.0;
+    size_t f;
+    size_t k;
+    int rc;
+
+    if (pb == NULL || curves == NULL || cv == NULL || pb->weight != NULL) {
+        return BF_EINVAL;
+    }
+    fold = malloc(pb->n * sizeof *fold);
+    w = malloc(pb->n * sizeof *w);
+    work = malloc(pb->n * sizeof *work);
+    resid = malloc(pb->n * sizeof *resid);
+    if (fold == NULL || w == NULL || work == NULL || resid == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    rc = bf_cv_folds(pb->n, folds, seed, fold);
+    for (f = 0; rc == BF_OK && f < folds; f++) {
+        bf_problem train = *pb;
+        bf_fit_result g;
+        bf_fit_result r;
+        for (k = 0; k < pb->n; k++) {
+            w[k] = fold[k] == f ? 0.0 : 1.0; /* fit to the other folds */
+        }
+        train.weight = w;
+        rc = bf_curves_best(curves, &train, &g);
+        if (rc == BF_OK) {
+            rc = bf_fit_refine(&train, &g, &r);
+            rc = rc == BF_ENOCONV ? BF_OK : rc;
+        }
+        if (rc == BF_OK) {
+            /* residuals under the training fit (its scale, for scale) */
+            rc = bf_problem_residuals(&train, r.param, work, resid);
+        }
+        for (k = 0; rc == BF_OK && k < pb->n; k++) {
+            if (fold[k] == f) {
+                sum += resid[k] * resid[k]; /* held out [3] */
+            }
+        }
+    }
+    *cv = rc == BF_OK ? sum : NAN;
+done:
+    free(fold);
+    free(w);
+    free(work);
+    free(resid);
+    return rc;
+}

@@ -1,0 +1,222 @@
+/* test_cli_exact.c: the CLI beyond the paper -- --fit exact, --objective,
+ * --range, --bootstrap, the analysis columns of fits.csv (found by header
+ * name) and `brdffit rank` (doc/methods.md). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_run.h"
+#include "support.h"
+
+#define EXIT_USAGE 64
+/* The paper's slope grid step (SPEC §7.4). */
+#define GRID_STEP 0.01
+
+/* One CSV file split into a header and rows of fields (static storage). */
+#define MAX_FIELDS 40
+#define MAX_LINES 64
+static char *cells[MAX_LINES][MAX_FIELDS];
+static size_t n_lines;
+static size_t n_cols;
+static char csv_text[1 << 16];
+
+static void load_csv(const char *dir, const char *name)
+{
+    char path[512];
+    const char *text;
+    char *save = NULL;
+    char *line;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    text = bf_test_slurp(path, NULL);
+    cr_assert_not_null(text, "%s missing", path);
+    cr_assert_lt(strlen(text), sizeof csv_text);
+    strcpy(csv_text, text);
+    n_lines = 0;
+    for (line = strtok_r(csv_text, "\n", &save); line != NULL;
+         line = strtok_r(NULL, "\n", &save)) {
+        size_t nf = 0;
+        char *p = line;
+        cr_assert_lt(n_lines, MAX_LINES);
+        while (nf < MAX_FIELDS) { /* no quoted fields in these tests */
+            char *e = strchr(p, ',');
+            cells[n_lines][nf++] = p;
+            if (e == NULL) {
+                break;
+            }
+            *e = '\0';
+            p = e + 1;
+        }
+        if (n_lines == 0) {
+            n_cols = nf;
+        }
+        cr_assert_eq(nf, n_cols, "%s line %zu", name, n_lines + 1);
+        n_lines++;
+    }
+}
+
+/* Column index of a header name. */
+static size_t col(const char *name)
+{
+    size_t c;
+    for (c = 0; c < n_cols; c++) {
+        if (strcmp(cells[0][c], name) == 0) {
+            return c;
+        }
+    }
+    cr_assert_fail("no column '%s'", name);
+    return 0;
+}
+
+static double num(size_t row, const char *name)
+{
+    const char *s = cells[row][col(name)];
+    return s[0] != '\0' ? strtod(s, NULL) : NAN;
+}
+
+/* The row of model (and parameter, or "" for none). */
+static size_t row_of(const char *model, const char *param)
+{
+    size_t r;
+    for (r = 1; r < n_lines; r++) {
+        if (strcmp(cells[r][col("model")], model) == 0 &&
+            strcmp(cells[r][col("parameter")], param) == 0) {
+            return r;
+        }
+    }
+    cr_assert_fail("no row for %s %s", model, param);
+    return 0;
+}
+
+static int run(const char **argv)
+{
+    static char data[4096];
+    size_t i;
+    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
+    for (i = 0; argv[i] != NULL; i++) {
+        if (strcmp(argv[i], "DATA") == 0) {
+            argv[i] = data;
+        }
+    }
+    return bf_test_run_cli(argv, NULL, NULL);
+}
+
+Test(cli_exact, exact_fit_reports_grid_and_refined_optima_side_by_side)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
+                          "--models", "VH-E,FC-E", "--fit", "exact",
+                          "--bootstrap", "30", "--out", dir, "-q", NULL};
+    size_t r;
+    cr_assert_eq(run(argv), 0);
+    load_csv(dir, "fits.csv");
+    cr_assert_eq(n_lines, 4u, "header + VH-E m + FC-E m, n");
+    for (r = 1; r < n_lines; r++) {
+        double v = num(r, "value");
+        cr_assert_str_eq(cells[r][col("fit")], "exact");
+        cr_assert_str_eq(cells[r][col("objective")], "max");
+        cr_assert_str_eq(cells[r][col("ci_method")], "profile");
+        bf_assert_rel(v, num(r, "refined_value"), TOL0);
+        cr_assert_leq(num(r, "refined_lse"), num(r, "grid_lse"));
+        cr_assert(num(r, "ci_low") <= v && v <= num(r, "ci_high"));
+        cr_assert(num(r, "boot_low") < num(r, "boot_high"));
+        cr_assert(isfinite(num(r, "aic")) && isfinite(num(r, "bic")) &&
+                  isfinite(num(r, "cv")));
+    }
+    r = row_of("VH-E", "m");
+    cr_assert_leq(fabs(num(r, "value") - num(r, "grid_value")),
+                  GRID_STEP * (1 + 1e-9));
+    cr_assert_eq(num(r, "n_params"), 1.0);
+    r = row_of("FC-E", "n"); /* n is fitted with --fit exact */
+    cr_assert(num(r, "value") >= 1.2 && num(r, "value") <= 2.5);
+    cr_assert_eq(num(r, "n_params"), 2.0);
+}
+
+Test(cli_exact, paper_fit_keeps_grid_values_and_adds_the_exact_optimum)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
+                          "--models", "VH-G", "--out", dir, "-q", NULL};
+    size_t r;
+    double steps;
+    cr_assert_eq(run(argv), 0);
+    load_csv(dir, "fits.csv");
+    r = row_of("VH-G", "m");
+    cr_assert_str_eq(cells[r][col("fit")], "paper");
+    cr_assert_eq(num(r, "value"), num(r, "grid_value"));
+    steps = (num(r, "value") - 0.1) / GRID_STEP; /* on the paper grid */
+    cr_assert_lt(fabs(steps - round(steps)), 1e-6);
+    cr_assert_leq(num(r, "refined_lse"), num(r, "lse"));
+}
+
+Test(cli_exact, range_widens_the_search_beyond_the_paper_grid)
+{
+    const char *dir = bf_test_tmpdir();
+    /* Velvet (7): VH-E's paper optimum is the grid bound 5.10 */
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "7",
+                          "--models", "VH-E", "--fit", "exact", "--range",
+                          "m=0.1:20", "--folds", "0", "--out", dir, "-q",
+                          NULL};
+    size_t r;
+    cr_assert_eq(run(argv), 0);
+    load_csv(dir, "fits.csv");
+    r = row_of("VH-E", "m");
+    cr_assert_gt(num(r, "value"), 5.1);
+    cr_assert_str_eq(cells[r][col("bound_hit")], "0");
+    cr_assert(isnan(num(r, "cv")), "--folds 0: no cross-validation");
+}
+
+Test(cli_exact, bad_options_are_usage_errors)
+{
+    const char *a1[] = {"compare", "--objective", "log", NULL};
+    const char *a2[] = {"compare", "--objective", "median", "--fit", "exact",
+                        NULL};
+    const char *a3[] = {"compare", "--fit", "fast", NULL};
+    const char *a4[] = {"compare", "--range", "m=2:1", NULL};
+    const char *a5[] = {"compare", "--range", "m", NULL};
+    const char *a6[] = {"compare", "--data", "DATA", "--models", "VH-E",
+                        "--range", "m=0:2", NULL}; /* m >= 1e-3 */
+    const char *a7[] = {"compare", "--data", "DATA", "--models", "VH-E",
+                        "--range", "n=1.2:2", NULL}; /* VH-E has no n */
+    const char *a8[] = {"compare", "--bootstrap", "1", NULL};
+    const char *a9[] = {"rank", "--folds", "x", NULL};
+    const char *a10[] = {"rank", "--criterion", "r2", NULL};
+    const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10};
+    size_t i;
+    for (i = 0; i < sizeof all / sizeof *all; i++) {
+        cr_assert_eq(run(all[i]), EXIT_USAGE, "case %zu", i + 1);
+    }
+}
+
+Test(cli_exact, rank_writes_a_ranking_per_sample_and_a_summary)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"rank", "--data", "DATA", "--samples", "1,12,33",
+                          "--models", "VH-E,FC-E,LAMBERT", "--folds", "3",
+                          "--out", dir, "-q", NULL};
+    char path[512];
+    const char *md;
+    size_t r;
+    size_t best = 0;
+    cr_assert_eq(run(argv), 0);
+    load_csv(dir, "ranking.csv");
+    cr_assert_eq(n_lines, 1u + 3u * 3u);
+    for (r = 1; r < n_lines; r++) {
+        double k = num(r, "k");
+        double n = num(r, "n");
+        double rss = num(r, "objective_value");
+        /* AIC = n ln(RSS/n) + 2k, BIC = n ln(RSS/n) + k ln n */
+        bf_assert_rel(num(r, "aic"), n * log(rss / n) + 2 * k, 1e-9);
+        bf_assert_rel(num(r, "bic"), n * log(rss / n) + k * log(n), 1e-9);
+        cr_assert(num(r, "rank_bic") >= 1 && num(r, "rank_bic") <= 3);
+        best += num(r, "rank_bic") == 1;
+        cr_assert_str_eq(cells[r][col("fit")], "exact");
+    }
+    cr_assert_eq(best, 3u, "one best model per sample");
+    snprintf(path, sizeof path, "%s/ranking.md", dir);
+    md = bf_test_slurp(path, NULL);
+    cr_assert_not_null(md);
+    cr_assert(strstr(md, "- BIC: ") != NULL && strstr(md, " of 3 samples"),
+              "%s", md);
+}
