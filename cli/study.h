@@ -24,6 +24,7 @@ typedef struct {
     int n_given;
     double max_theta; /* degrees */
     int quiet;
+    int threads;      /* --threads: 1 by default, 0 = one per core */
 } bf_cli_opts;
 
 /* A command's own options: getopt_long entries (val >= 512) and a handler

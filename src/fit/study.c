@@ -5,6 +5,7 @@
  * [2] SPEC §7 (protocol), §4.2 (n fixed per sample, default 1.7), §5 (ON at
  *     the tabulated rho, sigma).
  */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,12 +64,113 @@ static int sample_inputs(const bf_study_spec *spec, const bf_model_type *type,
     return BF_OK;
 }
 
+/* Fits one model to every sample of spec (SPEC §7.3-7.5). Samples whose
+ * fixed inputs are equal share one precomputed grid (for the paper's
+ * protocol: one grid per model, or one per sample for ON), and the samples
+ * of a grid are scored together. fixed holds n_samples x BF_MAX_PARAMS
+ * scratch values; rows are filled at stride n_models. */
+static int fit_model(const bf_study_spec *spec, size_t m, const bf_geom *geom,
+                     const double *data, double *fixed, bf_study_row *rows)
+{
+    const bf_model_type *type = spec->models[m];
+    size_t n_sel = spec->n_sel;
+    int n_threads = spec->n_threads > 1 ? spec->n_threads : 1;
+    const double **group = NULL;
+    size_t *members = NULL;
+    unsigned char *done = NULL;
+    double *lse = NULL;
+    size_t s;
+    int rc = BF_OK;
+
+    group = malloc((spec->n_samples + 1) * sizeof *group);
+    members = malloc((spec->n_samples + 1) * sizeof *members);
+    done = calloc(spec->n_samples + 1, 1);
+    if (group == NULL || members == NULL || done == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    for (s = 0; s < spec->n_samples; s++) {
+        bf_study_row *r = &rows[s * spec->n_models + m];
+        double *fx = fixed + s * BF_MAX_PARAMS;
+        memset(r, 0, sizeof *r);
+        memset(fx, 0, BF_MAX_PARAMS * sizeof *fx);
+        r->sample = spec->samples[s];
+        r->type = type;
+        r->status = sample_inputs(spec, type, r->sample, fx);
+        done[s] = r->status != BF_OK;
+    }
+    if (bf__fits_nothing(type)) { /* ON, LAMBERT: one value per sample */
+        bf__fixed_model *fm = bf__fixed_alloc(type, n_sel, geom);
+        if (fm == NULL) {
+            rc = BF_ENOMEM;
+            goto done;
+        }
+        for (s = 0; s < spec->n_samples; s++) {
+            bf_study_row *r = &rows[s * spec->n_models + m];
+            if (r->status == BF_OK) {
+                r->status = bf__fixed_fit(fm, fixed + s * BF_MAX_PARAMS,
+                                          data + s * n_sel, &r->fit);
+            }
+        }
+        bf__fixed_free(fm);
+        goto done;
+    }
+    for (s = 0; s < spec->n_samples; s++) {
+        const double *fx = fixed + s * BF_MAX_PARAMS;
+        size_t n_group = 0;
+        size_t q;
+        size_t stride;
+        int st = BF_OK;
+        bf_grid *gr;
+        if (done[s]) {
+            continue;
+        }
+        for (q = s; q < spec->n_samples; q++) {
+            if (!done[q] && memcmp(fixed + q * BF_MAX_PARAMS, fx,
+                                   BF_MAX_PARAMS * sizeof *fx) == 0) {
+                members[n_group] = q;
+                group[n_group++] = data + q * n_sel;
+                done[q] = 1;
+            }
+        }
+        gr = bf__grid_build(type, fx, 0, n_sel, geom, n_threads, &st);
+        if (gr == NULL) {
+            for (q = 0; q < n_group; q++) {
+                rows[members[q] * spec->n_models + m].status = st;
+            }
+            continue;
+        }
+        stride = bf__grid_cols(gr);
+        lse = malloc(n_group * stride * sizeof *lse);
+        if (lse == NULL) {
+            bf_grid_free(gr);
+            rc = BF_ENOMEM;
+            goto done;
+        }
+        bf__grid_score(gr, n_group, group, lse, n_threads);
+        for (q = 0; q < n_group; q++) {
+            bf_study_row *r = &rows[members[q] * spec->n_models + m];
+            r->status = bf__grid_best(gr, lse + q * stride, &r->fit);
+        }
+        free(lse);
+        lse = NULL;
+        bf_grid_free(gr);
+    }
+
+done:
+    free(group);
+    free(members);
+    free(done);
+    free(lse);
+    return rc;
+}
+
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 {
     bf_geom *geom = NULL;
     double *data = NULL;
-    bf_grid **grids = NULL;
-    double *grid_fixed = NULL;
+    double *fixed = NULL;
+    double *cos_ti = NULL;
     size_t s;
     size_t m;
     size_t k;
@@ -84,10 +186,9 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     }
     geom = malloc(spec->n_sel * sizeof *geom);
     data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
-    grids = calloc(spec->n_models + 1, sizeof *grids);
-    grid_fixed = calloc((spec->n_models + 1) * BF_MAX_PARAMS,
-                        sizeof *grid_fixed);
-    if (geom == NULL || data == NULL || grids == NULL || grid_fixed == NULL) {
+    fixed = malloc((spec->n_samples + 1) * BF_MAX_PARAMS * sizeof *fixed);
+    cos_ti = malloc(spec->n_sel * sizeof *cos_ti);
+    if (geom == NULL || data == NULL || fixed == NULL || cos_ti == NULL) {
         rc = BF_ENOMEM;
         set_error(err, rc, "out of memory");
         goto done;
@@ -101,19 +202,26 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         geom[k] = bf_table_geom(spec->table, spec->sel[k]);
     }
 
-    /* SPEC §2: normalised measured radiance of every sample. */
+    /* SPEC §2: normalised measured radiance of every sample, as
+     * bf_data_radiance computes it, cos(theta_i) taken once. */
+    for (k = 0; k < spec->n_sel; k++) {
+        cos_ti[k] = cos(geom[k].theta_i);
+    }
     for (s = 0; s < spec->n_samples; s++) {
         long row = bf_brdf_find(spec->brdf, spec->samples[s]);
+        const double *v;
+        double *d = data + s * spec->n_sel;
         if (row < 0) {
             rc = BF_ENOTFOUND;
             set_error(err, rc, "sample %d is not in the BRDF file",
                       spec->samples[s]);
             goto done;
         }
-        rc = bf_data_radiance(spec->table,
-                              bf_brdf_values(spec->brdf, (size_t)row),
-                              spec->n_sel, spec->sel,
-                              data + s * spec->n_sel);
+        v = bf_brdf_values(spec->brdf, (size_t)row);
+        for (k = 0; k < spec->n_sel; k++) {
+            d[k] = v[spec->sel[k]] * cos_ti[k]; /* SPEC §2 */
+        }
+        rc = bf_normalise(spec->n_sel, d, d);
         if (rc != BF_OK) {
             set_error(err, rc,
                       "sample %d: the measured radiance has no positive "
@@ -123,44 +231,19 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         }
     }
 
-    /* SPEC §7.3-7.5: each model, each sample. The grid of a model is built
-     * once and rebuilt only when a sample's fixed inputs differ. */
+    /* SPEC §7.3-7.5: each model, each sample. */
     for (m = 0; m < spec->n_models; m++) {
-        const bf_model_type *type = spec->models[m];
-        double *gfix = grid_fixed + m * BF_MAX_PARAMS;
-        for (s = 0; s < spec->n_samples; s++) {
-            bf_study_row *r = &rows[s * spec->n_models + m];
-            double fixed[BF_MAX_PARAMS] = {0};
-            memset(r, 0, sizeof *r);
-            r->sample = spec->samples[s];
-            r->type = type;
-            r->status = sample_inputs(spec, type, r->sample, fixed);
-            if (r->status != BF_OK) {
-                continue;
-            }
-            if (grids[m] == NULL ||
-                memcmp(gfix, fixed, sizeof fixed) != 0) {
-                int st = BF_OK;
-                bf_grid_free(grids[m]);
-                grids[m] = bf_grid_alloc(type, fixed, 0, spec->n_sel, geom,
-                                         &st);
-                memcpy(gfix, fixed, sizeof fixed);
-                if (grids[m] == NULL) {
-                    r->status = st;
-                    continue;
-                }
-            }
-            r->status = bf_grid_fit(grids[m], data + s * spec->n_sel,
-                                    &r->fit);
+        rc = fit_model(spec, m, geom, data, fixed, rows);
+        if (rc != BF_OK) {
+            set_error(err, rc, "out of memory");
+            goto done;
         }
-        bf_grid_free(grids[m]);
-        grids[m] = NULL;
     }
 
 done:
     free(geom);
     free(data);
-    free(grids);
-    free(grid_fixed);
+    free(fixed);
+    free(cos_ti);
     return rc;
 }
