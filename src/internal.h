@@ -254,26 +254,31 @@ int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
  * free). Returns 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
-                    size_t stride, double *curves, unsigned char *ok,
-                    int n_threads);
+                    size_t stride, double *curves, unsigned char *ok);
+/* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
+ * [-708, 0], 0 below); exposed for the tests. */
+double bf__exp_nonpos(double x);
 /* lse[s * cols + g] = LSE of grid column g < cols against data[s]
  * (SPEC §7.3) in index order. */
 void bf__score_all(size_t n, size_t cols, size_t stride,
                    const double *curves, size_t n_samples,
-                   const double *const *data, double *lse, int n_threads);
+                   const double *const *data, double *lse);
+/* The smallest LSE of the defined points (ok) and its first index in
+ * *best (SIZE_MAX when none is defined and finite). */
+double bf__argmin(size_t points, const double *restrict lse,
+                  const unsigned char *restrict ok, size_t *best);
 
 /* --- precomputed grids (src/fit/grid.c), for the study driver --- */
 
-/* bf_grid_alloc with the curve evaluation shared among n_threads threads
- * (results do not depend on n_threads). */
+/* bf_grid_alloc (the study's threads each build their own grids). */
 bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
                         unsigned free_mask, size_t n, const bf_geom *geom,
-                        int n_threads, int *status);
+                        int *status);
 /* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
 size_t bf__grid_cols(const bf_grid *gr);
 /* Scores n_samples samples at once: lse must hold n_samples * cols. */
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
-                    const double *const *data, double *lse, int n_threads);
+                    const double *const *data, double *lse);
 /* The best grid point of one row of LSE values (ties keep the first),
  * as bf_grid_fit reports it. */
 int bf__grid_best(const bf_grid *gr, const double *lse,

@@ -253,7 +253,7 @@ static int curves_plain(bf_grid *gr, const bf_geom *geom)
 
 bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
                         unsigned free_mask, size_t n, const bf_geom *geom,
-                        int n_threads, int *status)
+                        int *status)
 {
     bf_grid *gr = NULL;
     size_t bytes;
@@ -290,7 +290,7 @@ bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
         goto fail;
     }
     rc = bf__curves_fast(type, &gr->layout, n, geom, gr->cols, gr->stride,
-                         gr->curves, gr->ok, n_threads);
+                         gr->curves, gr->ok);
     if (rc < 0) {
         rc = -rc;
         goto fail;
@@ -319,7 +319,7 @@ bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
                        unsigned free_mask, size_t n, const bf_geom *geom,
                        int *status)
 {
-    return bf__grid_build(type, fixed, free_mask, n, geom, 1, status);
+    return bf__grid_build(type, fixed, free_mask, n, geom, status);
 }
 
 void bf_grid_free(bf_grid *gr)
@@ -343,29 +343,19 @@ size_t bf__grid_cols(const bf_grid *gr)
 }
 
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
-                    const double *const *data, double *lse, int n_threads)
+                    const double *const *data, double *lse)
 {
     bf__score_all(gr->n, gr->cols, gr->stride, gr->curves, n_samples, data,
-                  lse, n_threads);
+                  lse);
 }
 
 int bf__grid_best(const bf_grid *gr, const double *lse,
                   bf_fit_result *result)
 {
-    size_t idx;
-    size_t best = SIZE_MAX;
-    double best_lse = INFINITY;
+    size_t best;
+    double best_lse = bf__argmin(gr->layout.points, lse, gr->ok, &best);
 
     memset(result, 0, sizeof *result);
-    for (idx = 0; idx < gr->layout.points; idx++) {
-        if (!gr->ok[idx]) {
-            continue;
-        }
-        if (lse[idx] < best_lse) { /* strict: ties keep the first point */
-            best_lse = lse[idx];
-            best = idx;
-        }
-    }
     result->n_eval = gr->layout.points;
     if (best == SIZE_MAX) {
         return BF_EDOM;
@@ -388,7 +378,7 @@ int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
     if (lse == NULL) {
         return BF_ENOMEM;
     }
-    bf__grid_score(gr, 1, &data, lse, 1);
+    bf__grid_score(gr, 1, &data, lse);
     rc = bf__grid_best(gr, lse, result);
     free(lse);
     return rc;

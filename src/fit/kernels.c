@@ -26,8 +26,8 @@
  *         per configuration;
  *   - normalisation multiplies by 1/max instead of dividing by max;
  *   - each LSE term is added with one fma (one rounding instead of two);
- *   - exp comes from glibc's vector math library libmvec (at most 4 ulp)
- *     when BF_VECTOR_MATH is defined (the default build).
+ *   - exp is the kernels' own (exp_nonpos below, within 1 ulp of glibc's),
+ *     so that it vectorises inline and gives the same bits on every ISA.
  * The normalised curves therefore differ from the plain path's by a few
  * units in the last place (absolute, the curves peak at 1), and each LSE
  * by a few ulp times sqrt(K LSE). tests/fit/test_grid.c bounds the
@@ -47,12 +47,6 @@
 
 #include "internal.h"
 
-#if defined(BF_VECTOR_MATH)
-/* glibc declares its vector variants (libmvec) only under -ffast-math;
- * declare exp's here so that the simd loops below call _ZGV*_exp. */
-#pragma omp declare simd notinbranch
-extern double exp(double x);
-#endif
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&   \
     defined(__has_attribute)
@@ -67,9 +61,68 @@ extern double exp(double x);
 #endif
 
 /* Grid points per curve block: one AVX-512 register of doubles. */
-#define CURVE_LANES 8
+#define CURVE_LANES 16
 /* Samples scored together (each loaded curve value is used this often). */
 #define TILE_SAMPLES 4
+
+/* ==== exp of a non-positive argument, vectorisable ======================= */
+
+/* ln 2 as the double nearest it and the rest (the reduction x - k ln 2 is
+ * taken with fma, which forms k ln2_hi exactly); 1/ln 2; 1.5 * 2^52, which
+ * rounds a double below 2^51 in magnitude to an integer in its low
+ * bits. */
+#define EXP_LN2_HI 0x1.62e42fefa39efp-1
+#define EXP_LN2_LO 0x1.abc9e3b39803fp-56
+#define EXP_INV_LN2 0x1.71547652b82fep0
+#define EXP_SHIFTER 0x1.8p52
+/* Below this argument e^x < 2^-1021 (near DBL_MIN): the result is 0. */
+#define EXP_MIN_ARG (-708.0)
+
+/* e^x for x <= 0, the only arguments of the kernels (x = b/m^2 with b <= 0,
+ * x = n_d ln(cos ti cos ts) with the base <= 1). Straight-line code the
+ * compiler vectorises: x = k ln 2 + r with |r| <= ln(2)/2 (Cody-Waite,
+ * fma), e^r by its Taylor polynomial of degree 13 (truncation below
+ * 2^-57), times 2^k built in the exponent bits. Within 1 ulp of glibc's
+ * exp on [-708, 0] (tests/fit/test_grid.c); 0 below -708 (where glibc
+ * gives a subnormal or 0), for -inf and for NaN. The same bits on every
+ * ISA: every operation is correctly rounded (no contraction, explicit
+ * fma). */
+static inline double exp_nonpos(double x)
+{
+    double xc = (x >= EXP_MIN_ARG) ? x : EXP_MIN_ARG;
+    double t = fma(xc, EXP_INV_LN2, EXP_SHIFTER); /* k in the low bits */
+    double kd = t - EXP_SHIFTER;                    /* k = round(x/ln 2) */
+    double r = fma(-kd, EXP_LN2_HI, xc);
+    double p;
+    double scale;
+    uint64_t bits;
+    r = fma(-kd, EXP_LN2_LO, r);
+    p = 1.0 / 6227020800.0; /* 1/13! ... 1/0!, Horner */
+    p = fma(p, r, 1.0 / 479001600.0);
+    p = fma(p, r, 1.0 / 39916800.0);
+    p = fma(p, r, 1.0 / 3628800.0);
+    p = fma(p, r, 1.0 / 362880.0);
+    p = fma(p, r, 1.0 / 40320.0);
+    p = fma(p, r, 1.0 / 5040.0);
+    p = fma(p, r, 1.0 / 720.0);
+    p = fma(p, r, 1.0 / 120.0);
+    p = fma(p, r, 1.0 / 24.0);
+    p = fma(p, r, 1.0 / 6.0);
+    p = fma(p, r, 0.5);
+    p = fma(p, r, 1.0);
+    p = fma(p, r, 1.0);
+    memcpy(&bits, &t, sizeof bits);
+    /* 2^k, k in [-1021, 0]: k + 1023 into the exponent field; unsigned
+     * arithmetic drops the shifter's high bits (wraps, as defined) */
+    bits = (bits + 1023u) << 52;
+    memcpy(&scale, &bits, sizeof scale);
+    return (x >= EXP_MIN_ARG) ? p * scale : 0.0;
+}
+
+double bf__exp_nonpos(double x)
+{
+    return exp_nonpos(x);
+}
 
 /* ==== geometry terms, once per configuration ============================= */
 
@@ -79,14 +132,15 @@ extern double exp(double x);
  * normalisation (SPEC §2). */
 typedef struct {
     double *a;   /* G: F^2/vz^2   E: F^2 |vz|   LFTG: ln(cos ti cos ts) */
-    double *b;   /* G: -vxy^2/(4 vz^2)   E: vz^2 */
+    double *b;   /* G: -vxy^2/(4 vz^2)   E: vz^2   LFTG: scratch */
     double *c;   /* E: vxy^2 */
+    double *p;   /* LFTG: n x CURVE_LANES, exp(j step ln(cos ti cos ts)) */
     double *mem;
 } terms_t;
 
 static int terms_alloc(terms_t *t, size_t n)
 {
-    size_t len = (3 * n * sizeof(double) + 63) / 64 * 64;
+    size_t len = ((3 + CURVE_LANES) * n * sizeof(double) + 63) / 64 * 64;
     t->mem = aligned_alloc(64, len);
     if (t->mem == NULL) {
         return BF_ENOMEM;
@@ -94,6 +148,7 @@ static int terms_alloc(terms_t *t, size_t n)
     t->a = t->mem;
     t->b = t->a + n;
     t->c = t->b + n;
+    t->p = t->c + n;
     return BF_OK;
 }
 
@@ -182,7 +237,7 @@ static void block_gauss(size_t n, const terms_t *t, const double *m,
         double *restrict ck = c + (k * stride);
 #pragma omp simd simdlen(CURVE_LANES)
         for (j = 0; j < CURVE_LANES; j++) {
-            double v = a * exp(b * inv_m2[j]); /* (P1), SPEC §3.1 */
+            double v = a * exp_nonpos(b * inv_m2[j]); /* (P1), SPEC §3.1 */
             ck[j] = v;
             nf[j] += v - v; /* NaN once a value is not finite */
             mx[j] = (v > mx[j]) ? v : mx[j];
@@ -225,27 +280,40 @@ static void block_exp(size_t n, const terms_t *t, const double *m,
     normalise_block(n, stride, c, mx, nf, ok);
 }
 
-/* LFTG (P7), SPEC §6: l = (cos ti cos ts)^n_d = exp(n_d ln(cos ti cos ts)),
- * with the logarithm taken once per configuration (0 at grazing gives
- * exp(-inf) = 0, the value of pow for n_d > 0). */
+/* LFTG (P7), SPEC §6: l = (cos ti cos ts)^n_d = exp(n_d L), L = ln(cos ti
+ * cos ts) taken once per configuration (0 at grazing gives exp(-inf) = 0,
+ * the value of pow for n_d > 0). The lanes' exponents n_d = n_0 + j step
+ * are an arithmetic progression, so exp(n_d L) = exp(n_0 L) exp(j step L):
+ * one exp per configuration and block (e0, vectorised across
+ * configurations) times a factor computed once per grid (t->p), instead of
+ * one exp per value. The rounding of n_d and of the two factors moves a
+ * normalised value v by at most a few v |n_d L| eps <= a few eps / e. */
 BF__CLONES
 static void block_lftg(size_t n, const terms_t *t, const double *n_d,
                        size_t stride, double *restrict c, unsigned char *ok)
 {
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
+    double *restrict e0 = t->b; /* scratch */
+    const double *restrict ln_base = t->a;
+    double n0 = n_d[0];
     size_t j;
     size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
         mx[j] = -INFINITY;
         nf[j] = 0.0;
     }
+#pragma omp simd
     for (k = 0; k < n; k++) {
-        double ln_base = t->a[k];
+        e0[k] = exp_nonpos(n0 * ln_base[k]); /* (P7), SPEC §6 */
+    }
+    for (k = 0; k < n; k++) {
+        double e = e0[k];
+        const double *restrict pk = t->p + (k * CURVE_LANES);
         double *restrict ck = c + (k * stride);
 #pragma omp simd simdlen(CURVE_LANES)
         for (j = 0; j < CURVE_LANES; j++) {
-            double v = exp(n_d[j] * ln_base); /* (P7), SPEC §6 */
+            double v = e * pk[j];
             ck[j] = v;
             nf[j] += v - v; /* NaN once a value is not finite */
             mx[j] = (v > mx[j]) ? v : mx[j];
@@ -254,17 +322,34 @@ static void block_lftg(size_t n, const terms_t *t, const double *n_d,
     normalise_block(n, stride, c, mx, nf, ok);
 }
 
+/* The factors exp(j step L_k) of block_lftg for j < CURVE_LANES. */
+BF__CLONES
+static void lftg_factors(size_t n, double step, const double *ln_base,
+                         double *restrict p)
+{
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        double l = ln_base[k];
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            /* j = 0: exp(0 L) = 1; at grazing 0 (-inf) = NaN gives 0,
+             * harmless: e0 is 0 there */
+            p[(k * CURVE_LANES) + j] = exp_nonpos(((double)j * step) * l);
+        }
+    }
+}
+
 /* Fills the transposed normalised curves of every grid point with a
  * vectorised kernel when one exists for type: BK family with the slope m
  * free, or LFTG with n_d free on a grid of positive values (a single free
  * parameter, the paper's protocol). Returns 1 when done, 0 when type has
  * no kernel (the caller uses the plain evaluation), or -BF_ENOMEM. Padding
  * lanes (grid indices >= points, up to cols) repeat the last grid point
- * and are marked not ok. Blocks are shared among n_threads threads. */
+ * and are marked not ok. */
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
-                    size_t stride, double *curves, unsigned char *ok,
-                    int n_threads)
+                    size_t stride, double *curves, unsigned char *ok)
 {
     int factor = 0;
     int corr = 0;
@@ -283,9 +368,6 @@ int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         return 0;
     }
     pf = &type->param[0];
-    if (n_threads < 1) {
-        n_threads = 1;
-    }
     if (terms_alloc(&t, n) != BF_OK) {
         return -BF_ENOMEM;
     }
@@ -293,14 +375,13 @@ int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         for (k = 0; k < n; k++) {
             t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
         }
+        lftg_factors(n, pf->grid_step, t.a, t.p);
     } else {
         /* FC's refractive index is parameter 1, fixed here */
         double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
         defined = terms_bk(factor, corr, n_index, n, geom, &t);
     }
     n_blocks = (long)(cols / CURVE_LANES);
-#pragma omp parallel for num_threads(n_threads) if (n_threads > 1)         \
-    schedule(static)
     for (b = 0; b < n_blocks; b++) {
         size_t g0 = (size_t)b * CURVE_LANES;
         double x[CURVE_LANES];
@@ -398,16 +479,13 @@ static void score_one(size_t n, size_t stride, const double *restrict c,
 
 /* LSE of every grid point (cols columns of the transposed curves) against
  * each of n_samples samples: lse[s * cols + g]. Tiles of TILE_SAMPLES
- * samples x BF__SCORE_LANES grid points; threads share the grid blocks. */
+ * samples x BF__SCORE_LANES grid points. */
 void bf__score_all(size_t n, size_t cols, size_t stride,
                    const double *curves, size_t n_samples,
-                   const double *const *data, double *lse, int n_threads)
+                   const double *const *data, double *lse)
 {
     long n_blocks = (long)(cols / BF__SCORE_LANES);
     long b;
-    if (n_threads < 1) {
-        n_threads = 1;
-    }
     if (n_samples == 1) {
         for (b = 0; b < n_blocks; b++) {
             size_t g0 = (size_t)b * BF__SCORE_LANES;
@@ -415,8 +493,6 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
         }
         return;
     }
-#pragma omp parallel for num_threads(n_threads) if (n_threads > 1)         \
-    schedule(static)
     for (b = 0; b < n_blocks; b++) {
         size_t g0 = (size_t)b * BF__SCORE_LANES;
         size_t s;
@@ -441,4 +517,53 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
             }
         }
     }
+}
+
+/* Lanes of the argmin below. */
+#define ARGMIN_LANES 8
+
+/* The smallest LSE among the defined grid points (ok[g] != 0) of one row
+ * and the first point where it occurs (ties keep the first grid point, as
+ * bf_fit_grid's strict comparison does); *best = SIZE_MAX when no point is
+ * defined or no LSE is finite. Each lane keeps its own minimum and the
+ * first index reaching it; the first index among the lanes that hold the
+ * overall minimum is the first occurrence overall. */
+BF__CLONES
+double bf__argmin(size_t points, const double *restrict lse,
+                  const unsigned char *restrict ok, size_t *best)
+{
+    double mv[ARGMIN_LANES];
+    size_t mi[ARGMIN_LANES];
+    double min = INFINITY;
+    size_t g0;
+    size_t g;
+    size_t j;
+    for (j = 0; j < ARGMIN_LANES; j++) {
+        mv[j] = INFINITY;
+        mi[j] = SIZE_MAX;
+    }
+    for (g0 = 0; g0 + ARGMIN_LANES <= points; g0 += ARGMIN_LANES) {
+#pragma omp simd
+        for (j = 0; j < ARGMIN_LANES; j++) {
+            double v = ok[g0 + j] ? lse[g0 + j] : INFINITY;
+            int lt = v < mv[j]; /* NaN never wins, as in bf_fit_grid */
+            mv[j] = lt ? v : mv[j];
+            mi[j] = lt ? g0 + j : mi[j];
+        }
+    }
+    for (g = g0; g < points; g++) {
+        double v = ok[g] ? lse[g] : INFINITY;
+        if (v < mv[g - g0]) {
+            mv[g - g0] = v;
+            mi[g - g0] = g;
+        }
+    }
+    *best = SIZE_MAX;
+    for (j = 0; j < ARGMIN_LANES; j++) {
+        if (mv[j] < min || (mv[j] == min && mi[j] < *best)) {
+            min = mv[j];
+            *best = mi[j];
+        }
+    }
+    return min;
 }

@@ -7,6 +7,7 @@
  */
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,104 +65,181 @@ static int sample_inputs(const bf_study_spec *spec, const bf_model_type *type,
     return BF_OK;
 }
 
-/* Fits one model to every sample of spec (SPEC §7.3-7.5). Samples whose
- * fixed inputs are equal share one precomputed grid (for the paper's
- * protocol: one grid per model, or one per sample for ON), and the samples
- * of a grid are scored together. fixed holds n_samples x BF_MAX_PARAMS
- * scratch values; rows are filled at stride n_models. */
-static int fit_model(const bf_study_spec *spec, size_t m, const bf_geom *geom,
-                     const double *data, double *fixed, bf_study_row *rows)
-{
-    const bf_model_type *type = spec->models[m];
-    size_t n_sel = spec->n_sel;
-    int n_threads = spec->n_threads > 1 ? spec->n_threads : 1;
-    const double **group = NULL;
-    size_t *members = NULL;
-    unsigned char *done = NULL;
-    double *lse = NULL;
-    size_t s;
-    int rc = BF_OK;
+/* The study's shared state while it runs. */
+typedef struct {
+    const bf_study_spec *spec;
+    const bf_geom *geom;  /* n_sel used configurations */
+    const double *data;   /* n_samples x n_sel normalised radiances */
+    double *fixed;        /* n_models x n_samples x BF_MAX_PARAMS inputs */
+    size_t *leader;       /* n_models x n_samples: the first sample with the
+                             same inputs, SIZE_MAX when the row failed */
+    bf_study_row *rows;
+} study_t;
 
-    group = malloc((spec->n_samples + 1) * sizeof *group);
-    members = malloc((spec->n_samples + 1) * sizeof *members);
-    done = calloc(spec->n_samples + 1, 1);
-    if (group == NULL || members == NULL || done == NULL) {
-        rc = BF_ENOMEM;
-        goto done;
-    }
-    for (s = 0; s < spec->n_samples; s++) {
-        bf_study_row *r = &rows[s * spec->n_models + m];
-        double *fx = fixed + s * BF_MAX_PARAMS;
+/* One unit of work: model m for the group of samples led by `leader`
+ * (they share one precomputed grid), or for every sample when the model
+ * fits nothing (leader = SIZE_MAX). Units are independent: each writes its
+ * own rows, so they run on any thread in any order. */
+typedef struct {
+    size_t m;
+    size_t leader;
+} work_t;
+
+/* Fills the rows of model m with each sample's inputs (or the status that
+ * says they are missing) and groups samples with equal inputs. */
+static void prepare_model(study_t *st, size_t m)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    size_t s;
+    size_t q;
+    for (s = 0; s < ns; s++) {
+        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        double *fx = st->fixed + ((m * ns) + s) * BF_MAX_PARAMS;
         memset(r, 0, sizeof *r);
         memset(fx, 0, BF_MAX_PARAMS * sizeof *fx);
         r->sample = spec->samples[s];
-        r->type = type;
-        r->status = sample_inputs(spec, type, r->sample, fx);
-        done[s] = r->status != BF_OK;
-    }
-    if (bf__fits_nothing(type)) { /* ON, LAMBERT: one value per sample */
-        bf__fixed_model *fm = bf__fixed_alloc(type, n_sel, geom);
-        if (fm == NULL) {
-            rc = BF_ENOMEM;
-            goto done;
+        r->type = spec->models[m];
+        r->status = sample_inputs(spec, r->type, r->sample, fx);
+        st->leader[m * ns + s] = SIZE_MAX;
+        if (r->status != BF_OK) {
+            continue;
         }
-        for (s = 0; s < spec->n_samples; s++) {
-            bf_study_row *r = &rows[s * spec->n_models + m];
-            if (r->status == BF_OK) {
-                r->status = bf__fixed_fit(fm, fixed + s * BF_MAX_PARAMS,
-                                          data + s * n_sel, &r->fit);
+        st->leader[m * ns + s] = s;
+        for (q = 0; q < s; q++) {
+            if (st->leader[m * ns + q] == q &&
+                memcmp(st->fixed + ((m * ns) + q) * BF_MAX_PARAMS, fx,
+                       BF_MAX_PARAMS * sizeof *fx) == 0) {
+                st->leader[m * ns + s] = q;
+                break;
             }
         }
-        bf__fixed_free(fm);
+    }
+}
+
+/* A model with nothing to fit (ON, LAMBERT): one value per sample, the
+ * geometry-only terms shared (SPEC §7.5). */
+static int run_fixed(const study_t *st, size_t m)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], spec->n_sel,
+                                          st->geom);
+    size_t s;
+    if (fm == NULL) {
+        return BF_ENOMEM;
+    }
+    for (s = 0; s < ns; s++) {
+        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        if (r->status == BF_OK) {
+            r->status = bf__fixed_fit(fm, st->fixed + ((m * ns) + s) *
+                                                          BF_MAX_PARAMS,
+                                      st->data + s * spec->n_sel, &r->fit);
+        }
+    }
+    bf__fixed_free(fm);
+    return BF_OK;
+}
+
+/* The grid search of model m for the samples led by `leader`: one grid,
+ * every member scored against it (SPEC §7.3-7.4). */
+static int run_group(const study_t *st, size_t m, size_t leader)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    const double **group = malloc((ns + 1) * sizeof *group);
+    size_t *members = malloc((ns + 1) * sizeof *members);
+    double *lse = NULL;
+    bf_grid *gr = NULL;
+    size_t n_group = 0;
+    size_t cols;
+    size_t q;
+    int status = BF_OK;
+    int rc = BF_OK;
+
+    if (group == NULL || members == NULL) {
+        rc = BF_ENOMEM;
         goto done;
     }
-    for (s = 0; s < spec->n_samples; s++) {
-        const double *fx = fixed + s * BF_MAX_PARAMS;
-        size_t n_group = 0;
-        size_t q;
-        size_t stride;
-        int st = BF_OK;
-        bf_grid *gr;
-        if (done[s]) {
-            continue;
+    for (q = leader; q < ns; q++) {
+        if (st->leader[m * ns + q] == leader) {
+            members[n_group] = q;
+            group[n_group++] = st->data + q * spec->n_sel;
         }
-        for (q = s; q < spec->n_samples; q++) {
-            if (!done[q] && memcmp(fixed + q * BF_MAX_PARAMS, fx,
-                                   BF_MAX_PARAMS * sizeof *fx) == 0) {
-                members[n_group] = q;
-                group[n_group++] = data + q * n_sel;
-                done[q] = 1;
-            }
-        }
-        gr = bf__grid_build(type, fx, 0, n_sel, geom, n_threads, &st);
-        if (gr == NULL) {
-            for (q = 0; q < n_group; q++) {
-                rows[members[q] * spec->n_models + m].status = st;
-            }
-            continue;
-        }
-        stride = bf__grid_cols(gr);
-        lse = malloc(n_group * stride * sizeof *lse);
-        if (lse == NULL) {
-            bf_grid_free(gr);
-            rc = BF_ENOMEM;
-            goto done;
-        }
-        bf__grid_score(gr, n_group, group, lse, n_threads);
+    }
+    gr = bf__grid_build(spec->models[m],
+                        st->fixed + ((m * ns) + leader) * BF_MAX_PARAMS, 0,
+                        spec->n_sel, st->geom, &status);
+    if (gr == NULL) {
         for (q = 0; q < n_group; q++) {
-            bf_study_row *r = &rows[members[q] * spec->n_models + m];
-            r->status = bf__grid_best(gr, lse + q * stride, &r->fit);
+            st->rows[members[q] * spec->n_models + m].status = status;
         }
-        free(lse);
-        lse = NULL;
-        bf_grid_free(gr);
+        goto done;
+    }
+    cols = bf__grid_cols(gr);
+    lse = malloc(n_group * cols * sizeof *lse);
+    if (lse == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    bf__grid_score(gr, n_group, group, lse);
+    for (q = 0; q < n_group; q++) {
+        bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+        r->status = bf__grid_best(gr, lse + q * cols, &r->fit);
     }
 
 done:
+    bf_grid_free(gr);
+    free(lse);
     free(group);
     free(members);
-    free(done);
-    free(lse);
+    return rc;
+}
+
+/* Fits every model to every sample: the units of work are shared among
+ * spec->n_threads OpenMP threads in one parallel loop (one fork and one
+ * join per study, so a busy machine delays it once, not per grid). */
+static int fit_all(study_t *st)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    int n_threads = spec->n_threads > 1 ? spec->n_threads : 1;
+    work_t *work = malloc((spec->n_models * (ns + 1) + 1) * sizeof *work);
+    long n_work = 0;
+    long w;
+    size_t m;
+    size_t s;
+    int rc = BF_OK;
+
+    if (work == NULL) {
+        return BF_ENOMEM;
+    }
+    for (m = 0; m < spec->n_models; m++) {
+        prepare_model(st, m);
+        if (bf__fits_nothing(spec->models[m])) {
+            work[n_work].m = m;
+            work[n_work++].leader = SIZE_MAX;
+            continue;
+        }
+        for (s = 0; s < ns; s++) {
+            if (st->leader[m * ns + s] == s) {
+                work[n_work].m = m;
+                work[n_work++].leader = s;
+            }
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(n_threads)      \
+    if (n_threads > 1)
+    for (w = 0; w < n_work; w++) {
+        int r = work[w].leader == SIZE_MAX
+                    ? run_fixed(st, work[w].m)
+                    : run_group(st, work[w].m, work[w].leader);
+        if (r != BF_OK) {
+#pragma omp critical(bf_study_status)
+            rc = r;
+        }
+    }
+    free(work);
     return rc;
 }
 
@@ -171,8 +249,9 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     double *data = NULL;
     double *fixed = NULL;
     double *cos_ti = NULL;
+    size_t *leader = NULL;
+    study_t st;
     size_t s;
-    size_t m;
     size_t k;
     int rc = BF_OK;
 
@@ -186,9 +265,13 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     }
     geom = malloc(spec->n_sel * sizeof *geom);
     data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
-    fixed = malloc((spec->n_samples + 1) * BF_MAX_PARAMS * sizeof *fixed);
+    fixed = malloc((spec->n_models * spec->n_samples + 1) * BF_MAX_PARAMS *
+                   sizeof *fixed);
+    leader = malloc((spec->n_models * spec->n_samples + 1) *
+                    sizeof *leader);
     cos_ti = malloc(spec->n_sel * sizeof *cos_ti);
-    if (geom == NULL || data == NULL || fixed == NULL || cos_ti == NULL) {
+    if (geom == NULL || data == NULL || fixed == NULL || leader == NULL ||
+        cos_ti == NULL) {
         rc = BF_ENOMEM;
         set_error(err, rc, "out of memory");
         goto done;
@@ -232,18 +315,23 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     }
 
     /* SPEC §7.3-7.5: each model, each sample. */
-    for (m = 0; m < spec->n_models; m++) {
-        rc = fit_model(spec, m, geom, data, fixed, rows);
-        if (rc != BF_OK) {
-            set_error(err, rc, "out of memory");
-            goto done;
-        }
+    st.spec = spec;
+    st.geom = geom;
+    st.data = data;
+    st.fixed = fixed;
+    st.leader = leader;
+    st.rows = rows;
+    rc = fit_all(&st);
+    if (rc != BF_OK) {
+        set_error(err, rc, "out of memory");
+        goto done;
     }
 
 done:
     free(geom);
     free(data);
     free(fixed);
+    free(leader);
     free(cos_ti);
     return rc;
 }
