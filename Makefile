@@ -2,7 +2,8 @@
 #   make        install missing Debian packages, build into build/
 #   make run    the main job: the full model comparison on the CURET data
 #   make test   build and run every test, plain and with ASan+UBSan
-#   make bench  run the benchmarks (never part of the tests)
+#   make bench  run the speed benchmark (never part of the tests; the numpy
+#               baseline runs when /usr/bin/python3 has numpy)
 
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
@@ -49,7 +50,9 @@ test-asan: asan
 	    ctest --output-on-failure -j $(JOBS)
 
 bench: build
-	$(BUILD)/bench/bench_study --data "$(CURET)"
+	@scripts/install-deps.sh bench
+	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
+	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
 
 install: build
 	cmake --install $(BUILD)

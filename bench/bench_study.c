@@ -244,6 +244,23 @@ static machine_t machine(void)
     printf("| item | value |\n|---|---|\n");
     printf("| CPU | %s, %d online cores |\n", model, mc.cores);
     printf("| clock (dependent integer adds) | %.2f GHz |\n", mc.hz * 1e-9);
+    {
+        FILE *fp = fopen("/proc/loadavg", "r");
+        char load[128] = "?";
+        const char *policy = getenv("OMP_WAIT_POLICY");
+        if (fp != NULL) {
+            if (fgets(load, sizeof load, fp) == NULL) {
+                snprintf(load, sizeof load, "?");
+            }
+            load[strcspn(load, "\n")] = '\0';
+            fclose(fp);
+        }
+        printf("| load average at start (other users of the machine) | %s "
+               "|\n", load);
+        printf("| OMP_WAIT_POLICY | %s |\n",
+               policy != NULL ? policy : "(unset: libgomp spins, then "
+                                         "sleeps)");
+    }
     printf("| ISA of the kernels | %s |\n",
            mc.avx512 ? "x86-64-v4 (AVX-512)"
            : __builtin_cpu_supports("avx2") ? "x86-64-v3 (AVX2)"
@@ -498,50 +515,68 @@ static void resize(const inputs_t *in, size_t grid_n, resized_t *rz)
     }
 }
 
-static void scaling(const inputs_t *in, const reps_t *reps, double base)
+/* One scaling row: the size, its median time and the marginal time per
+ * unit of size against the previous row (constant when time is linear:
+ * t = fixed + size x marginal). */
+static void scaling_row(const char *what, size_t size, double t,
+                        size_t *prev_size, double *prev_t, const char *unit)
+{
+    printf("| %s | %zu | %.3f |", what, size, 1e3 * t);
+    if (*prev_size > 0 && size > *prev_size) {
+        printf(" %.2f us per %s |\n",
+               1e6 * (t - *prev_t) / (double)(size - *prev_size), unit);
+    } else {
+        printf(" |\n");
+    }
+    *prev_size = size;
+    *prev_t = t;
+}
+
+static void scaling(const inputs_t *in, const reps_t *reps)
 {
     static const size_t n_samples[] = {6, 12, 24, 48, 96};
     static const size_t grids[] = {125, 250, 501, 1002, 2004};
     static const size_t ks[] = {50, 100, 150, 198};
     int samples[96];
     bf_study_spec spec;
+    size_t prev = 0;
+    double prev_t = 0.0;
     size_t i;
 
     printf("## Scaling (paper protocol, fit compute, 1 thread)\n\n");
-    printf("Each row changes one size of the 24 samples x 6 models x 501 "
-           "grid values x 198 configurations protocol; the last column is "
-           "time / (size / paper size) / (time of the paper protocol): 1.00 "
-           "is exactly linear.\n\n");
-    printf("| size | value | median ms | linearity |\n|---|---|---|---|\n");
+    printf("Each block changes one size of the protocol (24 samples x 6 "
+           "models x 501 grid values x 198 configurations). Time is linear "
+           "when the marginal time per unit (last column, from the row "
+           "above) is constant: the curves are computed once per model "
+           "(a fixed cost in the number of samples), the LSE once per "
+           "sample. Samples beyond the paper's 24 repeat them.\n\n");
+    printf("| size | value | median ms | marginal |\n|---|---|---|---|\n");
     for (i = 0; i < 96; i++) {
         samples[i] = bf_study_samples[i % BF_STUDY_NSAMPLES];
     }
     for (i = 0; i < sizeof n_samples / sizeof *n_samples; i++) {
-        double t;
         spec_init(in, &spec);
         spec.samples = samples;
         spec.n_samples = n_samples[i];
-        t = time_study(&spec, reps->scale);
-        printf("| samples | %zu | %.3f | %.2f |\n", n_samples[i], 1e3 * t,
-               t / base / ((double)n_samples[i] / BF_STUDY_NSAMPLES));
+        scaling_row("samples", n_samples[i], time_study(&spec, reps->scale),
+                    &prev, &prev_t, "sample");
     }
+    prev = 0;
     for (i = 0; i < sizeof grids / sizeof *grids; i++) {
         resized_t rz;
-        double t;
         resize(in, grids[i], &rz);
         spec_init(in, &spec);
         spec.models = rz.list;
-        t = time_study(&spec, reps->scale);
-        printf("| grid values | %zu | %.3f | %.2f |\n", grids[i], 1e3 * t,
-               t / base / ((double)grids[i] / 501.0));
+        scaling_row("grid values", grids[i], time_study(&spec, reps->scale),
+                    &prev, &prev_t, "grid value");
     }
+    prev = 0;
     for (i = 0; i < sizeof ks / sizeof *ks; i++) {
-        double t;
         spec_init(in, &spec);
         spec.n_sel = ks[i] < in->n_sel ? ks[i] : in->n_sel;
-        t = time_study(&spec, reps->scale);
-        printf("| configurations | %zu | %.3f | %.2f |\n", spec.n_sel,
-               1e3 * t, t / base / ((double)spec.n_sel / 198.0));
+        scaling_row("configurations", spec.n_sel,
+                    time_study(&spec, reps->scale), &prev, &prev_t,
+                    "configuration");
     }
     printf("\n");
 }
@@ -594,6 +629,7 @@ int main(int argc, char **argv)
     double t_paper;
     double t_paper2;
     double t_proc = -1.0;
+    double t_proc2 = -1.0;
     double np_compute = -1.0;
     double np_proc = -1.0;
     size_t i;
@@ -664,7 +700,11 @@ int main(int argc, char **argv)
         char *args[] = {arg(cli), arg("compare"), arg("--data"), arg(dir),
                         arg("--on-params"), on_path, arg("--out"), tmpl,
                         arg("-q"), NULL};
+        char *args2[] = {arg(cli), arg("compare"), arg("--data"), arg(dir),
+                         arg("--on-params"), on_path, arg("--out"), tmpl,
+                         arg("-q"), arg("--threads"), arg("2"), NULL};
         t_proc = median_process(args, reps.process);
+        t_proc2 = median_process(args2, reps.process);
     }
     if (numpy != NULL && access("/usr/bin/python3", X_OK) == 0) {
         char *args[] = {arg("/usr/bin/python3"), arg(numpy), arg("--data"),
@@ -685,6 +725,8 @@ int main(int argc, char **argv)
     if (t_proc > 0.0) {
         printf("| whole process `brdffit compare -q` (1 thread) | %.2f ms | "
                "|\n", 1e3 * t_proc);
+        printf("| whole process `brdffit compare -q --threads 2` | %.2f ms "
+               "| |\n", 1e3 * t_proc2);
     }
     if (np_compute > 0.0) {
         printf("| numpy baseline, compute | %.2f ms | %.0fx slower than "
@@ -758,7 +800,7 @@ int main(int argc, char **argv)
                1e6 * median(tb, r) / BOOT_RESAMPLES);
     }
 
-    scaling(&in, &reps, t_paper);
+    scaling(&in, &reps);
     printf("Threads: the paper protocol's fit compute on 2 threads is "
            "%.2fx faster than on 1 (the machine has %d cores).\n",
            t_paper / t_paper2, mc.cores);

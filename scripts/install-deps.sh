@@ -3,9 +3,13 @@
 # that are missing (idempotent). Runs apt-get as root, or through sudo.
 #
 #   scripts/install-deps.sh          build + test dependencies
+#   scripts/install-deps.sh bench    also the benchmark's numpy baseline
 set -eu
 
 PACKAGES="pkg-config libgsl-dev libcriterion-dev"
+if [ "${1:-}" = "bench" ]; then
+    PACKAGES="$PACKAGES python3-numpy" # bench/numpy_baseline.py only
+fi
 
 missing=""
 for p in $PACKAGES; do
