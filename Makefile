@@ -4,7 +4,8 @@
 #               with every figure and out/report.html
 #   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
 #   make test   build and run every test, plain and with ASan+UBSan
-#   make bench  run the benchmarks (never part of the tests)
+#   make bench  run the speed benchmark (never part of the tests; the numpy
+#               baseline runs when /usr/bin/python3 has numpy)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 
@@ -60,7 +61,9 @@ screenshot: run
 	scripts/screenshot.sh "$(OUT)/report.html" "$(OUT)/report-screenshot.png"
 
 bench: build
-	$(BUILD)/bench/bench_study --data "$(CURET)"
+	@scripts/install-deps.sh bench
+	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
+	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
 
 install: build
 	cmake --install $(BUILD)

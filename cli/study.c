@@ -6,11 +6,15 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "study.h"
 #include "texttable.h"
 
 #define DEG (M_PI / 180.0)
+
+/* Upper limit of --threads (a typo guard, not a machine limit). */
+#define BF_CLI_MAX_THREADS 1024
 
 /* The paper's models, the default of --models (Ragheb & Hancock, Table 3). */
 static const char *const paper_models[] = {"VH-G", "VH-E", "FC-G",
@@ -47,6 +51,8 @@ void bf_cli_opts_usage(FILE *fp)
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
 "  --seed S          seed of the bootstrap and the folds (default 1)\n"
 "  --out DIR         output folder (default out; created if missing)\n"
+"  --threads N       fit on N threads (default 1; 0: one per core); the\n"
+"                    results do not depend on N\n"
 "  -q, --quiet       do not print the tables\n"
 "  -h, --help        show this help\n",
             BF_DEFAULT_DATA_DIR, BF_DEFAULT_N);
@@ -60,7 +66,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
 {
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
-           O_BOOTSTRAP, O_FOLDS, O_SEED };
+           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -78,6 +84,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
         {"folds", required_argument, NULL, O_FOLDS},
         {"seed", required_argument, NULL, O_SEED},
+        {"threads", required_argument, NULL, O_THREADS},
         {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'}};
     struct option longopts[64];
@@ -106,6 +113,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     o->max_theta = 90.0;
     o->folds = 10;
     o->seed = 1;
+    o->threads = 1;
 
     opterr = 0;
     optind = 1;
@@ -130,6 +138,17 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             }
             o->n_given = 1;
             break;
+        case O_THREADS: {
+            double t = -1.0;
+            if (bf_cli_parse_double(optarg, &t) != 0 || t < 0.0 ||
+                t > BF_CLI_MAX_THREADS || t != floor(t)) {
+                return bf_cli_usage_error(hint, "--threads: '%s' is not a "
+                                          "whole number in [0, %d]",
+                                          optarg, BF_CLI_MAX_THREADS);
+            }
+            o->threads = (int)t;
+            break;
+        }
         case O_MAXTHETA:
             if (bf_cli_parse_double(optarg, &o->max_theta) != 0 ||
                 o->max_theta <= 0.0 || o->max_theta > 90.0) {
@@ -443,6 +462,13 @@ int bf_cli_study_prepare(bf_cli_study *st)
     st->spec.n_default = o->n;
     st->spec.n_file = st->in.n_file;
     st->spec.on_params = st->in.on_params;
+    st->spec.n_threads = o->threads;
+    if (o->threads == 0) { /* one per core */
+        long cores = sysconf(_SC_NPROCESSORS_ONLN);
+        st->spec.n_threads = cores > 0 && cores <= BF_CLI_MAX_THREADS
+                                 ? (int)cores
+                                 : 1;
+    }
     return BF_EXIT_OK;
 }
 

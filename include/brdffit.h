@@ -387,8 +387,12 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
 
 /* Precomputed normalised model curves at every point of a parameter grid on
  * one set of configurations. Model curves do not depend on the sample, so a
- * study computes them once and fits every sample against them; the result
- * is bit-for-bit that of bf_fit_grid. Opaque; owns memory. */
+ * study computes them once and fits every sample against them. The
+ * optimum is bf_fit_grid's; for the BK family and LFTG the curves come from
+ * vectorised kernels that rearrange the math (no division or pow in the
+ * inner loop, libmvec's exp), so the LSE agrees with bf_fit_grid's to a few
+ * units in the last place times sqrt(n LSE) (see src/fit/kernels.c).
+ * Opaque; owns memory. */
 typedef struct bf_grid bf_grid;
 
 /* Builds the grid (arguments as bf_fit_grid). geom is read here and not
@@ -605,6 +609,8 @@ typedef struct {
     double n_default;             /* refractive index for FC models */
     const bf_sample_table *n_file;    /* per-sample n (NULL: n_default) */
     const bf_sample_table *on_params; /* ON (rho, sigma) per sample */
+    int n_threads;                /* OpenMP threads; 0 or 1: one. The
+                                     results do not depend on it. */
 } bf_study_spec;
 
 /* The outcome of one (sample, model) pair. */

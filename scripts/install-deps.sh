@@ -3,12 +3,16 @@
 # that are missing (idempotent). Runs apt-get as root, or through sudo.
 #
 #   scripts/install-deps.sh          build + test dependencies
+#   scripts/install-deps.sh bench    also the benchmark's numpy baseline
 set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
 # figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font).
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
 plplot-driver-cairo fonts-dejavu-core"
+if [ "${1:-}" = "bench" ]; then
+    PACKAGES="$PACKAGES python3-numpy" # bench/numpy_baseline.py only
+fi
 
 missing=""
 for p in $PACKAGES; do

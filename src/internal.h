@@ -163,6 +163,58 @@ double bf__fresnel_sc(double s, double c, double r);
 double bf__fresnel_fc2_sc(double si, double ci, double ss, double cs,
                           double n);
 
+/* Geometry-only terms of the BK family at one configuration (SPEC §3):
+ * F^2 (the factor replacing F_BK^2, Table 1), vz^2, vxy^2, |vz|. */
+typedef struct {
+    double f2;
+    double vz2;
+    double vxy2;
+    double abs_vz;
+} bf__bk_terms_t;
+
+/* Members of the BK family: the factor (Table 1, SPEC §3.3) and the
+ * correlation function (SPEC §3.1, §3.2). */
+enum { BF__BK_FACTOR_BK, BF__BK_FACTOR_VH, BF__BK_FACTOR_FC };
+enum { BF__BK_CORR_GAUSS, BF__BK_CORR_EXP };
+
+/* Terms of one configuration for factor (n is FC's refractive index);
+ * BF_EDOM where F_BK diverges (BK at theta_i = pi/2). src/models/bk.c. */
+int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t);
+/* 1 and the member when type is one of the BK family (by its eval). */
+int bf__bk_kind(const bf_model_type *type, int *factor, int *corr);
+/* cos ti cos ts, the base of LFTG's power (P7) (src/models/lafortune.c). */
+double bf__lftg_base(const bf_geom *g);
+/* 1 when type is LFTG (by its eval). */
+int bf__is_lftg(const bf_model_type *type);
+
+/* Geometry-only terms of Oren-Nayar (SPEC §5) at one configuration. */
+typedef struct {
+    double ci;        /* cos theta_i (0: the value is 0, nothing else set) */
+    double cos_dphi;  /* cos of the sample-frame azimuth difference */
+    double sin_alpha; /* sin alpha */
+    double b3;        /* (2 beta / pi)^3 */
+    double q2;        /* (2 beta / pi)^2 */
+    double r2;        /* (4 alpha beta / pi^2)^2 */
+    double tan_beta;  /* tan beta */
+    double tan_mean;  /* tan((alpha + beta) / 2) */
+} bf__on_terms_t;
+
+/* Coefficients of SPEC §5 that depend on (rho, sigma) only. */
+typedef struct {
+    double c1;
+    double c2_scale;
+    double c3_scale;
+    double l2_scale;
+    double rho_pi;
+} bf__on_coef_t;
+
+/* src/models/oren_nayar.c: the terms, the coefficients, the value, and
+ * whether type is ON (by its eval). */
+void bf__on_terms(const bf_geom *g, bf__on_terms_t *t);
+void bf__on_coef(double rho, double sigma, bf__on_coef_t *c);
+double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c);
+int bf__is_on(const bf_model_type *type);
+
 /* ======================================================================
  * --- fitting (src/fit) ---
  * ====================================================================== */
@@ -208,5 +260,61 @@ double bf__objective_curve(const bf_problem *pb, const double *curve,
 /* Residuals r_k of pb on a normalised model curve. */
 void bf__objective_residuals(const bf_problem *pb, const double *curve,
                              double *resid);
+
+/* --- the study path's kernels (src/fit/kernels.c) --- */
+
+/* Grid points per scoring block; a precomputed grid's columns (grid points
+ * padded) are a multiple of it. */
+#define BF__SCORE_LANES 32
+/* Extra doubles per row of transposed curves (one cache line): a row pitch
+ * of a power of two would map every row to the same cache set. */
+#define BF__ROW_PAD 8
+
+/* Transposed normalised curves curves[k * stride + g], g < cols, of every
+ * grid point by a vectorised kernel (BK family with m free, LFTG with n_d
+ * free). Returns 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
+int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, size_t cols,
+                    size_t stride, double *curves, unsigned char *ok);
+/* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
+ * [-708, 0], 0 below); exposed for the tests. */
+double bf__exp_nonpos(double x);
+/* lse[s * cols + g] = LSE of grid column g < cols against data[s]
+ * (SPEC §7.3) in index order. */
+void bf__score_all(size_t n, size_t cols, size_t stride,
+                   const double *curves, size_t n_samples,
+                   const double *const *data, double *lse);
+/* The smallest LSE of the defined points (ok) and its first index in
+ * *best (SIZE_MAX when none is defined and finite). */
+double bf__argmin(size_t points, const double *restrict lse,
+                  const unsigned char *restrict ok, size_t *best);
+
+/* --- precomputed grids (src/fit/grid.c), for the study driver --- */
+
+/* bf_grid_alloc (the study's threads each build their own grids). */
+bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                        unsigned free_mask, size_t n, const bf_geom *geom,
+                        int *status);
+/* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
+size_t bf__grid_cols(const bf_grid *gr);
+/* Scores n_samples samples at once: lse must hold n_samples * cols. */
+void bf__grid_score(const bf_grid *gr, size_t n_samples,
+                    const double *const *data, double *lse);
+/* The best grid point of one row of LSE values (ties keep the first),
+ * as bf_grid_fit reports it. */
+int bf__grid_best(const bf_grid *gr, const double *lse,
+                  bf_fit_result *result);
+
+/* Models with no fitted parameter (ON, LAMBERT), evaluated once per sample
+ * at its fixed inputs, bit for bit as bf_fit_grid (src/fit/grid.c). */
+typedef struct bf__fixed_model bf__fixed_model;
+/* 1 when no parameter of type is fitted by the paper's protocol. */
+int bf__fits_nothing(const bf_model_type *type);
+/* geom is borrowed until bf__fixed_free. NULL when out of memory. */
+bf__fixed_model *bf__fixed_alloc(const bf_model_type *type, size_t n,
+                                 const bf_geom *geom);
+int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
+                  const double *data, bf_fit_result *result);
+void bf__fixed_free(bf__fixed_model *fm);
 
 #endif

@@ -12,8 +12,14 @@
  *     once per geometry and reuses them for every sample (the study path).
  *     Model curves do not depend on the sample, so the study's cost falls
  *     from samples x grid x K model evaluations to grid x K.
- * Both form LSE = sum_k (L_k / max L - D_k)^2 in the same order, so their
- * results are bit-for-bit identical (tested).
+ * Both form LSE = sum_k (L_k / max L - D_k)^2 in index order. The plain
+ * path is the reference; the study path's vector kernels
+ * (src/fit/kernels.c) rearrange the math without divisions in the inner
+ * loop and agree with it to a few ulp (bound tested), with the same optima
+ * (tested on all 61 CURET samples). The study path stores the curves
+ * transposed (configuration-major, grid points padded to a multiple of
+ * BF__SCORE_LANES). Models without a kernel (ON, LAMBERT, other free
+ * masks) fill the study path's curves by the plain evaluation.
  */
 #include <math.h>
 #include <stdint.h>
@@ -56,7 +62,7 @@ void bf_fit_free(bf_fit_workspace *w)
 }
 
 /* Sum of squared differences between a normalised curve and the data, in
- * index order (SPEC §7.3: a sum, not a mean). Shared by both paths. */
+ * index order (SPEC §7.3: a sum, not a mean). */
 double bf__sum_sq_diff(size_t n, const double *curve, const double *data)
 {
     double s = 0.0;
@@ -215,17 +221,42 @@ struct bf_grid {
     const bf_model_type *type;
     bf__grid_layout_t layout;
     size_t n;          /* configurations */
-    double *curves;    /* points x n normalised curves, row-major */
-    unsigned char *ok; /* 1 where the curve is defined */
+    size_t cols;       /* grid points padded to a multiple of the lanes */
+    size_t stride;     /* row pitch of curves: cols plus one cache line, so
+                          that rows do not all fall in one cache set */
+    double *curves;    /* n x stride normalised curves, transposed */
+    unsigned char *ok; /* cols flags: 1 where the curve is defined */
 };
 
-bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
-                       unsigned free_mask, size_t n, const bf_geom *geom,
-                       int *status)
+/* Fills gr's curves with the plain evaluation, one grid point at a time
+ * (models without a vector kernel: ON, LAMBERT, other free masks). */
+static int curves_plain(bf_grid *gr, const bf_geom *geom)
+{
+    double param[BF_MAX_PARAMS];
+    double *curve = malloc(gr->n * sizeof *curve);
+    size_t idx;
+    size_t k;
+    if (curve == NULL) {
+        return BF_ENOMEM;
+    }
+    for (idx = 0; idx < gr->layout.points; idx++) {
+        bf__grid_point(gr->type, &gr->layout, idx, param);
+        gr->ok[idx] = bf__model_curve(gr->type, param, gr->n, geom, curve) ==
+                      BF_OK;
+        for (k = 0; k < gr->n; k++) {
+            gr->curves[(k * gr->stride) + idx] = curve[k];
+        }
+    }
+    free(curve);
+    return BF_OK;
+}
+
+bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                        unsigned free_mask, size_t n, const bf_geom *geom,
+                        int *status)
 {
     bf_grid *gr = NULL;
-    double param[BF_MAX_PARAMS];
-    size_t idx;
+    size_t bytes;
     int rc;
 
     if (geom == NULL || n == 0) {
@@ -243,20 +274,33 @@ bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
     }
     gr->type = type;
     gr->n = n;
-    if (gr->layout.points > SIZE_MAX / sizeof(double) / n) {
+    gr->cols = (gr->layout.points + BF__SCORE_LANES - 1) / BF__SCORE_LANES *
+               BF__SCORE_LANES;
+    gr->stride = gr->cols + BF__ROW_PAD;
+    if (gr->cols < gr->layout.points ||
+        gr->stride > SIZE_MAX / sizeof(double) / n) {
         rc = BF_ENOMEM;
         goto fail;
     }
-    gr->curves = malloc(gr->layout.points * n * sizeof *gr->curves);
-    gr->ok = malloc(gr->layout.points);
+    bytes = gr->stride * n * sizeof *gr->curves; /* a multiple of 64 */
+    gr->curves = aligned_alloc(64, bytes);
+    gr->ok = calloc(gr->cols, 1);
     if (gr->curves == NULL || gr->ok == NULL) {
         rc = BF_ENOMEM;
         goto fail;
     }
-    for (idx = 0; idx < gr->layout.points; idx++) {
-        bf__grid_point(type, &gr->layout, idx, param);
-        gr->ok[idx] = bf__model_curve(type, param, n, geom,
-                                      gr->curves + idx * n) == BF_OK;
+    rc = bf__curves_fast(type, &gr->layout, n, geom, gr->cols, gr->stride,
+                         gr->curves, gr->ok);
+    if (rc < 0) {
+        rc = -rc;
+        goto fail;
+    }
+    if (rc == 0) {
+        memset(gr->curves, 0, bytes); /* padding lanes stay defined */
+        rc = curves_plain(gr, geom);
+        if (rc != BF_OK) {
+            goto fail;
+        }
     }
     if (status != NULL) {
         *status = BF_OK;
@@ -269,6 +313,13 @@ fail:
         *status = rc;
     }
     return NULL;
+}
+
+bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
+                       unsigned free_mask, size_t n, const bf_geom *geom,
+                       int *status)
+{
+    return bf__grid_build(type, fixed, free_mask, n, geom, status);
 }
 
 void bf_grid_free(bf_grid *gr)
@@ -286,27 +337,25 @@ size_t bf_grid_points(const bf_grid *gr)
     return gr->layout.points;
 }
 
-int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
+size_t bf__grid_cols(const bf_grid *gr)
 {
-    size_t idx;
-    size_t best = SIZE_MAX;
-    double best_lse = INFINITY;
+    return gr->cols;
+}
 
-    if (gr == NULL || data == NULL || result == NULL) {
-        return BF_EINVAL;
-    }
+void bf__grid_score(const bf_grid *gr, size_t n_samples,
+                    const double *const *data, double *lse)
+{
+    bf__score_all(gr->n, gr->cols, gr->stride, gr->curves, n_samples, data,
+                  lse);
+}
+
+int bf__grid_best(const bf_grid *gr, const double *lse,
+                  bf_fit_result *result)
+{
+    size_t best;
+    double best_lse = bf__argmin(gr->layout.points, lse, gr->ok, &best);
+
     memset(result, 0, sizeof *result);
-    for (idx = 0; idx < gr->layout.points; idx++) {
-        double lse;
-        if (!gr->ok[idx]) {
-            continue;
-        }
-        lse = bf__sum_sq_diff(gr->n, gr->curves + idx * gr->n, data);
-        if (lse < best_lse) { /* strict: ties keep the first grid point */
-            best_lse = lse;
-            best = idx;
-        }
-    }
     result->n_eval = gr->layout.points;
     if (best == SIZE_MAX) {
         return BF_EDOM;
@@ -315,4 +364,116 @@ int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
                                        result->param);
     result->lse = best_lse;
     return BF_OK;
+}
+
+int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
+{
+    double *lse;
+    int rc;
+
+    if (gr == NULL || data == NULL || result == NULL) {
+        return BF_EINVAL;
+    }
+    lse = malloc(gr->cols * sizeof *lse);
+    if (lse == NULL) {
+        return BF_ENOMEM;
+    }
+    bf__grid_score(gr, 1, &data, lse);
+    rc = bf__grid_best(gr, lse, result);
+    free(lse);
+    return rc;
+}
+
+/* ==== models with nothing to fit (the study path for ON, LAMBERT) ======= */
+
+/* A model evaluated once per sample at that sample's fixed inputs (SPEC
+ * §7.5: ON at the tabulated rho, sigma). The geometry-only terms of ON are
+ * computed once for all samples; the value, the normalisation and the LSE
+ * are the plain path's, operation for operation, so the results are bit
+ * for bit those of bf_fit_grid. */
+struct bf__fixed_model {
+    const bf_model_type *type;
+    size_t n;
+    const bf_geom *geom;   /* borrowed from the caller */
+    bf__on_terms_t *on;    /* ON's terms, or NULL: plain evaluation */
+    double *curve;
+};
+
+int bf__fits_nothing(const bf_model_type *type)
+{
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        if (type->param[j].fitted) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+bf__fixed_model *bf__fixed_alloc(const bf_model_type *type, size_t n,
+                                 const bf_geom *geom)
+{
+    bf__fixed_model *fm = calloc(1, sizeof *fm);
+    size_t k;
+    if (fm == NULL) {
+        return NULL;
+    }
+    fm->type = type;
+    fm->n = n;
+    fm->geom = geom;
+    fm->curve = malloc(n * sizeof *fm->curve);
+    if (fm->curve == NULL) {
+        bf__fixed_free(fm);
+        return NULL;
+    }
+    if (bf__is_on(type)) {
+        fm->on = malloc(n * sizeof *fm->on);
+        if (fm->on == NULL) {
+            bf__fixed_free(fm);
+            return NULL;
+        }
+        for (k = 0; k < n; k++) {
+            bf__on_terms(&geom[k], &fm->on[k]);
+        }
+    }
+    return fm;
+}
+
+int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
+                  const double *data, bf_fit_result *result)
+{
+    bf__grid_layout_t g;
+    int rc = bf__grid_layout(fm->type, fixed, 0, &g);
+    memset(result, 0, sizeof *result);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    if (fm->on != NULL) {
+        bf__on_coef_t c;
+        size_t k;
+        bf__on_coef(fixed[0], fixed[1], &c); /* rho, sigma: SPEC §5 */
+        for (k = 0; k < fm->n; k++) {
+            fm->curve[k] = bf__on_value(&fm->on[k], &c);
+        }
+        rc = bf_normalise(fm->n, fm->curve, fm->curve);
+    } else {
+        rc = bf__model_curve(fm->type, g.base, fm->n, fm->geom, fm->curve);
+    }
+    result->n_eval = 1;
+    if (rc != BF_OK) {
+        return BF_EDOM; /* as bf_fit_grid: no defined grid point */
+    }
+    result->bound_hit = bf__grid_point(fm->type, &g, 0, result->param);
+    result->lse = bf__sum_sq_diff(fm->n, fm->curve, data);
+    return BF_OK;
+}
+
+void bf__fixed_free(bf__fixed_model *fm)
+{
+    if (fm == NULL) {
+        return;
+    }
+    free(fm->on);
+    free(fm->curve);
+    free(fm);
 }

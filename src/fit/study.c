@@ -5,7 +5,9 @@
  * [2] SPEC §7 (protocol), §4.2 (n fixed per sample, default 1.7), §5 (ON at
  *     the tabulated rho, sigma).
  */
+#include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,14 +106,191 @@ int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
     return BF_OK;
 }
 
+/* The study's shared state while it runs. */
+typedef struct {
+    const bf_study_spec *spec;
+    const bf_geom *geom;  /* n_sel used configurations */
+    const double *data;   /* n_samples x n_sel normalised radiances */
+    double *fixed;        /* n_models x n_samples x BF_MAX_PARAMS inputs */
+    size_t *leader;       /* n_models x n_samples: the first sample with the
+                             same inputs, SIZE_MAX when the row failed */
+    bf_study_row *rows;
+} study_t;
+
+/* One unit of work: model m for the group of samples led by `leader`
+ * (they share one precomputed grid), or for every sample when the model
+ * fits nothing (leader = SIZE_MAX). Units are independent: each writes its
+ * own rows, so they run on any thread in any order. */
+typedef struct {
+    size_t m;
+    size_t leader;
+} work_t;
+
+/* Fills the rows of model m with each sample's inputs (or the status that
+ * says they are missing) and groups samples with equal inputs. */
+static void prepare_model(study_t *st, size_t m)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    size_t s;
+    size_t q;
+    for (s = 0; s < ns; s++) {
+        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        double *fx = st->fixed + ((m * ns) + s) * BF_MAX_PARAMS;
+        memset(r, 0, sizeof *r);
+        memset(fx, 0, BF_MAX_PARAMS * sizeof *fx);
+        r->sample = spec->samples[s];
+        r->type = spec->models[m];
+        r->status = bf__study_inputs(spec, r->type, r->sample, fx);
+        st->leader[m * ns + s] = SIZE_MAX;
+        if (r->status != BF_OK) {
+            continue;
+        }
+        st->leader[m * ns + s] = s;
+        for (q = 0; q < s; q++) {
+            if (st->leader[m * ns + q] == q &&
+                memcmp(st->fixed + ((m * ns) + q) * BF_MAX_PARAMS, fx,
+                       BF_MAX_PARAMS * sizeof *fx) == 0) {
+                st->leader[m * ns + s] = q;
+                break;
+            }
+        }
+    }
+}
+
+/* A model with nothing to fit (ON, LAMBERT): one value per sample, the
+ * geometry-only terms shared (SPEC §7.5). */
+static int run_fixed(const study_t *st, size_t m)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], spec->n_sel,
+                                          st->geom);
+    size_t s;
+    if (fm == NULL) {
+        return BF_ENOMEM;
+    }
+    for (s = 0; s < ns; s++) {
+        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        if (r->status == BF_OK) {
+            r->status = bf__fixed_fit(fm, st->fixed + ((m * ns) + s) *
+                                                          BF_MAX_PARAMS,
+                                      st->data + s * spec->n_sel, &r->fit);
+        }
+    }
+    bf__fixed_free(fm);
+    return BF_OK;
+}
+
+/* The grid search of model m for the samples led by `leader`: one grid,
+ * every member scored against it (SPEC §7.3-7.4). */
+static int run_group(const study_t *st, size_t m, size_t leader)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    const double **group = malloc((ns + 1) * sizeof *group);
+    size_t *members = malloc((ns + 1) * sizeof *members);
+    double *lse = NULL;
+    bf_grid *gr = NULL;
+    size_t n_group = 0;
+    size_t cols;
+    size_t q;
+    int status = BF_OK;
+    int rc = BF_OK;
+
+    if (group == NULL || members == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    for (q = leader; q < ns; q++) {
+        if (st->leader[m * ns + q] == leader) {
+            members[n_group] = q;
+            group[n_group++] = st->data + q * spec->n_sel;
+        }
+    }
+    gr = bf__grid_build(spec->models[m],
+                        st->fixed + ((m * ns) + leader) * BF_MAX_PARAMS, 0,
+                        spec->n_sel, st->geom, &status);
+    if (gr == NULL) {
+        for (q = 0; q < n_group; q++) {
+            st->rows[members[q] * spec->n_models + m].status = status;
+        }
+        goto done;
+    }
+    cols = bf__grid_cols(gr);
+    lse = malloc(n_group * cols * sizeof *lse);
+    if (lse == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    bf__grid_score(gr, n_group, group, lse);
+    for (q = 0; q < n_group; q++) {
+        bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+        r->status = bf__grid_best(gr, lse + q * cols, &r->fit);
+    }
+
+done:
+    bf_grid_free(gr);
+    free(lse);
+    free(group);
+    free(members);
+    return rc;
+}
+
+/* Fits every model to every sample: the units of work are shared among
+ * spec->n_threads OpenMP threads in one parallel loop (one fork and one
+ * join per study, so a busy machine delays it once, not per grid). */
+static int fit_all(study_t *st)
+{
+    const bf_study_spec *spec = st->spec;
+    size_t ns = spec->n_samples;
+    int n_threads = spec->n_threads > 1 ? spec->n_threads : 1;
+    work_t *work = malloc((spec->n_models * (ns + 1) + 1) * sizeof *work);
+    long n_work = 0;
+    long w;
+    size_t m;
+    size_t s;
+    int rc = BF_OK;
+
+    if (work == NULL) {
+        return BF_ENOMEM;
+    }
+    for (m = 0; m < spec->n_models; m++) {
+        prepare_model(st, m);
+        if (bf__fits_nothing(spec->models[m])) {
+            work[n_work].m = m;
+            work[n_work++].leader = SIZE_MAX;
+            continue;
+        }
+        for (s = 0; s < ns; s++) {
+            if (st->leader[m * ns + s] == s) {
+                work[n_work].m = m;
+                work[n_work++].leader = s;
+            }
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(n_threads)      \
+    if (n_threads > 1)
+    for (w = 0; w < n_work; w++) {
+        int r = work[w].leader == SIZE_MAX
+                    ? run_fixed(st, work[w].m)
+                    : run_group(st, work[w].m, work[w].leader);
+        if (r != BF_OK) {
+#pragma omp critical(bf_study_status)
+            rc = r;
+        }
+    }
+    free(work);
+    return rc;
+}
+
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 {
     bf_geom *geom = NULL;
     double *data = NULL;
-    bf_grid **grids = NULL;
-    double *grid_fixed = NULL;
-    size_t s;
-    size_t m;
+    double *fixed = NULL;
+    size_t *leader = NULL;
+    study_t st;
     int rc = BF_OK;
 
     if (spec == NULL || rows == NULL || spec->table == NULL ||
@@ -124,10 +303,11 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
     }
     geom = malloc(spec->n_sel * sizeof *geom);
     data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
-    grids = calloc(spec->n_models + 1, sizeof *grids);
-    grid_fixed = calloc((spec->n_models + 1) * BF_MAX_PARAMS,
-                        sizeof *grid_fixed);
-    if (geom == NULL || data == NULL || grids == NULL || grid_fixed == NULL) {
+    fixed = malloc((spec->n_models * spec->n_samples + 1) * BF_MAX_PARAMS *
+                   sizeof *fixed);
+    leader = malloc((spec->n_models * spec->n_samples + 1) *
+                    sizeof *leader);
+    if (geom == NULL || data == NULL || fixed == NULL || leader == NULL) {
         rc = BF_ENOMEM;
         set_error(err, rc, "out of memory");
         goto done;
@@ -137,44 +317,23 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         goto done;
     }
 
-    /* SPEC §7.3-7.5: each model, each sample. The grid of a model is built
-     * once and rebuilt only when a sample's fixed inputs differ. */
-    for (m = 0; m < spec->n_models; m++) {
-        const bf_model_type *type = spec->models[m];
-        double *gfix = grid_fixed + m * BF_MAX_PARAMS;
-        for (s = 0; s < spec->n_samples; s++) {
-            bf_study_row *r = &rows[s * spec->n_models + m];
-            double fixed[BF_MAX_PARAMS] = {0};
-            memset(r, 0, sizeof *r);
-            r->sample = spec->samples[s];
-            r->type = type;
-            r->status = bf__study_inputs(spec, type, r->sample, fixed);
-            if (r->status != BF_OK) {
-                continue;
-            }
-            if (grids[m] == NULL ||
-                memcmp(gfix, fixed, sizeof fixed) != 0) {
-                int st = BF_OK;
-                bf_grid_free(grids[m]);
-                grids[m] = bf_grid_alloc(type, fixed, 0, spec->n_sel, geom,
-                                         &st);
-                memcpy(gfix, fixed, sizeof fixed);
-                if (grids[m] == NULL) {
-                    r->status = st;
-                    continue;
-                }
-            }
-            r->status = bf_grid_fit(grids[m], data + s * spec->n_sel,
-                                    &r->fit);
-        }
-        bf_grid_free(grids[m]);
-        grids[m] = NULL;
+    /* SPEC §7.3-7.5: each model, each sample. */
+    st.spec = spec;
+    st.geom = geom;
+    st.data = data;
+    st.fixed = fixed;
+    st.leader = leader;
+    st.rows = rows;
+    rc = fit_all(&st);
+    if (rc != BF_OK) {
+        set_error(err, rc, "out of memory");
+        goto done;
     }
 
 done:
     free(geom);
     free(data);
-    free(grids);
-    free(grid_fixed);
+    free(fixed);
+    free(leader);
     return rc;
 }

@@ -38,12 +38,6 @@
 
 #include "internal.h"
 
-/* Which factor replaces F_BK^2 (Table 1, SPEC §3.3). */
-typedef enum { FACTOR_BK, FACTOR_VH, FACTOR_FC } factor_kind;
-
-/* Which correlation function (SPEC §3.1, §3.2). */
-typedef enum { CORR_GAUSS, CORR_EXP } corr_kind;
-
 /* The grazing corner theta_i = theta_s = pi/2, phi_s = 0,
  * where vz = 0 and vxy = 0. SPEC §3.3 resolves it: the VH and FC variants
  * return the limit 0 there, never 0/0. For FC with n > 1 this is a true
@@ -56,73 +50,86 @@ typedef enum { CORR_GAUSS, CORR_EXP } corr_kind;
  * therefore SPEC's convention for VH, a single point that no measured
  * configuration reaches. */
 
+/* The geometry-only terms of one configuration (SPEC §3): the factor F^2
+ * that replaces F_BK^2 (Table 1, SPEC §3.3), vz^2, vxy^2 and |vz|. They do
+ * not depend on the slope m, so the study path (src/fit/kernels.c)
+ * computes them once per configuration and the plain path once per call;
+ * both get the same bits from this one function. Returns BF_EDOM (terms
+ * unset) where F_BK diverges: BK at theta_i = pi/2 (SPEC §3.3). */
+int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t)
+{
+    double si;
+    double ci;
+    double ss;
+    double cs;
+    double sp = sin(g->phi_s);
+    double cp = cos(g->phi_s);
+    double vx;
+    double vy;
+    double vz;
+    bf__zenith_sincos(g->theta_i, &si, &ci);
+    bf__zenith_sincos(g->theta_s, &ss, &cs);
+    vx = si - (ss * cp); /* SPEC §3, k = 1 */
+    vy = -(ss * sp);     /* SPEC §3 */
+    vz = -(ci + cs);     /* SPEC §3 */
+    t->vxy2 = (vx * vx) + (vy * vy);
+    t->vz2 = vz * vz;
+    t->abs_vz = fabs(vz);
+
+    switch (factor) {
+    case BF__BK_FACTOR_BK: {
+        double f_bk;
+        if (ci == 0.0) { /* theta_i = pi/2: F_BK diverges, SPEC §3.3 */
+            return BF_EDOM;
+        }
+        /* F_BK, paper (P3), SPEC §3 */
+        f_bk = (1.0 + (ci * cs) - (si * ss * cp)) / (ci * (ci + cs));
+        t->f2 = f_bk * f_bk;
+        break;
+    }
+    case BF__BK_FACTOR_VH:
+        t->f2 = ci; /* Vernold-Harvey, Table 1, SPEC §3.3 */
+        break;
+    default:
+        /* F_FC^2, paper (P6), SPEC §4.2 */
+        t->f2 = bf__fresnel_fc2_sc(si, ci, ss, cs, n);
+        break;
+    }
+    return BF_OK;
+}
+
 /* Evaluates one member of the family at count configurations; m and n were
  * checked by bf_model_eval (n is used by FC only). Called by the six eval
  * functions below. Per configuration: three sine/cosine pairs, one exp or
- * sqrt; no allocation. */
-static int bk_family(factor_kind kind, corr_kind corr, double m, double n,
-                     size_t count, const bf_geom *geom, double *out)
+ * sqrt; no allocation. The per-slope part below is repeated, operation for
+ * operation, by the study path's vectorised kernel (src/fit/kernels.c). */
+static int bk_family(int factor, int corr, double m, double n, size_t count,
+                     const bf_geom *geom, double *out)
 {
     int status = BF_OK;
     double m2 = m * m;
     size_t k;
     for (k = 0; k < count; k++) {
-        double si;
-        double ci;
-        double ss;
-        double cs;
-        double sp = sin(geom[k].phi_s);
-        double cp = cos(geom[k].phi_s);
-        double vx;
-        double vy;
-        double vz;
-        double vxy2;
-        double vz2;
-        double f2;
-        bf__zenith_sincos(geom[k].theta_i, &si, &ci);
-        bf__zenith_sincos(geom[k].theta_s, &ss, &cs);
-        vx = si - (ss * cp); /* SPEC §3, k = 1 */
-        vy = -(ss * sp);     /* SPEC §3 */
-        vz = -(ci + cs);     /* SPEC §3 */
-        vxy2 = (vx * vx) + (vy * vy);
-        vz2 = vz * vz;
-
-        switch (kind) {
-        case FACTOR_BK: {
-            double f_bk;
-            if (ci == 0.0) { /* theta_i = pi/2: F_BK diverges, SPEC §3.3 */
-                out[k] = NAN;
-                status = BF_EDOM;
-                continue;
-            }
-            /* F_BK, paper (P3), SPEC §3 */
-            f_bk = (1.0 + (ci * cs) - (si * ss * cp)) / (ci * (ci + cs));
-            f2 = f_bk * f_bk;
-            break;
+        bf__bk_terms_t t;
+        if (bf__bk_terms(factor, n, &geom[k], &t) != BF_OK) {
+            out[k] = NAN; /* BK at theta_i = pi/2, SPEC §3.3 */
+            status = BF_EDOM;
+            continue;
         }
-        case FACTOR_VH:
-            f2 = ci; /* Vernold-Harvey, Table 1, SPEC §3.3 */
-            break;
-        default:
-            /* F_FC^2, paper (P6), SPEC §4.2 */
-            f2 = bf__fresnel_fc2_sc(si, ci, ss, cs, n);
-            break;
-        }
-
-        if (vz2 == 0.0) { /* theta_i = theta_s = pi/2 (only VH, FC get here) */
+        if (t.vz2 == 0.0) { /* theta_i = theta_s = pi/2 (only VH, FC here) */
             /* vxy > 0: the limit of exp(-c/vz^2)/vz^2 and of |vz| is 0;
              * vxy = 0 (the corner, phi_s = 0): see the note above. */
             out[k] = 0.0; /* SPEC §3.3 */
             continue;
         }
-        if (corr == CORR_GAUSS) {
+        if (corr == BF__BK_CORR_GAUSS) {
             /* (P1), SPEC §3.1 */
-            out[k] = f2 / (m2 * vz2) * exp(-vxy2 / (4.0 * m2 * vz2));
+            out[k] = t.f2 / (m2 * t.vz2) * exp(-t.vxy2 / (4.0 * m2 * t.vz2));
         } else {
             /* (P2), SPEC §3.2, rearranged: (2/m^2)(1/vz^2)(1 + x)^(-3/2)
              * = 2 m |vz| / (m^2 vz^2 + vxy^2)^(3/2) */
-            double d = (m2 * vz2) + vxy2;
-            out[k] = 2.0 * m * f2 * fabs(vz) / (d * sqrt(d));
+            double d = (m2 * t.vz2) + t.vxy2;
+            out[k] = 2.0 * m * t.f2 * t.abs_vz / (d * sqrt(d));
         }
     }
     return status;
@@ -135,38 +142,38 @@ static int bk_family(factor_kind kind, corr_kind corr, double m, double n,
 static int eval_bk_g(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_BK, CORR_GAUSS, param[0], 1.0, count, geom, out);
+    return bk_family(BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS, param[0], 1.0, count, geom, out);
 }
 
 static int eval_bk_e(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_BK, CORR_EXP, param[0], 1.0, count, geom, out);
+    return bk_family(BF__BK_FACTOR_BK, BF__BK_CORR_EXP, param[0], 1.0, count, geom, out);
 }
 
 static int eval_vh_g(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_VH, CORR_GAUSS, param[0], 1.0, count, geom, out);
+    return bk_family(BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS, param[0], 1.0, count, geom, out);
 }
 
 static int eval_vh_e(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_VH, CORR_EXP, param[0], 1.0, count, geom, out);
+    return bk_family(BF__BK_FACTOR_VH, BF__BK_CORR_EXP, param[0], 1.0, count, geom, out);
 }
 
 static int eval_fc_g(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_FC, CORR_GAUSS, param[0], param[1], count, geom,
+    return bk_family(BF__BK_FACTOR_FC, BF__BK_CORR_GAUSS, param[0], param[1], count, geom,
                      out);
 }
 
 static int eval_fc_e(const double *param, size_t count, const bf_geom *geom,
                      double *out)
 {
-    return bk_family(FACTOR_FC, CORR_EXP, param[0], param[1], count, geom,
+    return bk_family(BF__BK_FACTOR_FC, BF__BK_CORR_EXP, param[0], param[1], count, geom,
                      out);
 }
 
@@ -246,3 +253,32 @@ const bf_model_type *const bf_model_vh_g = &vh_g;
 const bf_model_type *const bf_model_vh_e = &vh_e;
 const bf_model_type *const bf_model_fc_g = &fc_g;
 const bf_model_type *const bf_model_fc_e = &fc_e;
+
+/* Which member of the family a type is, recognised by its eval function
+ * (so a copy of a type object with another grid is recognised too). Used
+ * by the study path to pick its vectorised kernel. Returns 0 for a type
+ * outside the family. */
+int bf__bk_kind(const bf_model_type *type, int *factor, int *corr)
+{
+    static const struct {
+        bf_eval_fn eval;
+        int factor;
+        int corr;
+    } kinds[] = {
+        {eval_bk_g, BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS},
+        {eval_bk_e, BF__BK_FACTOR_BK, BF__BK_CORR_EXP},
+        {eval_vh_g, BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS},
+        {eval_vh_e, BF__BK_FACTOR_VH, BF__BK_CORR_EXP},
+        {eval_fc_g, BF__BK_FACTOR_FC, BF__BK_CORR_GAUSS},
+        {eval_fc_e, BF__BK_FACTOR_FC, BF__BK_CORR_EXP},
+    };
+    size_t i;
+    for (i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+        if (type->eval == kinds[i].eval) {
+            *factor = kinds[i].factor;
+            *corr = kinds[i].corr;
+            return 1;
+        }
+    }
+    return 0;
+}

@@ -16,6 +16,21 @@
 
 #include "internal.h"
 
+/* The base cos ti cos ts of (P7) at one configuration: the only geometry
+ * the model needs. Shared with the study path (src/fit/kernels.c), which
+ * computes it once per configuration, so both paths raise the same bits to
+ * the power n_d. */
+double bf__lftg_base(const bf_geom *g)
+{
+    double si;
+    double ci;
+    double ss;
+    double cs;
+    bf__zenith_sincos(g->theta_i, &si, &ci);
+    bf__zenith_sincos(g->theta_s, &ss, &cs);
+    return ci * cs;
+}
+
 /* Evaluates LFTG at param = {n_d}, checked by bf_model_eval. */
 static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
                      double *out)
@@ -24,13 +39,7 @@ static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
     double scale = (n_d + 2.0) / (2.0 * BF__PI);
     size_t k;
     for (k = 0; k < count; k++) {
-        double si;
-        double ci;
-        double ss;
-        double cs;
-        bf__zenith_sincos(geom[k].theta_i, &si, &ci);
-        bf__zenith_sincos(geom[k].theta_s, &ss, &cs);
-        out[k] = scale * pow(ci * cs, n_d); /* (P7), SPEC §6 */
+        out[k] = scale * pow(bf__lftg_base(&geom[k]), n_d); /* (P7), SPEC §6 */
     }
     return BF_OK;
 }
@@ -47,3 +56,10 @@ static const bf_model_type lftg_type = {
     "paper (P7), Lafortune et al. 1997, SPEC §6", 1, param_lftg, eval_lftg};
 
 const bf_model_type *const bf_model_lftg = &lftg_type;
+
+/* 1 when type is LFTG (or a copy of it with another grid), recognised by its
+ * eval function; used by the study path to pick its kernel. */
+int bf__is_lftg(const bf_model_type *type)
+{
+    return type->eval == eval_lftg;
+}

@@ -32,57 +32,82 @@
 
 #include "internal.h"
 
+/* The geometry-only terms of SPEC §5 at one configuration: everything but
+ * rho and sigma. The study path computes them once per configuration and
+ * evaluates every sample's (rho, sigma) with bf__on_value; eval_on does the
+ * same per call, so both give the same bits. */
+void bf__on_terms(const bf_geom *g, bf__on_terms_t *t)
+{
+    double ti = g->theta_i;
+    double ts = g->theta_s;
+    double si;
+    double alpha;
+    double beta;
+    double q;
+    double r;
+    bf__zenith_sincos(ti, &si, &t->ci);
+    if (t->ci == 0.0) {
+        return; /* theta_i = pi/2: L = 0 (SPEC §5); nothing else is used */
+    }
+    alpha = (ti > ts) ? ti : ts;
+    beta = (ti > ts) ? ts : ti;
+    t->cos_dphi = -cos(g->phi_s); /* sample frame, SPEC §1.2, §5 */
+    q = 2.0 * beta / BF__PI;      /* 2 beta / pi */
+    t->q2 = q * q;
+    t->b3 = q * q * q;
+    t->sin_alpha = sin(alpha);
+    r = 4.0 * alpha * beta / (BF__PI * BF__PI);
+    t->r2 = r * r;
+    t->tan_beta = tan(beta);
+    t->tan_mean = tan(0.5 * (alpha + beta));
+}
+
+/* L of SPEC §5 from the terms of one configuration and the coefficients
+ * of one (rho, sigma) (bf__on_coef). */
+double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c)
+{
+    double c2;
+    double c3;
+    double l1;
+    double l2;
+    if (t->ci == 0.0) {
+        return 0.0; /* theta_i = pi/2: cos ti = 0, SPEC §5 */
+    }
+    if (t->cos_dphi >= 0.0) {
+        c2 = c->c2_scale * t->sin_alpha; /* C2, SPEC §5 */
+    } else {
+        c2 = c->c2_scale * (t->sin_alpha - t->b3); /* C2, SPEC §5 */
+    }
+    c3 = c->c3_scale * t->r2; /* C3, SPEC §5 */
+    l1 = c->rho_pi * t->ci
+         * (c->c1 + (t->cos_dphi * c2 * t->tan_beta)
+            + ((1.0 - fabs(t->cos_dphi)) * c3 * t->tan_mean));
+    l2 = c->l2_scale * t->ci * (1.0 - (t->cos_dphi * t->q2)); /* L2 */
+    return l1 + l2;                                          /* L, SPEC §5 */
+}
+
+/* The coefficients of SPEC §5 that depend on rho and sigma only. */
+void bf__on_coef(double rho, double sigma, bf__on_coef_t *c)
+{
+    double s2 = sigma * sigma;
+    c->c1 = 1.0 - (0.5 * s2 / (s2 + 0.33));  /* C1, SPEC §5 */
+    c->c2_scale = 0.45 * s2 / (s2 + 0.09);   /* C2 without its angles */
+    c->c3_scale = 0.125 * s2 / (s2 + 0.09);  /* C3 without its angles */
+    c->l2_scale = 0.17 * (rho * rho) / BF__PI * (s2 / (s2 + 0.13));
+    c->rho_pi = rho / BF__PI;
+}
+
 /* Evaluates ON at param = {rho, sigma}; both checked by bf_model_eval. */
 static int eval_on(const double *param, size_t count, const bf_geom *geom,
                    double *out)
 {
-    double rho = param[0];
-    double sigma = param[1];
-    double s2 = sigma * sigma;
-    double c1 = 1.0 - (0.5 * s2 / (s2 + 0.33));  /* C1, SPEC §5 */
-    double c2_scale = 0.45 * s2 / (s2 + 0.09);   /* C2 without its angles */
-    double c3_scale = 0.125 * s2 / (s2 + 0.09);  /* C3 without its angles */
-    double l2_scale = 0.17 * (rho * rho) / BF__PI * (s2 / (s2 + 0.13));
-    double rho_pi = rho / BF__PI;
+    bf__on_coef_t c;
     size_t k;
+    bf__on_coef(param[0], param[1], &c);
     for (k = 0; k < count; k++) {
-        double ti = geom[k].theta_i;
-        double ts = geom[k].theta_s;
-        double ci;
-        double si;
-        double alpha;
-        double beta;
-        double cos_dphi;
-        double c2;
-        double c3;
-        double q;
-        double b3;
-        double l1;
-        double l2;
-        bf__zenith_sincos(ti, &si, &ci);
-        if (ci == 0.0) {
-            out[k] = 0.0; /* theta_i = pi/2: cos ti = 0, SPEC §5 */
-            continue;
-        }
-        alpha = (ti > ts) ? ti : ts;
-        beta = (ti > ts) ? ts : ti;
-        cos_dphi = -cos(geom[k].phi_s); /* sample frame, SPEC §1.2, §5 */
-        q = 2.0 * beta / BF__PI;        /* 2 beta / pi */
-        b3 = q * q * q;
-        if (cos_dphi >= 0.0) {
-            c2 = c2_scale * sin(alpha); /* C2, SPEC §5 */
-        } else {
-            c2 = c2_scale * (sin(alpha) - b3); /* C2, SPEC §5 */
-        }
-        {
-            double r = 4.0 * alpha * beta / (BF__PI * BF__PI);
-            c3 = c3_scale * (r * r); /* C3, SPEC §5 */
-        }
-        l1 = rho_pi * ci
-             * (c1 + (cos_dphi * c2 * tan(beta))
-                + ((1.0 - fabs(cos_dphi)) * c3 * tan(0.5 * (alpha + beta))));
-        l2 = l2_scale * ci * (1.0 - (cos_dphi * (q * q))); /* L2, SPEC §5 */
-        out[k] = l1 + l2;                                  /* L, SPEC §5 */
+        bf__on_terms_t t;
+        bf__on_terms(&geom[k], &t);
+        out[k] = bf__on_value(&t, &c);
     }
     return BF_OK;
 }
@@ -99,3 +124,10 @@ static const bf_model_type on_type = {
     "Oren & Nayar IJCV 1995 (full model), SPEC §5", 2, param_on, eval_on};
 
 const bf_model_type *const bf_model_on = &on_type;
+
+/* 1 when type is ON (or a copy of it), recognised by its eval function;
+ * used by the study path to reuse the geometry terms across samples. */
+int bf__is_on(const bf_model_type *type)
+{
+    return type->eval == eval_on;
+}

@@ -2,6 +2,8 @@
  * grid search (SPEC §7.4), round trips on the 198 CURET configurations and
  * the agreement of the precomputed (study) path with the plain one. */
 #include <criterion/criterion.h>
+#include <criterion/logging.h>
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
@@ -9,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal.h"
 #include "support.h"
 
 /* Noise level of the noisy round trip: 1% of the normalised maximum. */
@@ -284,38 +287,81 @@ Test(grid, invalid_fixed_inputs_and_masks_are_rejected)
     bf_fit_free(w);
 }
 
-/* The study's precomputed grids give bit-for-bit the plain grid search, on
- * every one of CURET's 61 samples and every model with a grid. */
-Test(grid, study_path_equals_plain_path_on_all_61_samples)
+/* The kernels' exp (src/fit/kernels.c) is within EXP_ULPS of glibc's exp
+ * on [-708, 0] -- checked at 200001 points spread over the range and
+ * dense near 0, where the study's arguments lie -- and 0 below -708 and at
+ * -inf; exactly 1 at 0. */
+#define EXP_ULPS 1.0
+
+Test(grid, kernel_exp_is_within_one_ulp_of_exp_on_its_range)
 {
-    bf_table *t = bf_test_load_table();
-    bf_brdf *b = bf_test_load_abrdf();
-    size_t sel[BF_CURET_NCONF];
-    size_t n = bf_table_select(t, M_PI, sel);
-    bf_geom geom[BF_CURET_NCONF];
-    const bf_model_type *models[16];
-    size_t n_models = 0;
-    int samples[64];
-    size_t n_samples = bf_brdf_count(b);
-    bf_study_row *rows;
+    const size_t n = 200001;
+    double worst = 0.0;
+    double at = 0.0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        double u = (double)i / (double)(n - 1);
+        /* half the points uniform on [-708, 0], half within [-1, 0] */
+        double x = (i % 2 == 0) ? -708.0 * u : -u * 0.7313;
+        double e = exp(x);
+        double ulp = nextafter(e, INFINITY) - e;
+        double d = fabs(bf__exp_nonpos(x) - e) / ulp;
+        if (d > worst) {
+            worst = d;
+            at = x;
+        }
+    }
+    cr_assert_leq(worst, EXP_ULPS, "%.3g ulp at x = %.17g", worst, at);
+    cr_assert_eq(bf__exp_nonpos(0.0), 1.0);
+    cr_assert_eq(bf__exp_nonpos(-708.5), 0.0);
+    cr_assert_eq(bf__exp_nonpos(-INFINITY), 0.0);
+}
+
+/* Bound on |LSE_study - LSE_plain| (src/fit/kernels.c). The study path's
+ * normalised curves C' differ from the plain path's C by at most
+ * CURVE_DELTA (absolute; both peak at 1): each has about a dozen roundings,
+ * the kernels' exp adds at most 1 ulp (tested below), a rounding of x
+ * becomes a relative error |x| eps of exp(x), where the normalised value
+ * is not negligible only for |x| below about 16 (values ~ e^-16 of the
+ * peak contribute below eps), so |C' - C| <= (12 + 1 + 2 * 16) eps < 64 eps.
+ * With residuals r_k: |sum (r_k + d_k)^2 - sum r_k^2| <= 2 sum |r_k| |d_k| +
+ * sum d_k^2 <= 2 CURVE_DELTA sqrt(K LSE) + K CURVE_DELTA^2 (Cauchy-Schwarz),
+ * plus the rounding of the two sums of K terms, at most K eps LSE each. */
+#define CURVE_DELTA (64.0 * DBL_EPSILON)
+
+static double study_lse_bound(size_t k, double lse)
+{
+    double kd = (double)k;
+    return (2.0 * CURVE_DELTA * sqrt(kd * lse)) +
+           (kd * CURVE_DELTA * CURVE_DELTA) + (2.0 * kd * DBL_EPSILON * lse);
+}
+
+/* A study of all 61 samples against every model with a grid, plus LAMBERT
+ * and ON (Felt's tabulated rho, sigma for every sample), on n_threads. */
+static bf_study_row *study_all(const bf_table *t, const bf_brdf *b,
+                               const size_t *sel, size_t n,
+                               const bf_model_type **models,
+                               size_t *n_models, int *samples,
+                               size_t *n_samples, bf_sample_table *on,
+                               int n_threads)
+{
     bf_study_spec spec;
     bf_error err;
-    bf_fit_workspace *w = bf_fit_alloc(n);
+    bf_study_row *rows;
     size_t i;
-    size_t s;
 
+    *n_models = 0;
     for (i = 0; i < bf_model_count(); i++) {
         const bf_model_type *type = bf_model_get(i);
         if (type->p > 0 && type->param[0].fitted) {
-            models[n_models++] = type;
+            models[(*n_models)++] = type;
         }
     }
-    models[n_models++] = bf_model_lambert;
-    for (s = 0; s < n_samples; s++) {
-        samples[s] = bf_brdf_sample(b, s);
-    }
-    for (i = 0; i < n; i++) {
-        geom[i] = bf_table_geom(t, sel[i]);
+    models[(*n_models)++] = bf_model_lambert;
+    models[(*n_models)++] = bf_model_on;
+    *n_samples = bf_brdf_count(b);
+    for (i = 0; i < *n_samples; i++) {
+        samples[i] = bf_brdf_sample(b, i);
     }
     memset(&spec, 0, sizeof spec);
     spec.table = t;
@@ -323,12 +369,63 @@ Test(grid, study_path_equals_plain_path_on_all_61_samples)
     spec.sel = sel;
     spec.n_sel = n;
     spec.samples = samples;
-    spec.n_samples = n_samples;
+    spec.n_samples = *n_samples;
     spec.models = models;
-    spec.n_models = n_models;
+    spec.n_models = *n_models;
     spec.n_default = BF_DEFAULT_N;
-    rows = calloc(n_samples * n_models, sizeof *rows);
+    spec.on_params = on;
+    spec.n_threads = n_threads;
+    rows = calloc(*n_samples * *n_models, sizeof *rows);
     cr_assert_eq(bf_study_run(&spec, rows, &err), BF_OK, "%s", err.msg);
+    return rows;
+}
+
+/* ON's inputs for every sample: Felt's (reference/) rho, sigma. */
+static bf_sample_table *on_for_all(const bf_brdf *b)
+{
+    char text[64 * 32];
+    size_t len = 0;
+    size_t s;
+    bf_sample_table *on = NULL;
+    bf_error err;
+    FILE *fp;
+    for (s = 0; s < bf_brdf_count(b); s++) {
+        len += (size_t)snprintf(text + len, sizeof text - len,
+                                "%d 0.387 0.415\n", bf_brdf_sample(b, s));
+    }
+    fp = bf_test_memfile(text);
+    cr_assert_eq(bf_on_params_read(fp, "mem", &on, &err), BF_OK);
+    fclose(fp);
+    return on;
+}
+
+/* The study's precomputed grids and vector kernels find the plain grid
+ * search's optimum -- the same grid point, the same bound flags -- on every
+ * one of CURET's 61 samples and every model, with the LSE within the
+ * derived bound; ON and LAMBERT (no kernel) agree bit for bit. */
+Test(grid, study_path_finds_the_plain_optimum_on_all_61_samples)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    bf_sample_table *on = on_for_all(b);
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    bf_geom geom[BF_CURET_NCONF];
+    const bf_model_type *models[16];
+    size_t n_models;
+    int samples[64];
+    size_t n_samples;
+    bf_study_row *rows;
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    size_t i;
+    size_t s;
+    double worst = 0.0;
+
+    for (i = 0; i < n; i++) {
+        geom[i] = bf_table_geom(t, sel[i]);
+    }
+    rows = study_all(t, b, sel, n, models, &n_models, samples, &n_samples,
+                     on, 1);
     for (s = 0; s < n_samples; s++) {
         double data[BF_CURET_NCONF];
         cr_assert_eq(bf_data_radiance(t, bf_brdf_values(b, s), n, sel, data),
@@ -337,20 +434,140 @@ Test(grid, study_path_equals_plain_path_on_all_61_samples)
             const bf_study_row *r = &rows[s * n_models + i];
             double param[BF_MAX_PARAMS];
             bf_fit_result plain;
+            double bound;
             defaults(models[i], param);
+            if (models[i] == bf_model_on) {
+                param[0] = 0.387;
+                param[1] = 0.415;
+            }
             cr_assert_eq(r->status, BF_OK);
             cr_assert_eq(bf_fit_grid(models[i], param, 0, n, geom, data, w,
                                      &plain),
                          BF_OK);
             cr_assert_eq(memcmp(r->fit.param, plain.param,
                                 sizeof plain.param),
-                         0, "sample %d %s", r->sample, models[i]->name);
-            cr_assert_eq(r->fit.lse, plain.lse, "sample %d %s: %.17g %.17g",
-                         r->sample, models[i]->name, r->fit.lse, plain.lse);
+                         0, "sample %d %s: optimum %.17g, plain %.17g",
+                         r->sample, models[i]->name, r->fit.param[0],
+                         plain.param[0]);
+            cr_assert_eq(r->fit.bound_hit, plain.bound_hit);
+            cr_assert_eq(r->fit.n_eval, plain.n_eval);
             cr_assert(isfinite(r->fit.lse));
+            if (bf__fits_nothing(models[i])) {
+                cr_assert_eq(r->fit.lse, plain.lse, "sample %d %s",
+                             r->sample, models[i]->name);
+                continue;
+            }
+            bound = study_lse_bound(n, plain.lse);
+            bf_assert_abs(r->fit.lse, plain.lse, bound);
+            if (fabs(r->fit.lse - plain.lse) / bound > worst) {
+                worst = fabs(r->fit.lse - plain.lse) / bound;
+            }
         }
     }
+    cr_log_info("largest LSE difference: %.3g of the bound", worst);
     free(rows);
+    bf_fit_free(w);
+    bf_sample_table_free(on);
+    bf_brdf_free(b);
+    bf_table_free(t);
+}
+
+/* OpenMP threads share grid blocks, never a sum: the rows are identical
+ * bit for bit whatever the thread count. */
+Test(grid, study_results_do_not_depend_on_the_thread_count)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    bf_sample_table *on = on_for_all(b);
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    const bf_model_type *models[16];
+    size_t n_models;
+    int samples[64];
+    size_t n_samples;
+    bf_study_row *one = study_all(t, b, sel, n, models, &n_models, samples,
+                                  &n_samples, on, 1);
+    static const int threads[] = {2, 3};
+    size_t q;
+    for (q = 0; q < sizeof threads / sizeof threads[0]; q++) {
+        bf_study_row *many = study_all(t, b, sel, n, models, &n_models,
+                                       samples, &n_samples, on, threads[q]);
+        size_t i;
+        for (i = 0; i < n_samples * n_models; i++) {
+            cr_assert_eq(many[i].status, one[i].status);
+            cr_assert_eq(memcmp(&many[i].fit, &one[i].fit, sizeof one[i].fit),
+                         0, "%d threads: sample %d %s differs", threads[q],
+                         one[i].sample, one[i].type->name);
+        }
+        free(many);
+    }
+    free(one);
+    bf_sample_table_free(on);
+    bf_brdf_free(b);
+    bf_table_free(t);
+}
+
+/* Grids of sizes that are not multiples of the kernels' lanes (padding),
+ * through the public bf_grid API: the same optimum as bf_fit_grid for a
+ * VH-E and an LFTG with shortened grids (recognised as the same models),
+ * and for ON and LAMBERT, whose curves bf_grid evaluates plainly. */
+Test(grid, grids_of_any_size_find_the_plain_optimum)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    bf_geom geom[BF_CURET_NCONF];
+    bf_fit_workspace *w = bf_fit_alloc(n);
+    static const size_t sizes[] = {1, 7, 37, 70, 501};
+    const bf_model_type *bases[4];
+    size_t i;
+    size_t q;
+    size_t m;
+
+    bases[0] = bf_model_vh_e;
+    bases[1] = bf_model_lftg;
+    bases[2] = bf_model_on;
+    bases[3] = bf_model_lambert;
+    for (i = 0; i < n; i++) {
+        geom[i] = bf_table_geom(t, sel[i]);
+    }
+    for (m = 0; m < 4; m++) {
+        for (q = 0; q < sizeof sizes / sizeof sizes[0]; q++) {
+            bf_param par[BF_MAX_PARAMS];
+            bf_model_type type = *bases[m];
+            double param[BF_MAX_PARAMS];
+            double data[BF_CURET_NCONF];
+            bf_fit_result plain;
+            bf_fit_result fast;
+            bf_grid *gr;
+            int st = -1;
+            size_t s = (q * 17 + m * 5) % bf_brdf_count(b); /* a sample */
+            if (type.p > 0) {
+                memcpy(par, type.param, type.p * sizeof par[0]);
+                if (par[0].fitted) {
+                    par[0].grid_n = sizes[q];
+                }
+                type.param = par;
+            }
+            defaults(&type, param);
+            cr_assert_eq(bf_data_radiance(t, bf_brdf_values(b, s), n, sel,
+                                          data),
+                         BF_OK);
+            gr = bf_grid_alloc(&type, param, 0, n, geom, &st);
+            cr_assert_not_null(gr, "%s: status %d", type.name, st);
+            cr_assert_eq(bf_grid_fit(gr, data, &fast), BF_OK);
+            cr_assert_eq(bf_fit_grid(&type, param, 0, n, geom, data, w,
+                                     &plain),
+                         BF_OK);
+            cr_assert_eq(memcmp(fast.param, plain.param, sizeof plain.param),
+                         0, "%s, %zu points", type.name, sizes[q]);
+            cr_assert_eq(fast.bound_hit, plain.bound_hit);
+            cr_assert_eq(fast.n_eval, plain.n_eval);
+            bf_assert_abs(fast.lse, plain.lse, study_lse_bound(n, plain.lse));
+            bf_grid_free(gr);
+        }
+    }
     bf_fit_free(w);
     bf_brdf_free(b);
     bf_table_free(t);

@@ -1,0 +1,569 @@
+/* kernels.c: the study path's vectorised inner loops -- normalised model
+ * curves of a block of grid points at once from geometry terms computed
+ * once per configuration, and the residual sums of squares (SPEC §7.3) of
+ * a block of grid points against several samples at once.
+ *
+ * [1] Ragheb & Hancock, "Comparing Variants of the Beckmann Model",
+ *     (P1), (P2), (P7); SPEC §3.1, §3.2, §6 (the formulas), §2 (the
+ *     normalisation), §7.3-7.4 (LSE, grid).
+ *
+ * Layout: curves are stored transposed, curves[k * stride + g] for
+ * configuration k and grid point g, so a vector register holds one
+ * configuration of consecutive grid points. Vectorising across grid
+ * points, never across the sum over configurations, keeps every LSE a
+ * sum in index order, as bf__sum_sq_diff forms it.
+ *
+ * The math is rearranged against the plain path (bk.c, lafortune.c,
+ * bf_normalise), algebraically exactly, to take divisions and pow out of
+ * the inner loop:
+ *   - factors that do not depend on the configuration are dropped, since
+ *     they cancel in the normalisation (SPEC §2): 1/m^2 of (P1), 2m of
+ *     (P2), (n_d + 2)/(2 pi) of (P7);
+ *   - G:  l = (F^2/vz^2) exp((-vxy^2/(4 vz^2)) / m^2), both brackets once
+ *         per configuration, 1/m^2 once per grid point;
+ *   - E:  l = F^2 |vz| / (d sqrt d), d = fma(m^2, vz^2, vxy^2), as bk.c;
+ *   - LFTG: (cos ti cos ts)^n_d = exp(n_d ln(cos ti cos ts)), the log once
+ *         per configuration;
+ *   - normalisation multiplies by 1/max instead of dividing by max;
+ *   - each LSE term is added with one fma (one rounding instead of two);
+ *   - exp is the kernels' own (exp_nonpos below, within 1 ulp of glibc's),
+ *     so that it vectorises inline and gives the same bits on every ISA.
+ * The normalised curves therefore differ from the plain path's by a few
+ * units in the last place (absolute, the curves peak at 1), and each LSE
+ * by a few ulp times sqrt(K LSE). tests/fit/test_grid.c bounds the
+ * difference and checks that every optimum is the same grid point on all
+ * 61 CURET samples and every model (the plain path stays the reference).
+ * No -ffast-math: the library is built with -ffp-contract=off, so the only
+ * fused multiply-adds are the explicit fma() calls, in every ISA.
+ *
+ * Dispatch: the kernels are compiled for x86-64-v4 (AVX-512), x86-64-v3
+ * (AVX2 + FMA) and the baseline, and the loader picks one at run time
+ * (GCC's target_clones); the default build never uses -march=native.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&   \
+    defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define BF__CLONES                                                         \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3",     \
+                                 "default")))
+#endif
+#endif
+#ifndef BF__CLONES
+#define BF__CLONES
+#endif
+
+/* Grid points per curve block: one AVX-512 register of doubles. */
+#define CURVE_LANES 16
+/* Samples scored together (each loaded curve value is used this often). */
+#define TILE_SAMPLES 4
+
+/* ==== exp of a non-positive argument, vectorisable ======================= */
+
+/* ln 2 as the double nearest it and the rest (the reduction x - k ln 2 is
+ * taken with fma, which forms k ln2_hi exactly); 1/ln 2; 1.5 * 2^52, which
+ * rounds a double below 2^51 in magnitude to an integer in its low
+ * bits. */
+#define EXP_LN2_HI 0x1.62e42fefa39efp-1
+#define EXP_LN2_LO 0x1.abc9e3b39803fp-56
+#define EXP_INV_LN2 0x1.71547652b82fep0
+#define EXP_SHIFTER 0x1.8p52
+/* Below this argument e^x < 2^-1021 (near DBL_MIN): the result is 0. */
+#define EXP_MIN_ARG (-708.0)
+
+/* e^x for x <= 0, the only arguments of the kernels (x = b/m^2 with b <= 0,
+ * x = n_d ln(cos ti cos ts) with the base <= 1). Straight-line code the
+ * compiler vectorises: x = k ln 2 + r with |r| <= ln(2)/2 (Cody-Waite,
+ * fma), e^r by its Taylor polynomial of degree 13 (truncation below
+ * 2^-57), times 2^k built in the exponent bits. Within 1 ulp of glibc's
+ * exp on [-708, 0] (tests/fit/test_grid.c); 0 below -708 (where glibc
+ * gives a subnormal or 0), for -inf and for NaN. The same bits on every
+ * ISA: every operation is correctly rounded (no contraction, explicit
+ * fma). */
+static inline double exp_nonpos(double x)
+{
+    double xc = (x >= EXP_MIN_ARG) ? x : EXP_MIN_ARG;
+    double t = fma(xc, EXP_INV_LN2, EXP_SHIFTER); /* k in the low bits */
+    double kd = t - EXP_SHIFTER;                    /* k = round(x/ln 2) */
+    double r = fma(-kd, EXP_LN2_HI, xc);
+    double p;
+    double scale;
+    uint64_t bits;
+    r = fma(-kd, EXP_LN2_LO, r);
+    p = 1.0 / 6227020800.0; /* 1/13! ... 1/0!, Horner */
+    p = fma(p, r, 1.0 / 479001600.0);
+    p = fma(p, r, 1.0 / 39916800.0);
+    p = fma(p, r, 1.0 / 3628800.0);
+    p = fma(p, r, 1.0 / 362880.0);
+    p = fma(p, r, 1.0 / 40320.0);
+    p = fma(p, r, 1.0 / 5040.0);
+    p = fma(p, r, 1.0 / 720.0);
+    p = fma(p, r, 1.0 / 120.0);
+    p = fma(p, r, 1.0 / 24.0);
+    p = fma(p, r, 1.0 / 6.0);
+    p = fma(p, r, 0.5);
+    p = fma(p, r, 1.0);
+    p = fma(p, r, 1.0);
+    memcpy(&bits, &t, sizeof bits);
+    /* 2^k, k in [-1021, 0]: k + 1023 into the exponent field; unsigned
+     * arithmetic drops the shifter's high bits (wraps, as defined) */
+    bits = (bits + 1023u) << 52;
+    memcpy(&scale, &bits, sizeof scale);
+    return (x >= EXP_MIN_ARG) ? p * scale : 0.0;
+}
+
+double bf__exp_nonpos(double x)
+{
+    return exp_nonpos(x);
+}
+
+/* ==== geometry terms, once per configuration ============================= */
+
+/* Structure of arrays of the per-configuration terms, 64-byte aligned.
+ * Every factor that does not depend on the configuration (1/m^2 of (P1),
+ * 2m of (P2), (n_d + 2)/(2 pi) of (P7)) is dropped: it cancels in the
+ * normalisation (SPEC §2). */
+typedef struct {
+    double *a;   /* G: F^2/vz^2   E: F^2 |vz|   LFTG: ln(cos ti cos ts) */
+    double *b;   /* G: -vxy^2/(4 vz^2)   E: vz^2   LFTG: scratch */
+    double *c;   /* E: vxy^2 */
+    double *p;   /* LFTG: n x CURVE_LANES, exp(j step ln(cos ti cos ts)) */
+    double *mem;
+} terms_t;
+
+static int terms_alloc(terms_t *t, size_t n)
+{
+    size_t len = ((3 + CURVE_LANES) * n * sizeof(double) + 63) / 64 * 64;
+    t->mem = aligned_alloc(64, len);
+    if (t->mem == NULL) {
+        return BF_ENOMEM;
+    }
+    t->a = t->mem;
+    t->b = t->a + n;
+    t->c = t->b + n;
+    t->p = t->c + n;
+    return BF_OK;
+}
+
+/* Fills t for the BK family member (factor, corr) with FC's index n_index
+ * (SPEC §3): per configuration the slope-independent parts of (P1)/(P2).
+ * Where vz = 0 (theta_i = theta_s = pi/2) the model's limit is 0 (SPEC
+ * §3.3): a = 0 and a harmless denominator. Returns 0 when some
+ * configuration is outside the model's domain (BK at theta_i = pi/2) or a
+ * term is not finite: then no slope gives a curve. */
+static int terms_bk(int factor, int corr, double n_index, size_t n,
+                    const bf_geom *geom, terms_t *t)
+{
+    size_t k;
+    int ok = 1;
+    for (k = 0; k < n; k++) {
+        bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
+        if (bf__bk_terms(factor, n_index, &geom[k], &bt) != BF_OK) {
+            ok = 0; /* BK at theta_i = pi/2: no slope works */
+        }
+        if (bt.vz2 == 0.0) {
+            t->a[k] = 0.0; /* the limit 0, SPEC §3.3 */
+            t->b[k] = 0.0;
+            t->c[k] = 1.0;
+        } else if (corr == BF__BK_CORR_GAUSS) {
+            /* (P1): L m^2 = F^2/vz^2 exp(-vxy^2/(4 vz^2) / m^2) */
+            t->a[k] = bt.f2 / bt.vz2;
+            t->b[k] = -bt.vxy2 / (4.0 * bt.vz2);
+            t->c[k] = 0.0;
+        } else {
+            /* (P2) as in bk.c: L / (2m) = F^2 |vz| / (m^2 vz^2 + vxy^2)^1.5 */
+            t->a[k] = bt.f2 * bt.abs_vz;
+            t->b[k] = bt.vz2;
+            t->c[k] = bt.vxy2;
+        }
+        if (!isfinite(t->a[k]) || !isfinite(t->b[k])) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+/* ==== curve kernels ====================================================== */
+
+/* Normalises a block (SPEC §2) -- every value finite, maximum positive --
+ * by one reciprocal per lane, and sets ok per lane. nf[j] is the sum of
+ * v - v over the lane's values: 0 when all are finite, NaN otherwise. */
+static inline void normalise_block(size_t n, size_t stride,
+                                   double *restrict c, const double *mx,
+                                   const double *nf, unsigned char *ok)
+{
+    double r[CURVE_LANES];
+    size_t j;
+    size_t k;
+    for (j = 0; j < CURVE_LANES; j++) {
+        r[j] = 1.0 / mx[j];
+        ok[j] = (unsigned char)((nf[j] == 0.0) && (mx[j] > 0.0));
+    }
+    for (k = 0; k < n; k++) {
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            ck[j] = ck[j] * r[j]; /* SPEC §2 */
+        }
+    }
+}
+
+/* Gaussian correlation (P1), SPEC §3.1, for CURVE_LANES slopes m[]:
+ * l = a exp(b / m^2), one multiply, one exp and one multiply per value. */
+BF__CLONES
+static void block_gauss(size_t n, const terms_t *t, const double *m,
+                        size_t stride, double *restrict c, unsigned char *ok)
+{
+    double inv_m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    size_t j;
+    size_t k;
+    for (j = 0; j < CURVE_LANES; j++) {
+        inv_m2[j] = 1.0 / (m[j] * m[j]);
+        mx[j] = -INFINITY;
+        nf[j] = 0.0;
+    }
+    for (k = 0; k < n; k++) {
+        double a = t->a[k];
+        double b = t->b[k];
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            double v = a * exp_nonpos(b * inv_m2[j]); /* (P1), SPEC §3.1 */
+            ck[j] = v;
+            nf[j] += v - v; /* NaN once a value is not finite */
+            mx[j] = (v > mx[j]) ? v : mx[j];
+        }
+    }
+    normalise_block(n, stride, c, mx, nf, ok);
+}
+
+/* Exponential correlation (P2), SPEC §3.2, in bk.c's form:
+ * l = a / (d sqrt d), d = m^2 vz^2 + vxy^2 (one fma, sqrt, multiply,
+ * division per value). */
+BF__CLONES
+static void block_exp(size_t n, const terms_t *t, const double *m,
+                      size_t stride, double *restrict c, unsigned char *ok)
+{
+    double m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    size_t j;
+    size_t k;
+    for (j = 0; j < CURVE_LANES; j++) {
+        m2[j] = m[j] * m[j];
+        mx[j] = -INFINITY;
+        nf[j] = 0.0;
+    }
+    for (k = 0; k < n; k++) {
+        double a = t->a[k];
+        double vz2 = t->b[k];
+        double vxy2 = t->c[k];
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            double d = fma(m2[j], vz2, vxy2); /* (P2), SPEC §3.2 */
+            double v = a / (d * sqrt(d));
+            ck[j] = v;
+            nf[j] += v - v; /* NaN once a value is not finite */
+            mx[j] = (v > mx[j]) ? v : mx[j];
+        }
+    }
+    normalise_block(n, stride, c, mx, nf, ok);
+}
+
+/* LFTG (P7), SPEC §6: l = (cos ti cos ts)^n_d = exp(n_d L), L = ln(cos ti
+ * cos ts) taken once per configuration (0 at grazing gives exp(-inf) = 0,
+ * the value of pow for n_d > 0). The lanes' exponents n_d = n_0 + j step
+ * are an arithmetic progression, so exp(n_d L) = exp(n_0 L) exp(j step L):
+ * one exp per configuration and block (e0, vectorised across
+ * configurations) times a factor computed once per grid (t->p), instead of
+ * one exp per value. The rounding of n_d and of the two factors moves a
+ * normalised value v by at most a few v |n_d L| eps <= a few eps / e. */
+BF__CLONES
+static void block_lftg(size_t n, const terms_t *t, const double *n_d,
+                       size_t stride, double *restrict c, unsigned char *ok)
+{
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    double *restrict e0 = t->b; /* scratch */
+    const double *restrict ln_base = t->a;
+    double n0 = n_d[0];
+    size_t j;
+    size_t k;
+    for (j = 0; j < CURVE_LANES; j++) {
+        mx[j] = -INFINITY;
+        nf[j] = 0.0;
+    }
+#pragma omp simd
+    for (k = 0; k < n; k++) {
+        e0[k] = exp_nonpos(n0 * ln_base[k]); /* (P7), SPEC §6 */
+    }
+    for (k = 0; k < n; k++) {
+        double e = e0[k];
+        const double *restrict pk = t->p + (k * CURVE_LANES);
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            double v = e * pk[j];
+            ck[j] = v;
+            nf[j] += v - v; /* NaN once a value is not finite */
+            mx[j] = (v > mx[j]) ? v : mx[j];
+        }
+    }
+    normalise_block(n, stride, c, mx, nf, ok);
+}
+
+/* The factors exp(j step L_k) of block_lftg for j < CURVE_LANES. */
+BF__CLONES
+static void lftg_factors(size_t n, double step, const double *ln_base,
+                         double *restrict p)
+{
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        double l = ln_base[k];
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            /* j = 0: exp(0 L) = 1; at grazing 0 (-inf) = NaN gives 0,
+             * harmless: e0 is 0 there */
+            p[(k * CURVE_LANES) + j] = exp_nonpos(((double)j * step) * l);
+        }
+    }
+}
+
+/* Fills the transposed normalised curves of every grid point with a
+ * vectorised kernel when one exists for type: BK family with the slope m
+ * free, or LFTG with n_d free on a grid of positive values (a single free
+ * parameter, the paper's protocol). Returns 1 when done, 0 when type has
+ * no kernel (the caller uses the plain evaluation), or -BF_ENOMEM. Padding
+ * lanes (grid indices >= points, up to cols) repeat the last grid point
+ * and are marked not ok. */
+int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, size_t cols,
+                    size_t stride, double *curves, unsigned char *ok)
+{
+    int factor = 0;
+    int corr = 0;
+    int is_bk = bf__bk_kind(type, &factor, &corr);
+    int is_lftg = bf__is_lftg(type);
+    const bf_param *pf;
+    terms_t t;
+    long n_blocks;
+    long b;
+    size_t k;
+    int defined = 1;
+
+    if ((!is_bk && !is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
+        cols % CURVE_LANES != 0 || lay->points > cols ||
+        (is_lftg && !(type->param[0].grid_lo > 0.0))) {
+        return 0;
+    }
+    pf = &type->param[0];
+    if (terms_alloc(&t, n) != BF_OK) {
+        return -BF_ENOMEM;
+    }
+    if (is_lftg) {
+        for (k = 0; k < n; k++) {
+            t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
+        }
+        lftg_factors(n, pf->grid_step, t.a, t.p);
+    } else {
+        /* FC's refractive index is parameter 1, fixed here */
+        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
+        defined = terms_bk(factor, corr, n_index, n, geom, &t);
+    }
+    n_blocks = (long)(cols / CURVE_LANES);
+    for (b = 0; b < n_blocks; b++) {
+        size_t g0 = (size_t)b * CURVE_LANES;
+        double x[CURVE_LANES];
+        size_t j;
+        for (j = 0; j < CURVE_LANES; j++) {
+            size_t i = g0 + j < lay->points ? g0 + j : lay->points - 1;
+            x[j] = pf->grid_lo + pf->grid_step * (double)i; /* SPEC §7.4 */
+        }
+        if (is_lftg) {
+            block_lftg(n, &t, x, stride, curves + g0, ok + g0);
+        } else if (corr == BF__BK_CORR_GAUSS) {
+            block_gauss(n, &t, x, stride, curves + g0, ok + g0);
+        } else {
+            block_exp(n, &t, x, stride, curves + g0, ok + g0);
+        }
+        for (j = 0; j < CURVE_LANES; j++) {
+            if (g0 + j >= lay->points || !defined) {
+                ok[g0 + j] = 0;
+            }
+        }
+    }
+    free(t.mem);
+    return 1;
+}
+
+/* ==== scoring ============================================================ */
+
+/* LSE of BF__SCORE_LANES consecutive grid points (curves c, transposed with
+ * stride) against TILE_SAMPLES samples d[s]: per lane the sum of
+ * bf__sum_sq_diff, s = fma(r, r, s) over k in index order. */
+BF__CLONES
+static void score_tile(size_t n, size_t stride, const double *restrict c,
+                       const double *const *d, double *restrict lse,
+                       size_t lse_stride)
+{
+    double a0[BF__SCORE_LANES] = {0.0};
+    double a1[BF__SCORE_LANES] = {0.0};
+    double a2[BF__SCORE_LANES] = {0.0};
+    double a3[BF__SCORE_LANES] = {0.0};
+    const double *restrict d0 = d[0];
+    const double *restrict d1 = d[1];
+    const double *restrict d2 = d[2];
+    const double *restrict d3 = d[3];
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        double x0 = d0[k];
+        double x1 = d1[k];
+        double x2 = d2[k];
+        double x3 = d3[k];
+#pragma omp simd
+        for (j = 0; j < BF__SCORE_LANES; j++) {
+            double cj = ck[j];
+            double r0 = cj - x0; /* SPEC §7.3 */
+            double r1 = cj - x1;
+            double r2 = cj - x2;
+            double r3 = cj - x3;
+            a0[j] = fma(r0, r0, a0[j]);
+            a1[j] = fma(r1, r1, a1[j]);
+            a2[j] = fma(r2, r2, a2[j]);
+            a3[j] = fma(r3, r3, a3[j]);
+        }
+    }
+    for (j = 0; j < BF__SCORE_LANES; j++) {
+        lse[j] = a0[j];
+        lse[lse_stride + j] = a1[j];
+        lse[(2 * lse_stride) + j] = a2[j];
+        lse[(3 * lse_stride) + j] = a3[j];
+    }
+}
+
+/* The same for one sample (bf_grid_fit): four independent sums per lane
+ * group keep the pipeline busy without a second sample. */
+BF__CLONES
+static void score_one(size_t n, size_t stride, const double *restrict c,
+                      const double *restrict d, double *restrict lse)
+{
+    double a[BF__SCORE_LANES] = {0.0};
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        double x = d[k];
+#pragma omp simd
+        for (j = 0; j < BF__SCORE_LANES; j++) {
+            double r = ck[j] - x; /* SPEC §7.3 */
+            a[j] = fma(r, r, a[j]);
+        }
+    }
+    for (j = 0; j < BF__SCORE_LANES; j++) {
+        lse[j] = a[j];
+    }
+}
+
+/* LSE of every grid point (cols columns of the transposed curves) against
+ * each of n_samples samples: lse[s * cols + g]. Tiles of TILE_SAMPLES
+ * samples x BF__SCORE_LANES grid points. */
+void bf__score_all(size_t n, size_t cols, size_t stride,
+                   const double *curves, size_t n_samples,
+                   const double *const *data, double *lse)
+{
+    long n_blocks = (long)(cols / BF__SCORE_LANES);
+    long b;
+    if (n_samples == 1) {
+        for (b = 0; b < n_blocks; b++) {
+            size_t g0 = (size_t)b * BF__SCORE_LANES;
+            score_one(n, stride, curves + g0, data[0], lse + g0);
+        }
+        return;
+    }
+    for (b = 0; b < n_blocks; b++) {
+        size_t g0 = (size_t)b * BF__SCORE_LANES;
+        size_t s;
+        for (s = 0; s < n_samples; s += TILE_SAMPLES) {
+            const double *d[TILE_SAMPLES];
+            double tmp[TILE_SAMPLES * BF__SCORE_LANES];
+            size_t q;
+            size_t left = n_samples - s;
+            for (q = 0; q < TILE_SAMPLES; q++) {
+                d[q] = data[s + (q < left ? q : left - 1)];
+            }
+            if (left >= TILE_SAMPLES) {
+                score_tile(n, stride, curves + g0, d, lse + (s * cols) + g0,
+                           cols);
+            } else { /* last, partial tile: repeat a sample, keep `left` */
+                score_tile(n, stride, curves + g0, d, tmp, BF__SCORE_LANES);
+                for (q = 0; q < left; q++) {
+                    memcpy(lse + ((s + q) * cols) + g0,
+                           tmp + (q * BF__SCORE_LANES), sizeof(double) *
+                                                             BF__SCORE_LANES);
+                }
+            }
+        }
+    }
+}
+
+/* Lanes of the argmin below. */
+#define ARGMIN_LANES 8
+
+/* The smallest LSE among the defined grid points (ok[g] != 0) of one row
+ * and the first point where it occurs (ties keep the first grid point, as
+ * bf_fit_grid's strict comparison does); *best = SIZE_MAX when no point is
+ * defined or no LSE is finite. Each lane keeps its own minimum and the
+ * first index reaching it; the first index among the lanes that hold the
+ * overall minimum is the first occurrence overall. */
+BF__CLONES
+double bf__argmin(size_t points, const double *restrict lse,
+                  const unsigned char *restrict ok, size_t *best)
+{
+    double mv[ARGMIN_LANES];
+    size_t mi[ARGMIN_LANES];
+    double min = INFINITY;
+    size_t g0;
+    size_t g;
+    size_t j;
+    for (j = 0; j < ARGMIN_LANES; j++) {
+        mv[j] = INFINITY;
+        mi[j] = SIZE_MAX;
+    }
+    for (g0 = 0; g0 + ARGMIN_LANES <= points; g0 += ARGMIN_LANES) {
+#pragma omp simd
+        for (j = 0; j < ARGMIN_LANES; j++) {
+            double v = ok[g0 + j] ? lse[g0 + j] : INFINITY;
+            int lt = v < mv[j]; /* NaN never wins, as in bf_fit_grid */
+            mv[j] = lt ? v : mv[j];
+            mi[j] = lt ? g0 + j : mi[j];
+        }
+    }
+    for (g = g0; g < points; g++) {
+        double v = ok[g] ? lse[g] : INFINITY;
+        if (v < mv[g - g0]) {
+            mv[g - g0] = v;
+            mi[g - g0] = g;
+        }
+    }
+    *best = SIZE_MAX;
+    for (j = 0; j < ARGMIN_LANES; j++) {
+        if (mv[j] < min || (mv[j] == min && mi[j] < *best)) {
+            min = mv[j];
+            *best = mi[j];
+        }
+    }
+    return min;
+}
