@@ -3,6 +3,8 @@
 #   make run    the main job: the full model comparison on the CURET data
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the benchmarks (never part of the tests)
+#   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
+#   make valgrind  run the test suite under valgrind (no leak, no error)
 
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
@@ -10,15 +12,18 @@ REFERENCE ?= $(SHARED)/reference
 OUT      ?= out
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
+FUZZ_SECONDS ?= 60
+FUZZ_MAX_LEN ?= 4096
 
 BUILD      = build
 BUILD_ASAN = build-asan
+BUILD_FUZZ = build-fuzz
 CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
 .PHONY: all deps build run test test-plain test-asan asan bench install \
-        format tidy clean
+        format tidy clean fuzz fuzz-build valgrind
 
 all: build
 
@@ -48,6 +53,23 @@ test-asan: asan
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    ctest --output-on-failure -j $(JOBS)
 
+# libFuzzer targets (fuzz/): clang, ASan+UBSan, seeds from the real files.
+fuzz-build:
+	@scripts/install-deps.sh fuzz
+	@CC=clang $(CONFIGURE) -B $(BUILD_FUZZ) -DBF_FUZZ=ON \
+	    -DBF_BUILD_TESTS=OFF -DBF_BUILD_CLI=OFF \
+	    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	@cmake --build $(BUILD_FUZZ) -j $(JOBS)
+
+fuzz: fuzz-build
+	fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS) "$(CURET)" "$(REFERENCE)" \
+	    $(FUZZ_MAX_LEN)
+
+# The plain build's test suite under valgrind (tests/valgrind.sh).
+valgrind: build
+	@scripts/install-deps.sh valgrind
+	tests/valgrind.sh $(BUILD)
+
 bench: build
 	$(BUILD)/bench/bench_study --data "$(CURET)"
 
@@ -62,4 +84,4 @@ tidy: build
 	clang-tidy -p $(BUILD) src/*.c src/*/*.c cli/*.c
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN)
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ)

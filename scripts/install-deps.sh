@@ -3,9 +3,19 @@
 # that are missing (idempotent). Runs apt-get as root, or through sudo.
 #
 #   scripts/install-deps.sh          build + test dependencies
+#   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
+#   scripts/install-deps.sh valgrind also valgrind (make valgrind)
 set -eu
 
 PACKAGES="pkg-config libgsl-dev libcriterion-dev"
+for group in "$@"; do
+    case $group in
+    fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
+    valgrind) PACKAGES="$PACKAGES valgrind" ;;
+    *) echo "install-deps: unknown group '$group' (fuzz, valgrind)" >&2
+       exit 2 ;;
+    esac
+done
 
 missing=""
 for p in $PACKAGES; do
