@@ -103,7 +103,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         case O_N:
             if (bf_cli_parse_double(optarg, &o->n) != 0 || o->n <= 1.0 ||
                 o->n > 10.0) {
-                return bf_cli_usage_error(hint, "--n: '%s' is not a "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--n: '%s' is not a "
                                           "refractive index in (1, 10]",
                                           optarg);
             }
@@ -112,13 +113,15 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         case O_MAXTHETA:
             if (bf_cli_parse_double(optarg, &o->max_theta) != 0 ||
                 o->max_theta <= 0.0 || o->max_theta > 90.0) {
-                return bf_cli_usage_error(hint, "--max-theta: '%s' is "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--max-theta: '%s' is "
                                           "not an angle in (0, 90] degrees",
                                           optarg);
             }
             break;
         case ':':
-            return bf_cli_usage_error(hint, "option '%s' needs a value",
+            return bf_cli_usage_fail(BF_EXIT_NOVALUE, hint,
+                                     "option '%s' needs a value",
                                       argv[optind - 1]);
         case '?':
             return bf_cli_usage_error(hint, "unknown option '%s'",
@@ -138,8 +141,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
                                   argv[optind]);
     }
     if (o->n_given && o->n_file != NULL) {
-        return bf_cli_usage_error(hint,
-                                  "--n and --n-file cannot be combined");
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
+                                 "--n and --n-file cannot be combined");
     }
     return 0;
 }
@@ -165,13 +168,15 @@ static int parse_samples(const char *hint, const bf_cli_opts *o, int **out, size
         return BF_EXIT_OK;
     }
     if (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg) != 0) {
-        return bf_cli_usage_error(hint, "--samples: %s", msg);
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--samples: %s",
+                                 msg);
     }
     return BF_EXIT_OK;
 }
 
 /* Fills in 'all' and checks that every listed sample is in the file. */
-static int resolve_samples(const bf_brdf *brdf, int **samples, size_t *n)
+static int resolve_samples(const char *hint, const bf_brdf *brdf,
+                           int **samples, size_t *n)
 {
     size_t i;
     if (*samples == NULL) {
@@ -186,10 +191,10 @@ static int resolve_samples(const bf_brdf *brdf, int **samples, size_t *n)
     }
     for (i = 0; i < *n; i++) {
         if (bf_brdf_find(brdf, (*samples)[i]) < 0) {
-            bf_cli_err("--samples: sample %d is not in the BRDF file "
-                       "(it has samples 1-%zu)",
-                       (*samples)[i], bf_brdf_count(brdf));
-            return BF_EXIT_USAGE;
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "--samples: sample %d is not in the "
+                                     "BRDF file (it has samples 1-%zu)",
+                                     (*samples)[i], bf_brdf_count(brdf));
         }
     }
     return BF_EXIT_OK;
@@ -223,32 +228,37 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             const bf_model_type *t;
             size_t j;
             if (len == 0 || len >= sizeof name) {
-                return bf_cli_usage_error(hint, "--models: bad list "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: bad list "
                                           "'%s'", o->models);
             }
             memcpy(name, p, len);
             name[len] = '\0';
             t = bf_model_find(name);
             if (t == NULL) {
-                return bf_cli_usage_error(hint, "--models: unknown "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: unknown "
                                           "model '%s' (see 'brdffit models')",
                                           name);
             }
             for (j = 0; j < *n; j++) {
                 if (list[j] == t) {
-                    return bf_cli_usage_error(hint, "--models: '%s' "
+                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                             "--models: '%s' "
                                               "listed twice", name);
                 }
             }
             if (*n + 1 >= cap) {
-                return bf_cli_usage_error(hint, "--models: too many");
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: too many");
             }
             list[(*n)++] = t;
             p += len;
             if (*p == ',') {
                 p++;
                 if (*p == '\0') {
-                    return bf_cli_usage_error(hint, "--models: trailing "
+                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                             "--models: trailing "
                                               "comma");
                 }
             }
@@ -274,15 +284,17 @@ static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table
     if (o->exclude != NULL) {
         if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
             0) {
-            return bf_cli_usage_error(hint, "--exclude: %s", msg);
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "--exclude: %s", msg);
         }
         for (j = 0; j < n_ex; j++) {
             if ((size_t)ex[j] > size) {
-                bf_cli_err("--exclude: configuration %d does not exist "
-                           "(the table has %zu)",
-                           ex[j], size);
+                int bad = ex[j];
                 free(ex);
-                return BF_EXIT_USAGE;
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--exclude: configuration %d does "
+                                         "not exist (the table has %zu)",
+                                         bad, size);
             }
         }
     }
@@ -300,8 +312,9 @@ static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table
     *n = k;
     free(ex);
     if (k == 0) {
-        bf_cli_err("no configuration is left to fit after the exclusions");
-        return BF_EXIT_USAGE;
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                 "--exclude/--max-theta: no configuration "
+                                 "is left to fit");
     }
     return BF_EXIT_OK;
 }
@@ -323,12 +336,27 @@ int bf_cli_study_prepare(bf_cli_study *st)
     if (rc != BF_EXIT_OK) {
         return rc;
     }
+    if (o->exclude != NULL) { /* syntax now; range once the table is read */
+        int *ex = NULL;
+        size_t n_ex = 0;
+        char msg[256];
+        if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
+            0) {
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
+                                     msg);
+        }
+        free(ex);
+    }
+    rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
+    if (rc != BF_EXIT_OK) {
+        return rc;
+    }
     rc = bf_cli_load_inputs(o->data_dir, o->brdf_file, o->n_file, o->on_file,
                             &st->in);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = resolve_samples(st->in.brdf, &st->samples, &st->n_samples);
+    rc = resolve_samples(hint, st->in.brdf, &st->samples, &st->n_samples);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
