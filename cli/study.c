@@ -385,6 +385,33 @@ int bf_cli_study_prepare(bf_cli_study *st)
     return BF_EXIT_OK;
 }
 
+/* A row whose model could not be normalised on the used configurations
+ * (BF_EDOM: undefined at one of them, e.g. BK at theta_i = 90 deg, SPEC
+ * §3.3, or zero at all of them, SPEC §2) is an error, not a gap in the
+ * tables; a missing per-sample input (BF_ENOTFOUND) is a noted gap. */
+static int check_rows(const bf_cli_study *st)
+{
+    size_t i;
+    for (i = 0; i < st->n_samples * st->n_models; i++) {
+        const bf_study_row *r = &st->rows[i];
+        if (r->status == BF_OK || r->status == BF_ENOTFOUND) {
+            continue;
+        }
+        if (r->status == BF_ENOMEM) {
+            bf_cli_err("out of memory");
+            return BF_EXIT_SOFTWARE;
+        }
+        bf_cli_err("%s cannot be fitted to sample %d: the model is "
+                   "undefined at some of the K = %zu used configurations or "
+                   "zero at all of them, so it cannot be normalised (SPEC "
+                   "§2); leave configurations out with --exclude or "
+                   "--max-theta",
+                   r->type->name, r->sample, st->n_sel);
+        return BF_EXIT_DATAERR;
+    }
+    return BF_EXIT_OK;
+}
+
 int bf_cli_study_run(bf_cli_study *st)
 {
     bf_error err;
@@ -392,7 +419,7 @@ int bf_cli_study_run(bf_cli_study *st)
         bf_cli_err("%s", err.msg);
         return err.code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
     }
-    return BF_EXIT_OK;
+    return check_rows(st);
 }
 
 void bf_cli_study_free(bf_cli_study *st)
