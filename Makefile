@@ -78,7 +78,7 @@ install: build
 
 format:
 	clang-format -i include/*.h src/*.[ch] src/*/*.[ch] cli/*.[ch] \
-	    tests/*.[ch] tests/*/*.[ch] bench/*.c
+	    tests/*.[ch] tests/*/*.[ch] bench/*.c fuzz/*.[ch]
 
 tidy: build
 	clang-tidy -p $(BUILD) src/*.c src/*/*.c cli/*.c
