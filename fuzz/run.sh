@@ -30,7 +30,8 @@ for exe in "$build"/fuzz/fuzz_*; do
     name=$(basename "$exe")
     corpus=$build/fuzz-corpus/$name
     log=$build/fuzz-$name.log
-    mkdir -p "$corpus"
+    # a target added without seeds in seeds.sh starts from an empty corpus
+    mkdir -p "$corpus" "$build/fuzz-seeds/$name"
     if ! "$exe" -max_total_time="$seconds" -max_len="$max_len" \
             -timeout="$timeout" -rss_limit_mb="$rss_limit_mb" \
             -print_final_stats=1 \
