@@ -1,7 +1,8 @@
 #!/bin/sh
 # valgrind.sh: runs every test executable of a build folder under valgrind,
 # following the children (Criterion runs each test in a child process, and
-# the CLI tests exec build/brdffit). Any memory error or any leaked block
+# the CLI tests exec build/brdffit; system programs the tests run, such as
+# sh and ls, are not followed). Any memory error or any leaked block
 # (definite, indirect or possible) fails the run with valgrind's report.
 #
 #   tests/valgrind.sh BUILD
@@ -48,6 +49,7 @@ for exe in "$build"/tests/test_*; do
     # fails the run too.
     rc=0
     valgrind -q --trace-children=yes --error-exitcode=99 \
+        --trace-children-skip='/bin/*,/usr/bin/*' \
         --leak-check=full --show-leak-kinds=definite,indirect,possible \
         --errors-for-leak-kinds=definite,indirect,possible \
         "$@" > "$log" 2>&1 || rc=$?

@@ -15,9 +15,6 @@
  *     expect.tsv (equal to the clean files' run, or containing a value
  *     computed by hand there). */
 #include <criterion/criterion.h>
-#include <errno.h>
-#include <fcntl.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -412,7 +409,7 @@ Test(corpus, file_that_cannot_be_read_is_rejected_with_the_system_reason)
 
 Test(corpus, fifo_is_read_like_a_file_and_its_errors_name_the_line)
 {
-    /* A FIFO is accepted (brdffit.h): a child writes a BRDF file with a bad
+    /* A FIFO is accepted (brdffit.h): a shell writes a BRDF file with a bad
      * value on line 2 into it while brdffit reads. */
     char data[DATA_LEN];
     char path[PATH_LEN];
@@ -426,9 +423,12 @@ Test(corpus, fifo_is_read_like_a_file_and_its_errors_name_the_line)
     writer = fork();
     cr_assert_geq(writer, 0);
     if (writer == 0) {
-        int fd = open(path, O_WRONLY);
-        ssize_t w = fd < 0 ? -1 : write(fd, text, sizeof text - 1);
-        _exit(w == (ssize_t)(sizeof text - 1) ? 0 : 1);
+        /* A fresh program rather than this process's fork: a fork of the
+         * test would carry Criterion's state, which valgrind reports as
+         * leaked when the fork exits. */
+        execl("/bin/sh", "sh", "-c", "printf '%s' \"$1\" > \"$0\"", path,
+              text, (char *)NULL);
+        _exit(127);
     }
     snprintf(message, sizeof message,
              "%s:2: field 3 (value 2): not a decimal number: \"x\"", path);
