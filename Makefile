@@ -8,6 +8,8 @@
 #               baseline runs when /usr/bin/python3 has numpy)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
+#   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
+#   make valgrind  run the test suite under valgrind (no leak, no error)
 
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
@@ -15,15 +17,18 @@ REFERENCE ?= $(SHARED)/reference
 OUT      ?= out
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
+FUZZ_SECONDS ?= 60
+FUZZ_MAX_LEN ?= 4096
 
 BUILD      = build
 BUILD_ASAN = build-asan
+BUILD_FUZZ = build-fuzz
 CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
 .PHONY: all deps build run rank test test-plain test-asan asan bench install \
-        format tidy clean screenshot
+        format tidy clean screenshot fuzz fuzz-build valgrind
 
 all: build
 
@@ -60,6 +65,23 @@ test-asan: asan
 screenshot: run
 	scripts/screenshot.sh "$(OUT)/report.html" "$(OUT)/report-screenshot.png"
 
+# libFuzzer targets (fuzz/): clang, ASan+UBSan, seeds from the real files.
+fuzz-build:
+	@scripts/install-deps.sh fuzz
+	@CC=clang $(CONFIGURE) -B $(BUILD_FUZZ) -DBF_FUZZ=ON \
+	    -DBF_BUILD_TESTS=OFF -DBF_BUILD_CLI=OFF \
+	    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	@cmake --build $(BUILD_FUZZ) -j $(JOBS)
+
+fuzz: fuzz-build
+	fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS) "$(CURET)" "$(REFERENCE)" \
+	    $(FUZZ_MAX_LEN)
+
+# The plain build's test suite under valgrind (tests/valgrind.sh).
+valgrind: build
+	@scripts/install-deps.sh valgrind
+	tests/valgrind.sh $(BUILD)
+
 bench: build
 	@scripts/install-deps.sh bench
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
@@ -70,10 +92,10 @@ install: build
 
 format:
 	clang-format -i include/*.h src/*.[ch] src/*/*.[ch] cli/*.[ch] \
-	    tests/*.[ch] tests/*/*.[ch] bench/*.c
+	    tests/*.[ch] tests/*/*.[ch] bench/*.c fuzz/*.[ch]
 
 tidy: build
 	clang-tidy -p $(BUILD) src/*.c src/*/*.c cli/*.c
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN)
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ)

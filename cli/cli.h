@@ -7,11 +7,17 @@
 
 #include "brdffit.h"
 
-/* Exit statuses (documented in README.md, --help and brdffit.1); values
- * follow BSD sysexits.h. */
+/* Exit statuses (documented in README.md, --help and brdffit.1); 64-74
+ * follow BSD sysexits.h. Command-line errors get one code per kind (61-64)
+ * so scripts can tell a typo from a bad value. */
 enum {
     BF_EXIT_OK = 0,        /* success */
-    BF_EXIT_USAGE = 64,    /* bad command line: unknown option, bad value */
+    BF_EXIT_NOVALUE = 61,  /* missing argument: no command, or an option
+                              without its value */
+    BF_EXIT_CONFLICT = 62, /* options that cannot be combined */
+    BF_EXIT_BADVALUE = 63, /* malformed or out-of-range option value */
+    BF_EXIT_USAGE = 64,    /* unknown command or option, unexpected
+                              argument */
     BF_EXIT_DATAERR = 65,  /* malformed or unusable input data */
     BF_EXIT_NOINPUT = 66,  /* an input file cannot be opened */
     BF_EXIT_SOFTWARE = 70, /* internal error (a bug: please report it) */
@@ -28,7 +34,16 @@ void bf_cli_err(const char *fmt, ...)
 #endif
     ;
 
-/* Prints a usage error and the hint to run --help; returns BF_EXIT_USAGE. */
+/* Prints a one-line usage error and the hint to run --help (cmd is the
+ * subcommand followed by a space, e.g. "compare ", or NULL); returns
+ * status, one of BF_EXIT_NOVALUE, _CONFLICT, _BADVALUE, _USAGE. */
+int bf_cli_usage_fail(int status, const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* bf_cli_usage_fail with BF_EXIT_USAGE (unknown option or argument). */
 int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
@@ -73,6 +88,11 @@ typedef struct {
     char path[4096];
     char tmp[4096];
 } bf_out;
+
+/* Checks, before any work, that folder dir exists and is writable, or that
+ * it can be created (tried with mkdir and removed again: permission bits do
+ * not stop root). Leaves nothing behind. Returns 0 or BF_EXIT_CANTCREAT after printing the error. */
+int bf_cli_check_outdir(const char *dir);
 
 /* Creates folder dir if missing (one level). Returns 0 or an exit status
  * after printing the error. */

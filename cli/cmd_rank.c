@@ -63,7 +63,7 @@ static int handle(int val, const char *arg, void *ctx)
             return 0;
         }
     }
-    return bf_cli_usage_error("rank ", "--criterion: '%s' is not aic, bic "
+    return bf_cli_usage_fail(BF_EXIT_BADVALUE, "rank ", "--criterion: '%s' is not aic, bic "
                               "or cv", arg);
 }
 
@@ -299,8 +299,9 @@ int bf_cmd_rank(int argc, char **argv)
     if (!st.opts.fit_given) {
         st.opts.exact = 1;
     }
+    st.opts.stats = 1; /* the ranking needs AIC, BIC and CV */
     if (crit == CRIT_CV && st.opts.folds < 2) {
-        return bf_cli_usage_error("rank ", "--criterion cv needs --folds "
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, "rank ", "--criterion cv needs --folds "
                                   ">= 2");
     }
     rc = bf_cli_study_prepare(&st);

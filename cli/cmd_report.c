@@ -120,7 +120,7 @@ static int handle(int val, const char *arg, void *ctx)
     switch (val) {
     case O_FORMAT:
         if (parse_formats(arg, &o->formats) != 0) {
-            return bf_cli_usage_error("report ", "--format: '%s' is not a "
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, "report ", "--format: '%s' is not a "
                                       "list of png, svg, pdf", arg);
         }
         return 0;
@@ -128,7 +128,7 @@ static int handle(int val, const char *arg, void *ctx)
     case O_PER_SAMPLE: o->per_sample = 1; return 0;
     case O_INCIDENCE:
         if (parse_incidence(arg, o) != 0) {
-            return bf_cli_usage_error("report ", "--incidence: '%s' is not a "
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, "report ", "--incidence: '%s' is not a "
                                       "list of 1 to %d angles in [0, %g] "
                                       "degrees",
                                       arg, BF_FIG_MAX_INCIDENCE,

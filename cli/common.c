@@ -23,16 +23,33 @@ void bf_cli_err(const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+static int usage_v(int status, const char *cmd, const char *fmt, va_list ap)
+{
+    fprintf(stderr, "%s: ", bf_cli_prog);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\nTry '%s %s--help' for more information.\n",
+            bf_cli_prog, cmd != NULL ? cmd : "");
+    return status;
+}
+
+int bf_cli_usage_fail(int status, const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    int rc;
+    va_start(ap, fmt);
+    rc = usage_v(status, cmd, fmt, ap);
+    va_end(ap);
+    return rc;
+}
+
 int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "%s: ", bf_cli_prog);
+    int rc;
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    rc = usage_v(BF_EXIT_USAGE, cmd, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\nTry '%s %s--help' for more information.\n",
-            bf_cli_prog, cmd != NULL ? cmd : "");
-    return BF_EXIT_USAGE;
+    return rc;
 }
 
 int bf_cli_load_error(const bf_error *err)
@@ -213,6 +230,65 @@ void bf_cli_free_inputs(bf_cli_inputs *in)
 }
 
 /* ==== atomic output files =============================================== */
+
+int bf_cli_check_outdir(const char *dir)
+{
+    struct stat st;
+    char parent[4096];
+    char *slash;
+    if (dir[0] == '\0') {
+        bf_cli_err("--out: empty folder name");
+        return BF_EXIT_CANTCREAT;
+    }
+    if (stat(dir, &st) == 0) {
+        if (!S_ISDIR(st.st_mode)) {
+            bf_cli_err("%s: output path exists and is not a folder", dir);
+            return BF_EXIT_CANTCREAT;
+        }
+        /* access() also reports EROFS, which root is not exempt from. */
+        if (access(dir, W_OK | X_OK) != 0) {
+            bf_cli_err("%s: output folder is not writable: %s", dir,
+                       strerror(errno));
+            return BF_EXIT_CANTCREAT;
+        }
+        return BF_EXIT_OK;
+    }
+    if (errno != ENOENT) {
+        bf_cli_err("%s: cannot use as output folder: %s", dir,
+                   strerror(errno));
+        return BF_EXIT_CANTCREAT;
+    }
+    /* dir is missing: bf_cli_make_outdir creates one level, so its parent
+     * must be a writable folder. */
+    snprintf(parent, sizeof parent, "%s", dir);
+    slash = strrchr(parent, '/');
+    while (slash != NULL && slash > parent && slash[1] == '\0') {
+        *slash = '\0'; /* "out/" names the folder out */
+        slash = strrchr(parent, '/');
+    }
+    if (slash == NULL) {
+        snprintf(parent, sizeof parent, ".");
+    } else if (slash == parent) {
+        parent[1] = '\0'; /* "/out": the parent is the root */
+    } else {
+        *slash = '\0';
+    }
+    if (stat(parent, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        bf_cli_err("%s: cannot create output folder: parent folder %s does "
+                   "not exist",
+                   dir, parent);
+        return BF_EXIT_CANTCREAT;
+    }
+    /* Permission bits do not stop root, and some folders refuse new
+     * entries whatever the user (/proc): try it, and take it back. */
+    if (mkdir(dir, 0777) != 0) {
+        bf_cli_err("%s: cannot create output folder: %s", dir,
+                   strerror(errno));
+        return BF_EXIT_CANTCREAT;
+    }
+    (void)rmdir(dir);
+    return BF_EXIT_OK;
+}
 
 int bf_cli_make_outdir(const char *dir)
 {

@@ -74,7 +74,7 @@ static int apply_ranges(const char *hint, const bf_cli_opts *o,
          * 100 intervals */
         step = pj->grid_n > 0 ? pj->grid_step : (hi - lo) / 100.0;
         if (bf_model_variant_fit(v, name, lo, hi, step) != BF_OK) {
-            return bf_cli_usage_error(
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, 
                 hint, "--range %s: %s's %s must stay in [%g, %g] with "
                 "at most %d grid points (step %g)",
                 o->range[r], v->type.name, name, pj->min, pj->max,
@@ -127,7 +127,7 @@ int bf_cli_exact_models(bf_cli_study *st)
     }
     for (r = 0; r < o->n_range; r++) {
         if (!((used >> r) & 1u)) {
-            return bf_cli_usage_error(hint, "--range %s: no selected "
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--range %s: no selected "
                                       "model has that parameter",
                                       o->range[r]);
         }
@@ -178,6 +178,11 @@ void bf_cli_exact_describe(const bf_cli_study *st, FILE *fp)
     }
     fprintf(fp, "Objective: %s (doc/methods.md §1)\n",
             bf_objective_name(o->objective));
+    if (st->stats == NULL) {
+        fprintf(fp, "Analysis: none (add --stats for refined optima, "
+                    "intervals, AIC, BIC and CV)\n");
+        return;
+    }
     fprintf(fp, "Intervals: 95%% profile, n ln(S/S_min) <= 3.841");
     if (o->n_boot >= 2) {
         fprintf(fp, "; percentile bootstrap, %zu resamples, seed %lu",

@@ -23,9 +23,11 @@ static void usage(FILE *fp)
 "  -h, --help     show this help ('brdffit COMMAND --help' for a command)\n"
 "  -V, --version  show the version\n"
 "\n"
-"Exit status: 0 success, 64 usage error, 65 bad input data, 66 input file\n"
-"not found, 70 internal error, 73 cannot create output, 74 write error.\n"
-"See brdffit(1) and README.md.\n",
+"Exit status: 0 success; 61 missing argument (no command, option without\n"
+"its value); 62 conflicting options; 63 malformed or out-of-range option\n"
+"value; 64 unknown command or option, unexpected argument; 65 bad input\n"
+"data; 66 input file not found; 70 internal error; 73 cannot create\n"
+"output; 74 write error. See brdffit(1) and README.md.\n",
         fp);
 }
 
@@ -34,8 +36,7 @@ int main(int argc, char **argv)
     const char *cmd;
     gsl_set_error_handler_off(); /* every GSL status is checked (STYLE §4) */
     if (argc < 2) {
-        usage(stderr);
-        return BF_EXIT_USAGE;
+        return bf_cli_usage_fail(BF_EXIT_NOVALUE, NULL, "no command given");
     }
     cmd = argv[1];
     if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 ||

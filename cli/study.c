@@ -46,6 +46,10 @@ void bf_cli_opts_usage(FILE *fp)
 "                    exact unless max); see doc/methods.md\n"
 "  --range P=LO:HI   search range of parameter P, e.g. m=0.01:20 (grid\n"
 "                    keeps its step; repeatable)\n"
+"  --stats           with --fit paper, also the analysis beyond the paper:\n"
+"                    refined optima, 95%% profile intervals, AIC, BIC, CV\n"
+"                    (the analysis columns of fits.csv; always on with\n"
+"                    --fit exact, --bootstrap and in rank)\n"
 "  --bootstrap N     also a percentile bootstrap interval, N resamples\n"
 "                    (default 0: profile intervals only)\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
@@ -66,7 +70,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
 {
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
-           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS };
+           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -84,6 +88,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
         {"folds", required_argument, NULL, O_FOLDS},
         {"seed", required_argument, NULL, O_SEED},
+        {"stats", no_argument, NULL, O_STATS},
         {"threads", required_argument, NULL, O_THREADS},
         {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'}};
@@ -132,7 +137,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         case O_N:
             if (bf_cli_parse_double(optarg, &o->n) != 0 || o->n <= 1.0 ||
                 o->n > 10.0) {
-                return bf_cli_usage_error(hint, "--n: '%s' is not a "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--n: '%s' is not a "
                                           "refractive index in (1, 10]",
                                           optarg);
             }
@@ -142,7 +148,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             double t = -1.0;
             if (bf_cli_parse_double(optarg, &t) != 0 || t < 0.0 ||
                 t > BF_CLI_MAX_THREADS || t != floor(t)) {
-                return bf_cli_usage_error(hint, "--threads: '%s' is not a "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--threads: '%s' is not a "
                                           "whole number in [0, %d]",
                                           optarg, BF_CLI_MAX_THREADS);
             }
@@ -152,14 +158,16 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         case O_MAXTHETA:
             if (bf_cli_parse_double(optarg, &o->max_theta) != 0 ||
                 o->max_theta <= 0.0 || o->max_theta > 90.0) {
-                return bf_cli_usage_error(hint, "--max-theta: '%s' is "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--max-theta: '%s' is "
                                           "not an angle in (0, 90] degrees",
                                           optarg);
             }
             break;
+        case O_STATS: o->stats = 1; break;
         case O_FIT:
             if (strcmp(optarg, "paper") != 0 && strcmp(optarg, "exact") != 0) {
-                return bf_cli_usage_error(hint, "--fit: '%s' is not 'paper' "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--fit: '%s' is not 'paper' "
                                           "or 'exact'", optarg);
             }
             o->exact = strcmp(optarg, "exact") == 0;
@@ -167,7 +175,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             break;
         case O_OBJECTIVE:
             if (bf_objective_find(optarg, &o->objective) != BF_OK) {
-                return bf_cli_usage_error(hint, "--objective: '%s' is not "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--objective: '%s' is not "
                                           "max, scale, cosw or log", optarg);
             }
             break;
@@ -177,12 +185,12 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             double lo;
             double hi;
             if (o->n_range == BF_CLI_MAX_RANGES) {
-                return bf_cli_usage_error(hint, "--range: at most %d",
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--range: at most %d",
                                           BF_CLI_MAX_RANGES);
             }
             if (bf_cli_parse_range(optarg, name, sizeof name, &lo, &hi, msg,
                                    sizeof msg) != 0) {
-                return bf_cli_usage_error(hint, "--range: %s", msg);
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--range: %s", msg);
             }
             o->range[o->n_range++] = optarg;
             break;
@@ -199,7 +207,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
                           count != 1 || strchr(optarg, ',') != NULL ||
                           strchr(optarg, '-') != NULL)) {
                 free(list);
-                return bf_cli_usage_error(hint, "%s: '%s' is not a "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "%s: '%s' is not a "
                                           "non-negative integer",
                                           argv[optind - 2], optarg);
             }
@@ -214,7 +222,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             break;
         }
         case ':':
-            return bf_cli_usage_error(hint, "option '%s' needs a value",
+            return bf_cli_usage_fail(BF_EXIT_NOVALUE, hint,
+                                     "option '%s' needs a value",
                                       argv[optind - 1]);
         case '?':
             return bf_cli_usage_error(hint, "unknown option '%s'",
@@ -234,16 +243,16 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
                                   argv[optind]);
     }
     if (o->n_given && o->n_file != NULL) {
-        return bf_cli_usage_error(hint,
-                                  "--n and --n-file cannot be combined");
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
+                                 "--n and --n-file cannot be combined");
     }
     if (!o->exact && o->objective != BF_OBJ_MAX) {
-        return bf_cli_usage_error(hint, "--objective %s needs --fit exact "
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint, "--objective %s needs --fit exact "
                                   "(the paper's protocol minimises max)",
                                   bf_objective_name(o->objective));
     }
     if (o->n_boot == 1 || o->folds == 1) {
-        return bf_cli_usage_error(hint, "--bootstrap and --folds need at "
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--bootstrap and --folds need at "
                                   "least 2 (or 0 for none)");
     }
     return 0;
@@ -270,13 +279,15 @@ static int parse_samples(const char *hint, const bf_cli_opts *o, int **out, size
         return BF_EXIT_OK;
     }
     if (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg) != 0) {
-        return bf_cli_usage_error(hint, "--samples: %s", msg);
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--samples: %s",
+                                 msg);
     }
     return BF_EXIT_OK;
 }
 
 /* Fills in 'all' and checks that every listed sample is in the file. */
-static int resolve_samples(const bf_brdf *brdf, int **samples, size_t *n)
+static int resolve_samples(const char *hint, const bf_brdf *brdf,
+                           int **samples, size_t *n)
 {
     size_t i;
     if (*samples == NULL) {
@@ -291,10 +302,10 @@ static int resolve_samples(const bf_brdf *brdf, int **samples, size_t *n)
     }
     for (i = 0; i < *n; i++) {
         if (bf_brdf_find(brdf, (*samples)[i]) < 0) {
-            bf_cli_err("--samples: sample %d is not in the BRDF file "
-                       "(it has samples 1-%zu)",
-                       (*samples)[i], bf_brdf_count(brdf));
-            return BF_EXIT_USAGE;
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "--samples: sample %d is not in the "
+                                     "BRDF file (it has samples 1-%zu)",
+                                     (*samples)[i], bf_brdf_count(brdf));
         }
     }
     return BF_EXIT_OK;
@@ -328,32 +339,37 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             const bf_model_type *t;
             size_t j;
             if (len == 0 || len >= sizeof name) {
-                return bf_cli_usage_error(hint, "--models: bad list "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: bad list "
                                           "'%s'", o->models);
             }
             memcpy(name, p, len);
             name[len] = '\0';
             t = bf_model_find(name);
             if (t == NULL) {
-                return bf_cli_usage_error(hint, "--models: unknown "
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: unknown "
                                           "model '%s' (see 'brdffit models')",
                                           name);
             }
             for (j = 0; j < *n; j++) {
                 if (list[j] == t) {
-                    return bf_cli_usage_error(hint, "--models: '%s' "
+                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                             "--models: '%s' "
                                               "listed twice", name);
                 }
             }
             if (*n + 1 >= cap) {
-                return bf_cli_usage_error(hint, "--models: too many");
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: too many");
             }
             list[(*n)++] = t;
             p += len;
             if (*p == ',') {
                 p++;
                 if (*p == '\0') {
-                    return bf_cli_usage_error(hint, "--models: trailing "
+                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                             "--models: trailing "
                                               "comma");
                 }
             }
@@ -379,15 +395,17 @@ static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table
     if (o->exclude != NULL) {
         if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
             0) {
-            return bf_cli_usage_error(hint, "--exclude: %s", msg);
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "--exclude: %s", msg);
         }
         for (j = 0; j < n_ex; j++) {
             if ((size_t)ex[j] > size) {
-                bf_cli_err("--exclude: configuration %d does not exist "
-                           "(the table has %zu)",
-                           ex[j], size);
+                int bad = ex[j];
                 free(ex);
-                return BF_EXIT_USAGE;
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--exclude: configuration %d does "
+                                         "not exist (the table has %zu)",
+                                         bad, size);
             }
         }
     }
@@ -405,8 +423,9 @@ static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table
     *n = k;
     free(ex);
     if (k == 0) {
-        bf_cli_err("no configuration is left to fit after the exclusions");
-        return BF_EXIT_USAGE;
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                 "--exclude/--max-theta: no configuration "
+                                 "is left to fit");
     }
     return BF_EXIT_OK;
 }
@@ -431,12 +450,27 @@ int bf_cli_study_prepare(bf_cli_study *st)
     if (rc != BF_EXIT_OK) {
         return rc;
     }
+    if (o->exclude != NULL) { /* syntax now; range once the table is read */
+        int *ex = NULL;
+        size_t n_ex = 0;
+        char msg[256];
+        if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
+            0) {
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
+                                     msg);
+        }
+        free(ex);
+    }
+    rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
+    if (rc != BF_EXIT_OK) {
+        return rc;
+    }
     rc = bf_cli_load_inputs(o->data_dir, o->brdf_file, o->n_file, o->on_file,
                             &st->in);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = resolve_samples(st->in.brdf, &st->samples, &st->n_samples);
+    rc = resolve_samples(hint, st->in.brdf, &st->samples, &st->n_samples);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
@@ -472,6 +506,33 @@ int bf_cli_study_prepare(bf_cli_study *st)
     return BF_EXIT_OK;
 }
 
+/* A row whose model could not be normalised on the used configurations
+ * (BF_EDOM: undefined at one of them, e.g. BK at theta_i = 90 deg, SPEC
+ * §3.3, or zero at all of them, SPEC §2) is an error, not a gap in the
+ * tables; a missing per-sample input (BF_ENOTFOUND) is a noted gap. */
+static int check_rows(const bf_cli_study *st)
+{
+    size_t i;
+    for (i = 0; i < st->n_samples * st->n_models; i++) {
+        const bf_study_row *r = &st->rows[i];
+        if (r->status == BF_OK || r->status == BF_ENOTFOUND) {
+            continue;
+        }
+        if (r->status == BF_ENOMEM) {
+            bf_cli_err("out of memory");
+            return BF_EXIT_SOFTWARE;
+        }
+        bf_cli_err("%s cannot be fitted to sample %d: the model is "
+                   "undefined at some of the K = %zu used configurations or "
+                   "zero at all of them, so it cannot be normalised (SPEC "
+                   "§2); leave configurations out with --exclude or "
+                   "--max-theta",
+                   r->type->name, r->sample, st->n_sel);
+        return BF_EXIT_DATAERR;
+    }
+    return BF_EXIT_OK;
+}
+
 int bf_cli_study_run(bf_cli_study *st)
 {
     bf_error err;
@@ -480,7 +541,17 @@ int bf_cli_study_run(bf_cli_study *st)
         bf_cli_err("%s", err.msg);
         return err.code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
     }
-    return bf_cli_exact_run(st); /* with --fit exact, the study itself */
+    /* The analysis beyond the paper (refinement, intervals, AIC, BIC, CV;
+     * with --fit exact also the study itself) runs with --fit exact,
+     * --stats or --bootstrap: the paper's protocol alone stays the fast
+     * default of compare and report. */
+    if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0) {
+        int rc = bf_cli_exact_run(st);
+        if (rc != BF_EXIT_OK) {
+            return rc;
+        }
+    }
+    return check_rows(st);
 }
 
 void bf_cli_study_free(bf_cli_study *st)

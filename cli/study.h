@@ -37,6 +37,7 @@ typedef struct {
     unsigned long seed;       /* --seed S */
     int samples_given;        /* --samples was on the command line */
     int fit_given;            /* --fit was on the command line */
+    int stats;                /* --stats: the analysis with --fit paper */
     int threads;      /* --threads: 1 by default, 0 = one per core */
 } bf_cli_opts;
 

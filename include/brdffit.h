@@ -190,11 +190,12 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
  * its domain (BF_EINVAL when out of range or not finite) and every geometry
  * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
  * Returns BF_EDOM when the model is undefined at a configuration, with NaN
- * there and the other values filled:
- *   - BK-G, BK-E at theta_i = pi/2 (F_BK diverges, SPEC §3.3);
- *   - VH-G, VH-E (and FC with n = 1) at the single corner theta_i = theta_s
- *     = pi/2, phi_s = 0, where the value has no limit (it is 0 along the
- *     grazing boundary but 1/(4 m^2 cos theta_i) along the specular path).
+ * there and the other values filled: BK-G, BK-E at theta_i = pi/2 (F_BK
+ * diverges, SPEC §3.3). Every other model is finite and >= 0 on the whole
+ * closed hemisphere. VH-G, VH-E (and FC with n = 1) return 0, SPEC §3.3's
+ * value, at the single corner theta_i = theta_s = pi/2, phi_s = 0, where
+ * the value has no limit (it is 0 along the grazing boundary but
+ * 1/(4 m^2 cos theta_i) along the specular path).
  * A zenith angle equal to the double nearest pi/2 (asin(1)) counts as
  * exactly grazing (cos = 0), so the grazing limits are taken exactly. */
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,

@@ -4,15 +4,23 @@
 #
 #   scripts/install-deps.sh          build + test dependencies
 #   scripts/install-deps.sh bench    also the benchmark's numpy baseline
+#   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
+#   scripts/install-deps.sh valgrind also valgrind (make valgrind)
 set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
 # figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font).
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
 plplot-driver-cairo fonts-dejavu-core"
-if [ "${1:-}" = "bench" ]; then
-    PACKAGES="$PACKAGES python3-numpy" # bench/numpy_baseline.py only
-fi
+for group in "$@"; do
+    case $group in
+    bench) PACKAGES="$PACKAGES python3-numpy" ;; # bench/numpy_baseline.py
+    fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
+    valgrind) PACKAGES="$PACKAGES valgrind" ;;
+    *) echo "install-deps: unknown group '$group' (bench, fuzz, valgrind)" >&2
+       exit 2 ;;
+    esac
+done
 
 missing=""
 for p in $PACKAGES; do

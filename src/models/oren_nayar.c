@@ -27,6 +27,17 @@
  * 0; returning 0 exactly at theta_i = pi/2 is SPEC §5's convention.)
  * Where theta_i or theta_s is 0 (azimuth undefined) beta = 0 removes every
  * term that depends on phi_s, so the value is finite and phi-independent.
+ *
+ * Departure from SPEC §5: the value is clamped at 0. For very rough
+ * surfaces the qualitative model goes slightly negative in the forward
+ * grazing corner, where cos dphi C2 tan(beta) < 0 outweighs C1 (e.g. rho
+ * 0.05, sigma 1, theta_i 1.43117, theta_s pi/2, phi_s 0 gives -1.7e-4). A
+ * radiance cannot be negative; the term is Oren & Nayar's fit to their
+ * numerical model, not physics, and their exact model is non-negative, so
+ * 0 is the physically meaningful value there. The clamp never acts on the
+ * study: CURET's zeniths stop at 1.464 and its samples' sigma at 0.978,
+ * where the formula is positive, so Tables 2 and 3 are unchanged (checked
+ * by test_oren_nayar and test_reproduction).
  */
 #include <math.h>
 
@@ -83,7 +94,8 @@ double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c)
          * (c->c1 + (t->cos_dphi * c2 * t->tan_beta)
             + ((1.0 - fabs(t->cos_dphi)) * c3 * t->tan_mean));
     l2 = c->l2_scale * t->ci * (1.0 - (t->cos_dphi * t->q2)); /* L2 */
-    return l1 + l2;                                          /* L, SPEC §5 */
+    /* L, SPEC §5, clamped at 0 (see the departure noted above) */
+    return fmax(0.0, l1 + l2);
 }
 
 /* The coefficients of SPEC §5 that depend on rho and sigma only. */

@@ -12,6 +12,9 @@
 #include "support.h"
 
 /* Exit statuses documented in README.md, --help and brdffit.1. */
+#define EXIT_NOVALUE 61
+#define EXIT_CONFLICT 62
+#define EXIT_BADVALUE 63
 #define EXIT_USAGE 64
 #define EXIT_DATAERR 65
 #define EXIT_NOINPUT 66
@@ -90,46 +93,87 @@ Test(cli, help_and_version_succeed_and_describe_the_tool)
     cr_assert(strstr(out, "--on-params") != NULL);
 }
 
-Test(cli, usage_errors_exit_64_with_a_one_line_reason_and_a_hint)
+Test(cli, each_kind_of_usage_error_has_its_code_a_one_line_reason_and_a_hint)
 {
     const char *err = NULL;
-    const char *cases[][4] = {
-        {"compare", "--bogus", NULL, NULL},
-        {"compare", "--samples", NULL, NULL},
-        {"compare", "--n", "0.5", NULL},
-        {"compare", "--n", "abc", NULL},
-        {"compare", "--n", "1.5", "--n-file"},
-        {"compare", "--models", "XX", NULL},
-        {"compare", "--samples", "3-1", NULL},
-        {"compare", "--max-theta", "120", NULL},
-        {"compare", "--threads", "-1", NULL},
-        {"compare", "--threads", "1.5", NULL},
-        {"nosuchcommand", NULL, NULL, NULL},
+    const char *out = NULL;
+    const char *cases[][5] = {
+        {"compare", "--bogus", NULL, NULL, NULL},
+        {"compare", "extra", NULL, NULL, NULL},
+        {"models", "extra", NULL, NULL, NULL},
+        {"nosuchcommand", NULL, NULL, NULL, NULL},
+        {"compare", "--samples", NULL, NULL, NULL},
+        {"compare", "--n", "1.5", "--n-file", NULL},
+        {NULL, NULL, NULL, NULL, NULL},
+        {"compare", "--n", "1.5", "--n-file", "x.tsv"},
+        {"compare", "--n", "0.5", NULL, NULL},
+        {"compare", "--n", "abc", NULL, NULL},
+        {"compare", "--n", "1e999", NULL, NULL},
+        {"compare", "--models", "XX", NULL, NULL},
+        {"compare", "--models", "ON,ON", NULL, NULL},
+        {"compare", "--samples", "3-1", NULL, NULL},
+        {"compare", "--samples", "0", NULL, NULL},
+        {"compare", "--exclude", "1,", NULL, NULL},
+        {"compare", "--max-theta", "120", NULL, NULL},
+        {"compare", "--max-theta", "nan", NULL, NULL},
+        {"compare", "--threads", "-1", NULL, NULL},
+        {"compare", "--threads", "1.5", NULL, NULL},
+    };
+    static const int code[] = {
+        EXIT_USAGE,    EXIT_USAGE,    EXIT_USAGE,    EXIT_USAGE,
+        EXIT_NOVALUE,  EXIT_NOVALUE,  EXIT_NOVALUE,  EXIT_CONFLICT,
+        EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
+        EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
+        EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
     };
     static const char *const expect[] = {
-        "unknown option '--bogus'", "needs a value", "refractive index",
-        "refractive index",         "needs a value", "unknown model 'XX'",
-        "bad range",                "--max-theta",   "--threads",
-        "--threads",                "unknown command",
+        "unknown option '--bogus'",
+        "unexpected argument 'extra'",
+        "unexpected argument 'extra'",
+        "unknown command 'nosuchcommand'",
+        "option '--samples' needs a value",
+        "option '--n-file' needs a value",
+        "no command given",
+        "--n and --n-file cannot be combined",
+        "--n: '0.5' is not a refractive index in (1, 10]",
+        "--n: 'abc' is not a refractive index",
+        "--n: '1e999' is not a refractive index",
+        "unknown model 'XX'",
+        "'ON' listed twice",
+        "bad range",
+        "expected a positive number",
+        "trailing comma",
+        "--max-theta: '120' is not an angle in (0, 90] degrees",
+        "--max-theta: 'nan' is not an angle",
+        "--threads",
+        "--threads",
     };
     size_t i;
+    cr_assert_eq(sizeof cases / sizeof *cases, sizeof code / sizeof *code);
+    cr_assert_eq(sizeof cases / sizeof *cases,
+                 sizeof expect / sizeof *expect);
     for (i = 0; i < sizeof cases / sizeof *cases; i++) {
         const char *argv[6] = {NULL};
+        const char *nl;
+        const char *why;
         memcpy(argv, cases[i], sizeof cases[i]);
-        cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE,
-                     "case %zu", i);
-        cr_assert(strstr(err, expect[i]) != NULL, "case %zu: %s", i, err);
-        cr_assert(strstr(err, "--help") != NULL, "case %zu: no hint: %s", i,
-                  err);
+        cr_expect_eq(bf_test_run_cli(argv, &out, &err), code[i],
+                     "case %zu (%s)", i, expect[i]);
+        cr_expect_str_empty(out, "case %zu: stdout not empty", i);
+        /* one line naming the problem, then the hint to run --help */
+        nl = strchr(err, '\n');
+        cr_assert_not_null(nl, "case %zu: %s", i, err);
+        why = strstr(err, expect[i]);
+        cr_expect(strncmp(err, "brdffit: ", 9) == 0, "case %zu: %s", i, err);
+        cr_expect(why != NULL && why < nl,
+                  "case %zu: reason not on the first line: %s", i, err);
+        cr_expect(strncmp(nl + 1, "Try 'brdffit ", 13) == 0 &&
+                      strstr(nl + 1, "--help' for more information.\n") !=
+                          NULL,
+                  "case %zu: no hint: %s", i, err);
+        cr_expect(strchr(nl + 1, '\n')[1] == '\0',
+                  "case %zu: more than two lines: %s", i, err);
     }
-}
-
-Test(cli, conflicting_n_and_n_file_are_rejected)
-{
-    const char *err = NULL;
-    const char *argv[] = {"compare", "--n", "1.5", "--n-file", "x.tsv", NULL};
-    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE);
-    cr_assert(strstr(err, "cannot be combined") != NULL, "%s", err);
 }
 
 Test(cli, missing_data_folder_exits_66)
@@ -182,21 +226,25 @@ Test(cli, sample_with_no_positive_radiance_is_a_data_error)
 {
     const char *data = tiny_data(NULL, "1 0.30 0.20 0.10\n"
                                        "2 0.00 -0.01 0.00\n");
+    char out_dir[300];
     const char *err = NULL;
     const char *argv[] = {"compare", "--data", data, "--samples", "2",
-                          "--models", "LAMBERT", "--out", "/nonexistent/x",
-                          NULL};
+                          "--models", "LAMBERT", "--out", out_dir, NULL};
+    snprintf(out_dir, sizeof out_dir, "%s/out", data);
     cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_DATAERR);
-    cr_assert(strstr(err, "sample 2") != NULL, "%s", err);
+    cr_assert(strstr(err, "sample 2: the measured radiance has no positive "
+                          "maximum") != NULL,
+              "%s", err);
+    cr_assert(!exists(data, "out"), "no output folder on failure");
 }
 
-Test(cli, unknown_sample_is_a_usage_error)
+Test(cli, unknown_sample_is_an_out_of_range_value)
 {
     const char *data = tiny_data(NULL, NULL);
     const char *err = NULL;
     const char *argv[] = {"compare", "--data", data, "--samples", "3",
                           "--models", "LAMBERT", NULL};
-    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_USAGE);
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_BADVALUE);
     cr_assert(strstr(err, "sample 3 is not in the BRDF file") != NULL, "%s",
               err);
 }
@@ -230,7 +278,7 @@ Test(cli, failed_run_keeps_the_previous_outputs_untouched)
     snprintf(csv_path, sizeof csv_path, "%s/fits.csv", out_dir);
     cr_assert_eq(bf_test_run_cli(ok, NULL, NULL), 0);
     before = strdup(bf_test_slurp(csv_path, NULL));
-    cr_assert_eq(bf_test_run_cli(bad, NULL, NULL), EXIT_USAGE);
+    cr_assert_eq(bf_test_run_cli(bad, NULL, NULL), EXIT_BADVALUE);
     after = bf_test_slurp(csv_path, NULL);
     cr_assert_str_eq(after, before);
     cr_assert_eq(count_entries(out_dir), 3u);
@@ -323,4 +371,48 @@ Test(cli, thread_count_does_not_change_the_outputs)
                          threads[i]);
         }
     }
+}
+
+Test(cli, unusable_out_folders_exit_73_before_any_work_and_create_nothing)
+{
+    /* --out is checked before the inputs are read: a bad --data is not
+     * reported, the output problem is. Cases: missing parent folder, a file
+     * where a folder is expected (as --out and as its parent), and a folder
+     * that cannot be written. Tests run as root here, for whom permission
+     * bits grant everything (access(W_OK) is true), so the read-only case
+     * uses /proc, where no file can be created whatever the user; a
+     * non-root run also checks a mode-0555 folder. */
+    const char *dir = bf_test_tmpdir();
+    char file[300];
+    char under_file[320];
+    char ro[300];
+    char ro_out[320];
+    const char *err = NULL;
+    const char *targets[5];
+    size_t n = 0;
+    size_t i;
+    snprintf(file, sizeof file, "%s/plain", dir);
+    snprintf(under_file, sizeof under_file, "%s/plain/out", dir);
+    write_file(dir, "plain", "not a folder\n");
+    targets[n++] = "/nonexistent/deeper/out";
+    targets[n++] = file;
+    targets[n++] = under_file;
+    targets[n++] = "/proc/brdffit-out";
+    if (geteuid() != 0) {
+        snprintf(ro, sizeof ro, "%s/ro", dir);
+        snprintf(ro_out, sizeof ro_out, "%s/ro/out", dir);
+        cr_assert_eq(mkdir(ro, 0555), 0);
+        targets[n++] = ro_out;
+    }
+    for (i = 0; i < n; i++) {
+        const char *argv[] = {"compare", "--data", "/nonexistent/curet",
+                              "--out", targets[i], NULL};
+        cr_expect_eq(bf_test_run_cli(argv, NULL, &err), EXIT_CANTCREAT,
+                     "--out %s", targets[i]);
+        cr_expect(strstr(err, targets[i]) != NULL, "%s", err);
+        cr_expect(strstr(err, "/nonexistent/curet") == NULL,
+                  "inputs read before --out was checked: %s", err);
+        cr_expect(strchr(err, '\n')[1] == '\0', "one line: %s", err);
+    }
+    cr_assert_eq(count_entries(dir), n > 4 ? 2u : 1u, "nothing created");
 }

@@ -507,17 +507,18 @@ Test(table, fifo_path_is_read_like_a_file)
     pid = fork();
     cr_assert_geq(pid, 0);
     if (pid == 0) {
-        FILE *w = fopen(path, "w");
-        if (w != NULL) {
-            fputs(lf_text, w);
-            fclose(w);
-        }
-        _exit(w == NULL);
+        /* A fresh program, not a fork of the test: under valgrind a fork
+         * carries Criterion's buffers, reported as lost when it exits. */
+        execl("/bin/sh", "sh", "-c", "printf '%s' \"$1\" > \"$0\"", path,
+              lf_text, (char *)NULL);
+        _exit(127);
     }
     rc = bf_table_load(path, &t, &err);
     waitpid(pid, &status, 0);
     unlink(path);
     rmdir(dir);
+    cr_assert(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+              "the writer failed");
     cr_assert_eq(rc, BF_OK, "%s", err.msg);
     expect_same_as_lf(t);
     bf_table_free(t);

@@ -1,0 +1,64 @@
+#!/bin/sh
+# valgrind.sh: runs every test executable of a build folder under valgrind,
+# following the children (Criterion runs each test in a child process, and
+# the CLI tests exec build/brdffit; system programs the tests run, such as
+# sh and ls, are not followed). Any memory error or any leaked block
+# (definite, indirect or possible) fails the run with valgrind's report.
+#
+#   tests/valgrind.sh BUILD
+#
+# Left out (VALGRIND_SKIP, space-separated): whole executables by name, or
+# single tests as suite/test (Criterion globs). These are the sweeps and
+# full-data runs that repeat, tens of millions of times, code paths the
+# remaining tests already run under valgrind; at valgrind's ~50x slow-down
+# they would take most of an hour. ASan+UBSan runs all of them (make test).
+# Set VALGRIND_SKIP= to run everything.
+set -eu
+
+build=$1
+skip=${VALGRIND_SKIP-"test_model_sweep
+    grid/study_path_equals_plain_path_on_all_61_samples
+    bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
+    bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
+    bk/original_beckmann_peaks_at_specular_below_the_slope_threshold
+    oren_nayar/is_finite_and_non_negative_everywhere_for_every_rho_and_sigma
+    determinism/every_model_on_every_sample_gives_byte_identical_outputs"}
+
+status=0
+for exe in "$build"/tests/test_*; do
+    [ -x "$exe" ] || continue
+    name=$(basename "$exe")
+    filter=""
+    whole=0
+    for s in $skip; do
+        case $s in
+        */*) filter="$filter|$s" ;;
+        "$name") whole=1 ;;
+        esac
+    done
+    if [ $whole -eq 1 ]; then
+        echo "valgrind: $name skipped (VALGRIND_SKIP)"
+        continue
+    fi
+    log=$build/valgrind-$name.log
+    set -- "$exe" --jobs=1
+    [ -n "$filter" ] && set -- "$@" --filter="!(${filter#|})"
+    # A report in a Criterion child does not reach the parent's exit status
+    # (the child's error exit only marks nothing), so any valgrind line in
+    # the log ("==PID== ...", printed only for errors and leaks under -q)
+    # fails the run too.
+    rc=0
+    valgrind -q --trace-children=yes --error-exitcode=99 \
+        --trace-children-skip='/bin/*,/usr/bin/*' \
+        --leak-check=full --show-leak-kinds=definite,indirect,possible \
+        --errors-for-leak-kinds=definite,indirect,possible \
+        "$@" > "$log" 2>&1 || rc=$?
+    if [ $rc -eq 0 ] && ! grep -q '^==[0-9]*==' "$log"; then
+        echo "valgrind: $name ok ($(tail -n 1 "$log" | sed 's/.*Tested: \([0-9]*\).*/\1 tests/'))"
+    else
+        cat "$log" >&2
+        echo "valgrind: $name FAILED (log: $log)" >&2
+        status=1
+    fi
+done
+exit $status
