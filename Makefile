@@ -3,6 +3,7 @@
 #   make run    the main job: the full model comparison on the CURET data,
 #               with every figure and out/report.html
 #   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
+#   make report-all  the report for all 61 samples and every model
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the speed benchmark (never part of the tests; the numpy
 #               baseline runs when /usr/bin/python3 has numpy)
@@ -27,7 +28,7 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
-.PHONY: all deps build run rank test test-plain test-asan asan bench install \
+.PHONY: all deps build run rank report-all test test-plain test-asan asan bench install \
         format tidy clean screenshot fuzz fuzz-build valgrind
 
 all: build
@@ -40,12 +41,19 @@ build: deps
 	@cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/brdffit report --data "$(CURET)" --samples paper \
+	$(BUILD)/brdffit report --data "$(CURET)" --samples paper --stats \
 	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
 
 rank: build
 	$(BUILD)/brdffit rank --data "$(CURET)" \
 	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+
+# All 61 CURET samples, every model, with the analysis (ON where CURET's
+# parameters are given): tables, ranking section and figures.
+report-all: build
+	$(BUILD)/brdffit report --data "$(CURET)" --samples all --models all \
+	    --stats --on-params "$(REFERENCE)/oren_nayar_params.tsv" \
+	    --out "$(OUT)-all"
 
 test: test-plain test-asan
 

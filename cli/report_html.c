@@ -2,6 +2,7 @@
  * conventions (SPEC §1.4, §2, §4, §7) and provenance in one page that opens
  * from disk. */
 #include "report_html.h"
+#include "texttable.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -244,6 +245,57 @@ static void figures_of(FILE *fp, const bf_fig_set *figs, bf_fig_kind kind,
     }
 }
 
+/* Model selection (with --stats or --fit exact): the summary over samples
+ * by AIC, BIC and CV and the per-sample BIC table, as `brdffit rank`
+ * writes them (doc/methods.md §4-5). */
+static void selection(FILE *fp, const bf_cli_study *st)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *mem;
+    bf_tt *t;
+    int c;
+    fputs("<h2 id=\"selection\">Model selection</h2>\n", fp);
+    if (st->stats == NULL) {
+        fputs("<p>Not computed: run with <code>--stats</code> (or "
+              "<code>brdffit rank</code>) for AIC, BIC and cross-validation."
+              "</p>\n",
+              fp);
+        return;
+    }
+    fputs("<p>Per sample, "
+          "the models ranked by AIC, BIC (Gaussian errors) and the "
+          "cross-validated error (doc/methods.md §4–5); lower is better, * "
+          "marks the best.</p>\n<ul>\n",
+          fp);
+    for (c = 0; c < BF_CLI_NCRIT; c++) {
+        mem = open_memstream(&buf, &len);
+        if (mem == NULL) {
+            return;
+        }
+        bf_cli_rank_summary(st, c, mem);
+        fclose(mem);
+        buf[strcspn(buf, "\n")] = '\0';
+        fputs("<li>", fp);
+        put_text(fp, buf);
+        fputs("</li>\n", fp);
+        free(buf);
+        buf = NULL;
+    }
+    fputs("</ul>\n", fp);
+    t = bf_cli_rank_table(st, BF_CLI_BIC);
+    mem = t != NULL ? open_memstream(&buf, &len) : NULL;
+    if (mem != NULL) {
+        bf_tt_print(t, mem);
+        fclose(mem);
+        fputs("<h3>BIC per sample</h3>\n<pre>", fp);
+        put_text(fp, buf);
+        fputs("</pre>\n", fp);
+        free(buf);
+    }
+    bf_tt_free(t);
+}
+
 static void conventions(FILE *fp, const bf_cli_study *st,
                         const bf_report_meta *meta)
 {
@@ -351,7 +403,8 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
           "the Beckmann Model” (tables and figures numbered as in the "
           "paper).</p>\n<nav><a href=\"#tables\">Tables</a><a href=\"#fig2b"
           "\">Figure 2(b)</a><a href=\"#scatter\">Figures 3–6</a><a href=\""
-          "#samples\">Per sample</a><a href=\"#conventions\">Conventions</a>"
+          "#samples\">Per sample</a><a href=\"#selection\">Model selection</a>"
+          "<a href=\"#conventions\">Conventions</a>"
           "<a href=\"#provenance\">Provenance</a></nav>\n",
           fp);
     fputs("<h2 id=\"tables\">Tables</h2>\n<h3>Table 2: fitted parameters "
@@ -382,6 +435,7 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
         figures_of(fp, figs, BF_FIG_PLANE, sample);
         figures_of(fp, figs, BF_FIG_POLAR, sample);
     }
+    selection(fp, st);
     conventions(fp, st, meta);
     provenance(fp, meta);
     fputs("</body>\n</html>\n", fp);

@@ -135,4 +135,22 @@ int bf_cli_parse_range(const char *s, char *name, size_t name_len,
 /* Writes a field to a CSV file, quoted when needed (cli/study.c). */
 void bf_cli_csv_field(FILE *fp, const char *s);
 
+
+/* ==== model selection (cli/ranking.c) ==================================== */
+
+/* The criteria of the ranking (doc/methods.md §4-5). */
+enum { BF_CLI_AIC, BF_CLI_BIC, BF_CLI_CV, BF_CLI_NCRIT };
+extern const char *const bf_cli_crit_names[BF_CLI_NCRIT];
+
+/* Value of criterion c for row i (NaN when not computed); needs st->stats. */
+double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c);
+/* Rank (1 = best) of model m for sample s by criterion c. */
+size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c);
+/* The best model of sample s by criterion c, (size_t)-1 when none. */
+size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c);
+/* The per-sample table of criterion crit (caller frees), NULL on ENOMEM. */
+struct bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit);
+/* Prints "BIC: FC-E best for 32 of 61 samples, ON 13, ..." and a newline. */
+void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp);
+
 #endif

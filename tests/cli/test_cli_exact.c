@@ -10,6 +10,8 @@
 #include "cli_run.h"
 #include "support.h"
 
+#define EXIT_CONFLICT 62
+#define EXIT_BADVALUE 63
 #define EXIT_USAGE 64
 /* The paper's slope grid step (SPEC §7.4). */
 #define GRID_STEP 0.01
@@ -137,7 +139,8 @@ Test(cli_exact, paper_fit_keeps_grid_values_and_adds_the_exact_optimum)
 {
     const char *dir = bf_test_tmpdir();
     const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
-                          "--models", "VH-G", "--out", dir, "-q", NULL};
+                          "--models", "VH-G", "--stats", "--out", dir, "-q",
+                          NULL};
     size_t r;
     double steps;
     cr_assert_eq(run(argv), 0);
@@ -148,6 +151,30 @@ Test(cli_exact, paper_fit_keeps_grid_values_and_adds_the_exact_optimum)
     steps = (num(r, "value") - 0.1) / GRID_STEP; /* on the paper grid */
     cr_assert_lt(fabs(steps - round(steps)), 1e-6);
     cr_assert_leq(num(r, "refined_lse"), num(r, "lse"));
+}
+
+/* Without --stats, compare is the paper's protocol alone: the analysis
+ * columns are present (same header) but empty, the objective is named. */
+Test(cli_exact, paper_fit_without_stats_leaves_the_analysis_columns_empty)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
+                          "--models", "VH-G", "--out", dir, "-q", NULL};
+    static const char *const empty[] = {"grid_value", "refined_value",
+                                        "ci_low",     "ci_high",
+                                        "aic",        "bic",
+                                        "cv"};
+    size_t r;
+    size_t i;
+    cr_assert_eq(run(argv), 0);
+    load_csv(dir, "fits.csv");
+    r = row_of("VH-G", "m");
+    cr_assert_str_eq(cells[r][col("objective")], "max");
+    cr_assert_str_eq(cells[r][col("fit")], "paper");
+    cr_assert(isfinite(num(r, "value")));
+    for (i = 0; i < sizeof empty / sizeof *empty; i++) {
+        cr_assert_str_eq(cells[r][col(empty[i])], "", "%s", empty[i]);
+    }
 }
 
 Test(cli_exact, range_widens_the_search_beyond_the_paper_grid)
@@ -183,9 +210,15 @@ Test(cli_exact, bad_options_are_usage_errors)
     const char *a9[] = {"rank", "--folds", "x", NULL};
     const char *a10[] = {"rank", "--criterion", "r2", NULL};
     const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10};
+    /* a1 combines options that exclude each other; the others give a value
+     * that is malformed or out of range (README: exit statuses). */
+    static const int code[] = {EXIT_CONFLICT, EXIT_BADVALUE, EXIT_BADVALUE,
+                               EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
+                               EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
+                               EXIT_BADVALUE};
     size_t i;
     for (i = 0; i < sizeof all / sizeof *all; i++) {
-        cr_assert_eq(run(all[i]), EXIT_USAGE, "case %zu", i + 1);
+        cr_assert_eq(run(all[i]), code[i], "case %zu", i + 1);
     }
 }
 

@@ -24,7 +24,7 @@
 #define WINS_W 800
 #define WINS_H 500
 
-#define EXIT_USAGE 64
+#define EXIT_BADVALUE 63
 #define EXIT_CANTCREAT 73
 
 static const char *join(const char *dir, const char *name)
@@ -249,7 +249,7 @@ Test(report, refuses_a_bad_format_or_incidence_before_writing_anything)
         const char *dir = bf_test_tmpdir();
         const char *out = join(dir, "out");
         const char *err = NULL;
-        cr_expect_eq(run_report(out, "44", bad[i], &err), EXIT_USAGE,
+        cr_expect_eq(run_report(out, "44", bad[i], &err), EXIT_BADVALUE,
                      "%s %s", bad[i][0], bad[i][1]);
         cr_expect_not_null(strstr(err, bad[i][0]), "message names %s: %s",
                            bad[i][0], err);
@@ -280,4 +280,46 @@ Test(report, leaves_no_partial_output_when_the_figures_cannot_be_written,
                   "a failed run left %s", de->d_name);
     }
     closedir(d);
+}
+
+/* With --stats the page carries the model selection of `brdffit rank`: the
+ * summary line of each criterion, whose counts add up to the samples, and
+ * the per-sample BIC table; without it, a note says how to get it. */
+Test(report, stats_add_a_model_selection_section)
+{
+    static const char *const stats[] = {"--stats", "--format", "png", NULL};
+    static const char *const plain[] = {"--format", "png", NULL};
+    static const char *const crit[] = {"AIC:", "BIC:", "CV:"};
+    char with[512];
+    char without[512];
+    const char *err = NULL;
+    char *page;
+    size_t i;
+    snprintf(with, sizeof with, "%s/out", bf_test_tmpdir());
+    snprintf(without, sizeof without, "%s/out", bf_test_tmpdir());
+    cr_assert_eq(run_report(with, "9,34,44", stats, &err), 0, "%s", err);
+    page = strdup(bf_test_slurp(join(with, "report.html"), NULL));
+    for (i = 0; i < 3; i++) {
+        const char *li = strstr(page, crit[i]);
+        int counted = 0;
+        int n;
+        const char *p;
+        cr_assert_not_null(li, "no %s summary", crit[i]);
+        /* "BIC: FC-E best for 2 of 3 samples, VH-E 1" */
+        cr_assert_eq(sscanf(strstr(li, "best for"), "best for %d", &n), 1);
+        counted += n;
+        for (p = strstr(li, "samples"); *p != '<'; p++) {
+            if (*p == ' ' && p[1] >= '0' && p[1] <= '9') {
+                counted += atoi(p + 1);
+            }
+        }
+        cr_assert_eq(counted, 3, "%s counts %d of 3 samples", crit[i],
+                     counted);
+    }
+    cr_assert_not_null(strstr(page, "<h3>BIC per sample</h3>"));
+    free(page);
+    cr_assert_eq(run_report(without, "44", plain, &err), 0, "%s", err);
+    cr_assert_not_null(strstr(bf_test_slurp(join(without, "report.html"),
+                                            NULL),
+                              "Not computed: run with <code>--stats</code>"));
 }
