@@ -12,10 +12,13 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
-# Set VALGRIND_SKIP= to run everything.
+# Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
+# leaks allocated inside the system libraries the report's figures load
+# (fontconfig, pango, glib, ltdl, cairo).
 set -eu
 
 build=$1
+here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     grid/study_path_equals_plain_path_on_all_61_samples
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
@@ -50,6 +53,7 @@ for exe in "$build"/tests/test_*; do
     rc=0
     valgrind -q --trace-children=yes --error-exitcode=99 \
         --trace-children-skip='/bin/*,/usr/bin/*' \
+        --suppressions="$here/valgrind.supp" \
         --leak-check=full --show-leak-kinds=definite,indirect,possible \
         --errors-for-leak-kinds=definite,indirect,possible \
         "$@" > "$log" 2>&1 || rc=$?
