@@ -71,6 +71,7 @@ int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
 int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
                    bf_error *err)
 {
+    double *cti;
     size_t s;
     size_t k;
     int rc;
@@ -82,27 +83,43 @@ int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
         geom[k] = bf_table_geom(spec->table, spec->sel[k]);
     }
 
-    /* SPEC §2: normalised measured radiance of every sample. */
+    /* SPEC §2: normalised measured radiance of every sample, as
+     * bf_data_radiance forms it (the same products, bf_normalise), with
+     * cos(theta_i) taken once per configuration for all samples. */
+    cti = malloc(spec->n_sel * sizeof *cti);
+    if (cti == NULL) {
+        set_error(err, BF_ENOMEM, "out of memory");
+        return BF_ENOMEM;
+    }
+    for (k = 0; k < spec->n_sel; k++) {
+        cti[k] = cos(geom[k].theta_i);
+    }
     for (s = 0; s < spec->n_samples; s++) {
         long row = bf_brdf_find(spec->brdf, spec->samples[s]);
+        const double *v;
+        double *out = data + s * spec->n_sel;
         if (row < 0) {
             rc = BF_ENOTFOUND;
             set_error(err, rc, "sample %d is not in the BRDF file",
                       spec->samples[s]);
+            free(cti);
             return rc;
         }
-        rc = bf_data_radiance(spec->table,
-                              bf_brdf_values(spec->brdf, (size_t)row),
-                              spec->n_sel, spec->sel,
-                              data + s * spec->n_sel);
+        v = bf_brdf_values(spec->brdf, (size_t)row);
+        for (k = 0; k < spec->n_sel; k++) {
+            out[k] = v[spec->sel[k]] * cti[k]; /* SPEC §2: BRDF x cos(ti) */
+        }
+        rc = bf_normalise(spec->n_sel, out, out);
         if (rc != BF_OK) {
             set_error(err, rc,
                       "sample %d: the measured radiance has no positive "
                       "maximum over the used configurations",
                       spec->samples[s]);
+            free(cti);
             return rc;
         }
     }
+    free(cti);
     return BF_OK;
 }
 
