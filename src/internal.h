@@ -276,6 +276,16 @@ void bf__objective_residuals(const bf_problem *pb, const double *curve,
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
                     size_t stride, double *curves, unsigned char *ok);
+/* The study path without stored curves: the normalised curves of each
+ * block of grid points are computed (same kernels, same bits as
+ * bf__curves_fast) and scored against every sample at once (same sums as
+ * bf__score_all), keeping per sample the smallest LSE of the defined
+ * points and its first index (as bf__argmin; SIZE_MAX when none). Returns
+ * 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
+int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, size_t n_samples,
+                    const double *const *data, double *best_lse,
+                    size_t *best);
 /* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
  * [-708, 0], 0 below); exposed for the tests. */
 double bf__exp_nonpos(double x);
@@ -300,6 +310,11 @@ size_t bf__grid_cols(const bf_grid *gr);
 /* Scores n_samples samples at once: lse must hold n_samples * cols. */
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
                     const double *const *data, double *lse);
+/* The result of a grid search whose best point is best (SIZE_MAX: none,
+ * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
+ * bf_fit_grid reports them. */
+int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
+                    size_t best, double best_lse, bf_fit_result *result);
 /* The best grid point of one row of LSE values (ties keep the first),
  * as bf_grid_fit reports it. */
 int bf__grid_best(const bf_grid *gr, const double *lse,

@@ -349,21 +349,25 @@ void bf__grid_score(const bf_grid *gr, size_t n_samples,
                   lse);
 }
 
+int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
+                    size_t best, double best_lse, bf_fit_result *result)
+{
+    memset(result, 0, sizeof *result);
+    result->n_eval = g->points;
+    if (best == SIZE_MAX) {
+        return BF_EDOM;
+    }
+    result->bound_hit = bf__grid_point(type, g, best, result->param);
+    result->lse = best_lse;
+    return BF_OK;
+}
+
 int bf__grid_best(const bf_grid *gr, const double *lse,
                   bf_fit_result *result)
 {
     size_t best;
     double best_lse = bf__argmin(gr->layout.points, lse, gr->ok, &best);
-
-    memset(result, 0, sizeof *result);
-    result->n_eval = gr->layout.points;
-    if (best == SIZE_MAX) {
-        return BF_EDOM;
-    }
-    result->bound_hit = bf__grid_point(gr->type, &gr->layout, best,
-                                       result->param);
-    result->lse = best_lse;
-    return BF_OK;
+    return bf__grid_result(gr->type, &gr->layout, best, best_lse, result);
 }
 
 int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)

@@ -340,70 +340,101 @@ static void lftg_factors(size_t n, double step, const double *ln_base,
     }
 }
 
+/* A curve generator: the kernel and geometry terms of one model on one
+ * grid (BK family with the slope m free, or LFTG with n_d free on a grid
+ * of positive values: a single free parameter, the paper's protocol). */
+typedef struct {
+    int is_lftg;
+    int corr;
+    int defined; /* 0: no grid point gives a curve (domain, see terms_bk) */
+    const bf_param *pf;
+    size_t points;
+    terms_t t;
+} gen_t;
+
+/* Sets up g for type on lay; returns 1, 0 when type has no kernel, or
+ * -BF_ENOMEM. */
+static int gen_init(gen_t *g, const bf_model_type *type,
+                    const bf__grid_layout_t *lay, size_t n,
+                    const bf_geom *geom)
+{
+    int factor = 0;
+    int is_bk = bf__bk_kind(type, &factor, &g->corr);
+    size_t k;
+
+    g->is_lftg = bf__is_lftg(type);
+    g->defined = 1;
+    if ((!is_bk && !g->is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
+        (g->is_lftg && !(type->param[0].grid_lo > 0.0))) {
+        return 0;
+    }
+    g->pf = &type->param[0];
+    g->points = lay->points;
+    if (terms_alloc(&g->t, n) != BF_OK) {
+        return -BF_ENOMEM;
+    }
+    if (g->is_lftg) {
+        for (k = 0; k < n; k++) {
+            g->t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
+        }
+        lftg_factors(n, g->pf->grid_step, g->t.a, g->t.p);
+    } else {
+        /* FC's refractive index is parameter 1, fixed here */
+        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
+        g->defined = terms_bk(factor, g->corr, n_index, n, geom, &g->t);
+    }
+    return 1;
+}
+
+/* The normalised curves of grid points g0 .. g0 + CURVE_LANES - 1 into
+ * c[k * stride + j] and their flags ok[j]. Padding lanes (grid indices >=
+ * points) repeat the last grid point and are marked not ok. */
+static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
+                      double *c, unsigned char *ok)
+{
+    double x[CURVE_LANES];
+    size_t j;
+    for (j = 0; j < CURVE_LANES; j++) {
+        size_t i = g0 + j < g->points ? g0 + j : g->points - 1;
+        x[j] = g->pf->grid_lo + g->pf->grid_step * (double)i; /* §7.4 */
+    }
+    if (g->is_lftg) {
+        block_lftg(n, &g->t, x, stride, c, ok);
+    } else if (g->corr == BF__BK_CORR_GAUSS) {
+        block_gauss(n, &g->t, x, stride, c, ok);
+    } else {
+        block_exp(n, &g->t, x, stride, c, ok);
+    }
+    for (j = 0; j < CURVE_LANES; j++) {
+        if (g0 + j >= g->points || !g->defined) {
+            ok[j] = 0;
+        }
+    }
+}
+
 /* Fills the transposed normalised curves of every grid point with a
- * vectorised kernel when one exists for type: BK family with the slope m
- * free, or LFTG with n_d free on a grid of positive values (a single free
- * parameter, the paper's protocol). Returns 1 when done, 0 when type has
- * no kernel (the caller uses the plain evaluation), or -BF_ENOMEM. Padding
- * lanes (grid indices >= points, up to cols) repeat the last grid point
- * and are marked not ok. */
+ * vectorised kernel when one exists for type (see gen_t). Returns 1 when
+ * done, 0 when type has no kernel (the caller uses the plain evaluation),
+ * or -BF_ENOMEM. */
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
                     size_t stride, double *curves, unsigned char *ok)
 {
-    int factor = 0;
-    int corr = 0;
-    int is_bk = bf__bk_kind(type, &factor, &corr);
-    int is_lftg = bf__is_lftg(type);
-    const bf_param *pf;
-    terms_t t;
-    long n_blocks;
-    long b;
-    size_t k;
-    int defined = 1;
+    gen_t g;
+    size_t g0;
+    int rc;
 
-    if ((!is_bk && !is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
-        cols % CURVE_LANES != 0 || lay->points > cols ||
-        (is_lftg && !(type->param[0].grid_lo > 0.0))) {
+    if (cols % CURVE_LANES != 0 || lay->points > cols) {
         return 0;
     }
-    pf = &type->param[0];
-    if (terms_alloc(&t, n) != BF_OK) {
-        return -BF_ENOMEM;
+    rc = gen_init(&g, type, lay, n, geom);
+    if (rc <= 0) {
+        return rc;
     }
-    if (is_lftg) {
-        for (k = 0; k < n; k++) {
-            t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
-        }
-        lftg_factors(n, pf->grid_step, t.a, t.p);
-    } else {
-        /* FC's refractive index is parameter 1, fixed here */
-        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
-        defined = terms_bk(factor, corr, n_index, n, geom, &t);
+    for (g0 = 0; g0 < cols; g0 += CURVE_LANES) {
+        gen_block(&g, n, g0, stride, curves + g0, ok + g0);
     }
-    n_blocks = (long)(cols / CURVE_LANES);
-    for (b = 0; b < n_blocks; b++) {
-        size_t g0 = (size_t)b * CURVE_LANES;
-        double x[CURVE_LANES];
-        size_t j;
-        for (j = 0; j < CURVE_LANES; j++) {
-            size_t i = g0 + j < lay->points ? g0 + j : lay->points - 1;
-            x[j] = pf->grid_lo + pf->grid_step * (double)i; /* SPEC §7.4 */
-        }
-        if (is_lftg) {
-            block_lftg(n, &t, x, stride, curves + g0, ok + g0);
-        } else if (corr == BF__BK_CORR_GAUSS) {
-            block_gauss(n, &t, x, stride, curves + g0, ok + g0);
-        } else {
-            block_exp(n, &t, x, stride, curves + g0, ok + g0);
-        }
-        for (j = 0; j < CURVE_LANES; j++) {
-            if (g0 + j >= lay->points || !defined) {
-                ok[g0 + j] = 0;
-            }
-        }
-    }
-    free(t.mem);
+    free(g.t.mem);
     return 1;
 }
 
@@ -517,6 +548,107 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
             }
         }
     }
+}
+
+/* ==== streaming: curves of one block, scored at once (the study) ======== */
+
+/* Samples scored together against one block of streamed curves. */
+#define STREAM_SAMPLES 8
+
+/* LSE of the CURVE_LANES grid points of one block (curves c[k *
+ * CURVE_LANES + j], contiguous) against STREAM_SAMPLES samples d[q]:
+ * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
+ * order with one fma per term, as score_tile forms it. */
+BF__CLONES
+static void score_stream(size_t n, const double *restrict c,
+                         const double *const *d, double *restrict lse)
+{
+    double a[STREAM_SAMPLES][CURVE_LANES];
+    size_t j;
+    size_t k;
+    size_t q;
+    for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (j = 0; j < CURVE_LANES; j++) {
+            a[q][j] = 0.0;
+        }
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * CURVE_LANES);
+        double x[STREAM_SAMPLES];
+        for (q = 0; q < STREAM_SAMPLES; q++) {
+            x[q] = d[q][k];
+        }
+        for (q = 0; q < STREAM_SAMPLES; q++) {
+#pragma omp simd simdlen(CURVE_LANES)
+            for (j = 0; j < CURVE_LANES; j++) {
+                double r = ck[j] - x[q]; /* SPEC §7.3 */
+                a[q][j] = fma(r, r, a[q][j]);
+            }
+        }
+    }
+    for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (j = 0; j < CURVE_LANES; j++) {
+            lse[(q * CURVE_LANES) + j] = a[q][j];
+        }
+    }
+}
+
+int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, size_t n_samples,
+                    const double *const *data, double *best_lse,
+                    size_t *best)
+{
+    double lse[STREAM_SAMPLES * CURVE_LANES];
+    unsigned char ok[CURVE_LANES];
+    double *c;
+    gen_t g;
+    size_t g0;
+    size_t s;
+    int rc = gen_init(&g, type, lay, n, geom);
+
+    if (rc <= 0) {
+        return rc;
+    }
+    c = aligned_alloc(64, n * CURVE_LANES * sizeof *c); /* 128 n bytes */
+    if (c == NULL) {
+        free(g.t.mem);
+        return -BF_ENOMEM;
+    }
+    for (s = 0; s < n_samples; s++) {
+        best_lse[s] = INFINITY;
+        best[s] = SIZE_MAX;
+    }
+    for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
+        gen_block(&g, n, g0, CURVE_LANES, c, ok);
+        for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
+            const double *d[STREAM_SAMPLES];
+            size_t left = n_samples - s;
+            size_t q;
+            size_t j;
+            for (q = 0; q < STREAM_SAMPLES; q++) {
+                d[q] = data[s + (q < left ? q : left - 1)];
+            }
+            score_stream(n, c, d, lse);
+            if (left > STREAM_SAMPLES) {
+                left = STREAM_SAMPLES;
+            }
+            /* the running argmin: grid points in index order, strict <
+             * (ties keep the first point, NaN never wins), defined points
+             * only -- bf__argmin's result */
+            for (q = 0; q < left; q++) {
+                for (j = 0; j < CURVE_LANES; j++) {
+                    double v = lse[(q * CURVE_LANES) + j];
+                    if (ok[j] && v < best_lse[s + q]) {
+                        best_lse[s + q] = v;
+                        best[s + q] = g0 + j;
+                    }
+                }
+            }
+        }
+    }
+    free(c);
+    free(g.t.mem);
+    return 1;
 }
 
 /* Lanes of the argmin below. */

@@ -209,6 +209,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     size_t *members = malloc((ns + 1) * sizeof *members);
     double *lse = NULL;
     bf_grid *gr = NULL;
+    bf__grid_layout_t lay;
     size_t n_group = 0;
     size_t cols;
     size_t q;
@@ -223,6 +224,30 @@ static int run_group(const study_t *st, size_t m, size_t leader)
         if (st->leader[m * ns + q] == leader) {
             members[n_group] = q;
             group[n_group++] = st->data + q * spec->n_sel;
+        }
+    }
+    /* the streaming kernels where the model has one: no stored curves */
+    if (n_group > 0 && bf__grid_layout(spec->models[m],
+                                       st->fixed + ((m * ns) + leader) *
+                                                       BF_MAX_PARAMS,
+                                       0, &lay) == BF_OK) {
+        double *best_lse = malloc(n_group * sizeof *best_lse);
+        size_t *best = malloc(n_group * sizeof *best);
+        int done = -BF_ENOMEM;
+        if (best_lse != NULL && best != NULL) {
+            done = bf__stream_fast(spec->models[m], &lay, spec->n_sel,
+                                   st->geom, n_group, group, best_lse, best);
+        }
+        for (q = 0; done == 1 && q < n_group; q++) {
+            bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+            r->status = bf__grid_result(spec->models[m], &lay, best[q],
+                                        best_lse[q], &r->fit);
+        }
+        free(best_lse);
+        free(best);
+        if (done != 0) {
+            rc = done < 0 ? -done : BF_OK;
+            goto done;
         }
     }
     gr = bf__grid_build(spec->models[m],
