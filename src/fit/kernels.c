@@ -593,6 +593,21 @@ static void score_stream(size_t n, const double *restrict c,
     }
 }
 
+/* 1 when some defined value v[j] + pen[j] (pen 0 where defined, +inf
+ * elsewhere) is below best; NaN never is. */
+static inline int block_beats(const double *restrict v,
+                              const double *restrict pen, double best)
+{
+    int any = 0;
+    size_t j;
+#pragma omp simd reduction(| : any)
+    for (j = 0; j < CURVE_LANES; j++) {
+        any |= (v[j] + pen[j]) < best;
+    }
+    return any;
+}
+
+BF__CLONES
 int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t n_samples,
                     const double *const *data, double *best_lse,
@@ -600,6 +615,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
 {
     double lse[STREAM_SAMPLES * CURVE_LANES];
     unsigned char ok[CURVE_LANES];
+    double pen[CURVE_LANES];
     double *c;
     gen_t g;
     size_t g0;
@@ -620,6 +636,9 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     }
     for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
         gen_block(&g, n, g0, CURVE_LANES, c, ok);
+        for (s = 0; s < CURVE_LANES; s++) {
+            pen[s] = ok[s] ? 0.0 : INFINITY;
+        }
         for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
             const double *d[STREAM_SAMPLES];
             size_t left = n_samples - s;
@@ -634,12 +653,16 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             }
             /* the running argmin: grid points in index order, strict <
              * (ties keep the first point, NaN never wins), defined points
-             * only -- bf__argmin's result */
+             * only -- bf__argmin's result. A vector test first: only when
+             * some point of the block beats the best so far, the scan. */
             for (q = 0; q < left; q++) {
+                const double *lq = lse + (q * CURVE_LANES);
+                if (!block_beats(lq, pen, best_lse[s + q])) {
+                    continue; /* the usual case */
+                }
                 for (j = 0; j < CURVE_LANES; j++) {
-                    double v = lse[(q * CURVE_LANES) + j];
-                    if (ok[j] && v < best_lse[s + q]) {
-                        best_lse[s + q] = v;
+                    if (ok[j] && lq[j] < best_lse[s + q]) {
+                        best_lse[s + q] = lq[j];
                         best[s + q] = g0 + j;
                     }
                 }
