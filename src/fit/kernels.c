@@ -389,15 +389,32 @@ static int gen_init(gen_t *g, const bf_model_type *type,
 /* The normalised curves of grid points g0 .. g0 + CURVE_LANES - 1 into
  * c[k * stride + j] and their flags ok[j]. Padding lanes (grid indices >=
  * points) repeat the last grid point and are marked not ok. */
-static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
-                      double *c, unsigned char *ok)
+/* The grid values of the block at g0 (padding repeats the last). */
+static void gen_x(const gen_t *g, size_t g0, double *x)
 {
-    double x[CURVE_LANES];
     size_t j;
     for (j = 0; j < CURVE_LANES; j++) {
         size_t i = g0 + j < g->points ? g0 + j : g->points - 1;
         x[j] = g->pf->grid_lo + g->pf->grid_step * (double)i; /* §7.4 */
     }
+}
+
+/* ok of the block at g0: padding lanes and undefined grids are not. */
+static void gen_ok(const gen_t *g, size_t g0, unsigned char *ok)
+{
+    size_t j;
+    for (j = 0; j < CURVE_LANES; j++) {
+        if (g0 + j >= g->points || !g->defined) {
+            ok[j] = 0;
+        }
+    }
+}
+
+static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
+                      double *c, unsigned char *ok)
+{
+    double x[CURVE_LANES];
+    gen_x(g, g0, x);
     if (g->is_lftg) {
         block_lftg(n, &g->t, x, stride, c, ok);
     } else if (g->corr == BF__BK_CORR_GAUSS) {
@@ -405,11 +422,7 @@ static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
     } else {
         block_exp(n, &g->t, x, stride, c, ok);
     }
-    for (j = 0; j < CURVE_LANES; j++) {
-        if (g0 + j >= g->points || !g->defined) {
-            ok[j] = 0;
-        }
-    }
+    gen_ok(g, g0, ok);
 }
 
 /* Fills the transposed normalised curves of every grid point with a
@@ -555,15 +568,35 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
 /* Samples scored together against one block of streamed curves. */
 #define STREAM_SAMPLES 8
 
+/* The raw curves of the next block of an E model (P2), computed while the
+ * current block is scored (interleaved): the divider's work (a division
+ * and a square root per value) then overlaps the scoring's FMA work.
+ * Exactly block_exp's operations, row by row. */
+typedef struct {
+    const terms_t *t;
+    double m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    double *out;  /* n x CURVE_LANES, contiguous */
+    size_t first; /* rows first, first + every, ... are this call's */
+    size_t every;
+} erows_t;
+
 /* LSE of the CURVE_LANES grid points of one block (curves c[k *
  * CURVE_LANES + j], contiguous) against STREAM_SAMPLES samples d[q]:
  * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
- * order with one fma per term, as score_tile forms it. */
+ * order with one fma per term, as score_tile forms it. When e is not
+ * NULL, also the rows of e (see erows_t). */
 BF__CLONES
 static void score_stream(size_t n, const double *restrict c,
-                         const double *const *d, double *restrict lse)
+                         const double *const *d, double *restrict lse,
+                         erows_t *restrict e)
 {
     double a[STREAM_SAMPLES][CURVE_LANES];
+    double m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    size_t next_e = e != NULL ? e->first : SIZE_MAX;
     size_t j;
     size_t k;
     size_t q;
@@ -571,6 +604,15 @@ static void score_stream(size_t n, const double *restrict c,
         for (j = 0; j < CURVE_LANES; j++) {
             a[q][j] = 0.0;
         }
+    }
+    if (e != NULL) {
+        memcpy(m2, e->m2, sizeof m2);
+        memcpy(mx, e->mx, sizeof mx);
+        memcpy(nf, e->nf, sizeof nf);
+    } else {
+        memset(m2, 0, sizeof m2);
+        memset(mx, 0, sizeof mx);
+        memset(nf, 0, sizeof nf);
     }
     for (k = 0; k < n; k++) {
         const double *restrict ck = c + (k * CURVE_LANES);
@@ -585,11 +627,30 @@ static void score_stream(size_t n, const double *restrict c,
                 a[q][j] = fma(r, r, a[q][j]);
             }
         }
+        if (k == next_e) { /* block_exp's row k, SPEC §3.2 */
+            double ea = e->t->a[k];
+            double vz2 = e->t->b[k];
+            double vxy2 = e->t->c[k];
+            double *restrict ok_ = e->out + (k * CURVE_LANES);
+#pragma omp simd simdlen(CURVE_LANES)
+            for (j = 0; j < CURVE_LANES; j++) {
+                double dd = fma(m2[j], vz2, vxy2); /* (P2) */
+                double v = ea / (dd * sqrt(dd));
+                ok_[j] = v;
+                nf[j] += v - v;
+                mx[j] = (v > mx[j]) ? v : mx[j];
+            }
+            next_e += e->every;
+        }
     }
     for (q = 0; q < STREAM_SAMPLES; q++) {
         for (j = 0; j < CURVE_LANES; j++) {
             lse[(q * CURVE_LANES) + j] = a[q][j];
         }
+    }
+    if (e != NULL) {
+        memcpy(e->mx, mx, sizeof mx);
+        memcpy(e->nf, nf, sizeof nf);
     }
 }
 
@@ -616,28 +677,47 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     double lse[STREAM_SAMPLES * CURVE_LANES];
     unsigned char ok[CURVE_LANES];
     double pen[CURVE_LANES];
+    erows_t e;
     double *c;
+    double *nxt;
     gen_t g;
+    size_t n_tiles = (n_samples + STREAM_SAMPLES - 1) / STREAM_SAMPLES;
     size_t g0;
     size_t s;
+    int pipe; /* E models: the next block's curves during the scoring */
     int rc = gen_init(&g, type, lay, n, geom);
 
     if (rc <= 0) {
         return rc;
     }
-    c = aligned_alloc(64, n * CURVE_LANES * sizeof *c); /* 128 n bytes */
+    pipe = !g.is_lftg && g.corr == BF__BK_CORR_EXP;
+    c = aligned_alloc(64, 2 * n * CURVE_LANES * sizeof *c); /* 256 n B */
     if (c == NULL) {
         free(g.t.mem);
         return -BF_ENOMEM;
     }
+    nxt = c + (n * CURVE_LANES);
     for (s = 0; s < n_samples; s++) {
         best_lse[s] = INFINITY;
         best[s] = SIZE_MAX;
     }
+    gen_block(&g, n, 0, CURVE_LANES, c, ok);
     for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
-        gen_block(&g, n, g0, CURVE_LANES, c, ok);
+        int more = pipe && g0 + CURVE_LANES < g.points;
         for (s = 0; s < CURVE_LANES; s++) {
             pen[s] = ok[s] ? 0.0 : INFINITY;
+        }
+        if (more) { /* block_exp's set-up for the next block */
+            double x[CURVE_LANES];
+            gen_x(&g, g0 + CURVE_LANES, x);
+            for (s = 0; s < CURVE_LANES; s++) {
+                e.m2[s] = x[s] * x[s];
+                e.mx[s] = -INFINITY;
+                e.nf[s] = 0.0;
+            }
+            e.t = &g.t;
+            e.out = nxt;
+            e.every = n_tiles;
         }
         for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
             const double *d[STREAM_SAMPLES];
@@ -647,7 +727,8 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             for (q = 0; q < STREAM_SAMPLES; q++) {
                 d[q] = data[s + (q < left ? q : left - 1)];
             }
-            score_stream(n, c, d, lse);
+            e.first = s / STREAM_SAMPLES; /* rows spread over the tiles */
+            score_stream(n, c, d, lse, more ? &e : NULL);
             if (left > STREAM_SAMPLES) {
                 left = STREAM_SAMPLES;
             }
@@ -668,8 +749,17 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                 }
             }
         }
+        if (more) { /* the next block is complete: normalise, swap */
+            double *tmp = c;
+            normalise_block(n, CURVE_LANES, nxt, e.mx, e.nf, ok);
+            gen_ok(&g, g0 + CURVE_LANES, ok);
+            c = nxt;
+            nxt = tmp;
+        } else if (g0 + CURVE_LANES < g.points) {
+            gen_block(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, ok);
+        }
     }
-    free(c);
+    free(c < nxt ? c : nxt);
     free(g.t.mem);
     return 1;
 }
