@@ -159,13 +159,19 @@ static int terms_alloc(terms_t *t, size_t n)
  * configuration is outside the model's domain (BK at theta_i = pi/2) or a
  * term is not finite: then no slope gives a curve. */
 static int terms_bk(int factor, int corr, double n_index, size_t n,
-                    const bf_geom *geom, terms_t *t)
+                    const bf_geom *geom, const bf__trig_t *trig, terms_t *t)
 {
     size_t k;
     int ok = 1;
     for (k = 0; k < n; k++) {
         bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
-        if (bf__bk_terms(factor, n_index, &geom[k], &bt) != BF_OK) {
+        bf__trig_t tr;
+        if (trig == NULL) {
+            bf__geom_trig(&geom[k], &tr);
+        } else {
+            tr = trig[k];
+        }
+        if (bf__bk_terms_trig(factor, n_index, &tr, &bt) != BF_OK) {
             ok = 0; /* BK at theta_i = pi/2: no slope works */
         }
         if (bt.vz2 == 0.0) {
@@ -356,7 +362,7 @@ typedef struct {
  * -BF_ENOMEM. */
 static int gen_init(gen_t *g, const bf_model_type *type,
                     const bf__grid_layout_t *lay, size_t n,
-                    const bf_geom *geom)
+                    const bf_geom *geom, const bf__trig_t *trig)
 {
     int factor = 0;
     int is_bk = bf__bk_kind(type, &factor, &g->corr);
@@ -375,13 +381,16 @@ static int gen_init(gen_t *g, const bf_model_type *type,
     }
     if (g->is_lftg) {
         for (k = 0; k < n; k++) {
-            g->t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
+            /* bf__lftg_base: cos ti cos ts, -inf at grazing */
+            g->t.a[k] = log(trig != NULL ? trig[k].ci * trig[k].cs
+                                         : bf__lftg_base(&geom[k]));
         }
         lftg_factors(n, g->pf->grid_step, g->t.a, g->t.p);
     } else {
         /* FC's refractive index is parameter 1, fixed here */
         double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
-        g->defined = terms_bk(factor, g->corr, n_index, n, geom, &g->t);
+        g->defined = terms_bk(factor, g->corr, n_index, n, geom, trig,
+                              &g->t);
     }
     return 1;
 }
@@ -440,7 +449,7 @@ int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     if (cols % CURVE_LANES != 0 || lay->points > cols) {
         return 0;
     }
-    rc = gen_init(&g, type, lay, n, geom);
+    rc = gen_init(&g, type, lay, n, geom, NULL);
     if (rc <= 0) {
         return rc;
     }
@@ -670,7 +679,8 @@ static inline int block_beats(const double *restrict v,
 
 BF__CLONES
 int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, size_t n_samples,
+                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
+                    size_t n_samples,
                     const double *const *data, double *best_lse,
                     size_t *best)
 {
@@ -685,7 +695,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     size_t g0;
     size_t s;
     int pipe; /* E models: the next block's curves during the scoring */
-    int rc = gen_init(&g, type, lay, n, geom);
+    int rc = gen_init(&g, type, lay, n, geom, trig);
 
     if (rc <= 0) {
         return rc;

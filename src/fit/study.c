@@ -127,6 +127,7 @@ int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
 typedef struct {
     const bf_study_spec *spec;
     const bf_geom *geom;  /* n_sel used configurations */
+    const bf__trig_t *trig; /* their sines and cosines, once per study */
     const double *data;   /* n_samples x n_sel normalised radiances */
     double *fixed;        /* n_models x n_samples x BF_MAX_PARAMS inputs */
     size_t *leader;       /* n_models x n_samples: the first sample with the
@@ -236,7 +237,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
         int done = -BF_ENOMEM;
         if (best_lse != NULL && best != NULL) {
             done = bf__stream_fast(spec->models[m], &lay, spec->n_sel,
-                                   st->geom, n_group, group, best_lse, best);
+                                   st->geom, st->trig, n_group, group, best_lse, best);
         }
         for (q = 0; done == 1 && q < n_group; q++) {
             bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
@@ -329,9 +330,11 @@ static int fit_all(study_t *st)
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 {
     bf_geom *geom = NULL;
+    bf__trig_t *trig = NULL;
     double *data = NULL;
     double *fixed = NULL;
     size_t *leader = NULL;
+    size_t k;
     study_t st;
     int rc = BF_OK;
 
@@ -344,12 +347,14 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         return BF_EINVAL;
     }
     geom = malloc(spec->n_sel * sizeof *geom);
+    trig = malloc(spec->n_sel * sizeof *trig);
     data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
     fixed = malloc((spec->n_models * spec->n_samples + 1) * BF_MAX_PARAMS *
                    sizeof *fixed);
     leader = malloc((spec->n_models * spec->n_samples + 1) *
                     sizeof *leader);
-    if (geom == NULL || data == NULL || fixed == NULL || leader == NULL) {
+    if (geom == NULL || trig == NULL || data == NULL || fixed == NULL ||
+        leader == NULL) {
         rc = BF_ENOMEM;
         set_error(err, rc, "out of memory");
         goto done;
@@ -359,9 +364,14 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         goto done;
     }
 
+    for (k = 0; k < spec->n_sel; k++) {
+        bf__geom_trig(&geom[k], &trig[k]);
+    }
+
     /* SPEC §7.3-7.5: each model, each sample. */
     st.spec = spec;
     st.geom = geom;
+    st.trig = trig;
     st.data = data;
     st.fixed = fixed;
     st.leader = leader;
@@ -374,6 +384,7 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 
 done:
     free(geom);
+    free(trig);
     free(data);
     free(fixed);
     free(leader);
