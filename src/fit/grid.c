@@ -11,7 +11,10 @@
  *   - bf_grid precomputes the normalised model curves of every grid point
  *     once per geometry and reuses them for every sample (the study path).
  *     Model curves do not depend on the sample, so the study's cost falls
- *     from samples x grid x K model evaluations to grid x K.
+ *     from samples x grid x K model evaluations to grid x K. bf_study_run
+ *     does the same without storing them (bf__stream_fast in kernels.c:
+ *     16 grid points at a time, scored at once, same kernels and sums,
+ *     same bits); models without a kernel go through bf_grid.
  * Both form LSE = sum_k (L_k / max L - D_k)^2 in index order. The plain
  * path is the reference; the study path's vector kernels
  * (src/fit/kernels.c) rearrange the math without divisions in the inner
