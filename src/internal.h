@@ -177,9 +177,20 @@ typedef struct {
 enum { BF__BK_FACTOR_BK, BF__BK_FACTOR_VH, BF__BK_FACTOR_FC };
 enum { BF__BK_CORR_GAUSS, BF__BK_CORR_EXP };
 
+/* Sines and cosines of one configuration: zenith angles as
+ * bf__zenith_sincos gives them, sin and cos of phi_s. */
+typedef struct {
+    double si, ci, ss, cs, sp, cp;
+} bf__trig_t;
+
 /* Terms of one configuration for factor (n is FC's refractive index);
- * BF_EDOM where F_BK diverges (BK at theta_i = pi/2). src/models/bk.c. */
+ * BF_EDOM where F_BK diverges (BK at theta_i = pi/2). src/models/bk.c.
+ * bf__bk_terms = bf__geom_trig, then bf__bk_terms_trig (the study path
+ * takes the trigonometry once per configuration for all models). */
 int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t);
+void bf__geom_trig(const bf_geom *g, bf__trig_t *tr);
+int bf__bk_terms_trig(int factor, double n, const bf__trig_t *tr,
+                      bf__bk_terms_t *t);
 /* 1 and the member when type is one of the BK family (by its eval). */
 int bf__bk_kind(const bf_model_type *type, int *factor, int *corr);
 /* cos ti cos ts, the base of LFTG's power (P7) (src/models/lafortune.c). */
@@ -276,6 +287,18 @@ void bf__objective_residuals(const bf_problem *pb, const double *curve,
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
                     size_t stride, double *curves, unsigned char *ok);
+/* The study path without stored curves: the normalised curves of each
+ * block of grid points are computed (same kernels, same bits as
+ * bf__curves_fast) and scored against every sample at once (same sums as
+ * bf__score_all), keeping per sample the smallest LSE of the defined
+ * points and its first index (as bf__argmin; SIZE_MAX when none). trig
+ * (n values of bf__geom_trig) or NULL. Returns
+ * 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
+int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
+                    size_t n_samples,
+                    const double *const *data, double *best_lse,
+                    size_t *best);
 /* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
  * [-708, 0], 0 below); exposed for the tests. */
 double bf__exp_nonpos(double x);
@@ -300,6 +323,11 @@ size_t bf__grid_cols(const bf_grid *gr);
 /* Scores n_samples samples at once: lse must hold n_samples * cols. */
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
                     const double *const *data, double *lse);
+/* The result of a grid search whose best point is best (SIZE_MAX: none,
+ * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
+ * bf_fit_grid reports them. */
+int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
+                    size_t best, double best_lse, bf_fit_result *result);
 /* The best grid point of one row of LSE values (ties keep the first),
  * as bf_grid_fit reports it. */
 int bf__grid_best(const bf_grid *gr, const double *lse,

@@ -11,7 +11,10 @@
  *   - bf_grid precomputes the normalised model curves of every grid point
  *     once per geometry and reuses them for every sample (the study path).
  *     Model curves do not depend on the sample, so the study's cost falls
- *     from samples x grid x K model evaluations to grid x K.
+ *     from samples x grid x K model evaluations to grid x K. bf_study_run
+ *     does the same without storing them (bf__stream_fast in kernels.c:
+ *     16 grid points at a time, scored at once, same kernels and sums,
+ *     same bits); models without a kernel go through bf_grid.
  * Both form LSE = sum_k (L_k / max L - D_k)^2 in index order. The plain
  * path is the reference; the study path's vector kernels
  * (src/fit/kernels.c) rearrange the math without divisions in the inner
@@ -349,21 +352,25 @@ void bf__grid_score(const bf_grid *gr, size_t n_samples,
                   lse);
 }
 
+int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
+                    size_t best, double best_lse, bf_fit_result *result)
+{
+    memset(result, 0, sizeof *result);
+    result->n_eval = g->points;
+    if (best == SIZE_MAX) {
+        return BF_EDOM;
+    }
+    result->bound_hit = bf__grid_point(type, g, best, result->param);
+    result->lse = best_lse;
+    return BF_OK;
+}
+
 int bf__grid_best(const bf_grid *gr, const double *lse,
                   bf_fit_result *result)
 {
     size_t best;
     double best_lse = bf__argmin(gr->layout.points, lse, gr->ok, &best);
-
-    memset(result, 0, sizeof *result);
-    result->n_eval = gr->layout.points;
-    if (best == SIZE_MAX) {
-        return BF_EDOM;
-    }
-    result->bound_hit = bf__grid_point(gr->type, &gr->layout, best,
-                                       result->param);
-    result->lse = best_lse;
-    return BF_OK;
+    return bf__grid_result(gr->type, &gr->layout, best, best_lse, result);
 }
 
 int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)

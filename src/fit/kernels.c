@@ -159,13 +159,19 @@ static int terms_alloc(terms_t *t, size_t n)
  * configuration is outside the model's domain (BK at theta_i = pi/2) or a
  * term is not finite: then no slope gives a curve. */
 static int terms_bk(int factor, int corr, double n_index, size_t n,
-                    const bf_geom *geom, terms_t *t)
+                    const bf_geom *geom, const bf__trig_t *trig, terms_t *t)
 {
     size_t k;
     int ok = 1;
     for (k = 0; k < n; k++) {
         bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
-        if (bf__bk_terms(factor, n_index, &geom[k], &bt) != BF_OK) {
+        bf__trig_t tr;
+        if (trig == NULL) {
+            bf__geom_trig(&geom[k], &tr);
+        } else {
+            tr = trig[k];
+        }
+        if (bf__bk_terms_trig(factor, n_index, &tr, &bt) != BF_OK) {
             ok = 0; /* BK at theta_i = pi/2: no slope works */
         }
         if (bt.vz2 == 0.0) {
@@ -340,70 +346,117 @@ static void lftg_factors(size_t n, double step, const double *ln_base,
     }
 }
 
+/* A curve generator: the kernel and geometry terms of one model on one
+ * grid (BK family with the slope m free, or LFTG with n_d free on a grid
+ * of positive values: a single free parameter, the paper's protocol). */
+typedef struct {
+    int is_lftg;
+    int corr;
+    int defined; /* 0: no grid point gives a curve (domain, see terms_bk) */
+    const bf_param *pf;
+    size_t points;
+    terms_t t;
+} gen_t;
+
+/* Sets up g for type on lay; returns 1, 0 when type has no kernel, or
+ * -BF_ENOMEM. */
+static int gen_init(gen_t *g, const bf_model_type *type,
+                    const bf__grid_layout_t *lay, size_t n,
+                    const bf_geom *geom, const bf__trig_t *trig)
+{
+    int factor = 0;
+    int is_bk = bf__bk_kind(type, &factor, &g->corr);
+    size_t k;
+
+    g->is_lftg = bf__is_lftg(type);
+    g->defined = 1;
+    if ((!is_bk && !g->is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
+        (g->is_lftg && !(type->param[0].grid_lo > 0.0))) {
+        return 0;
+    }
+    g->pf = &type->param[0];
+    g->points = lay->points;
+    if (terms_alloc(&g->t, n) != BF_OK) {
+        return -BF_ENOMEM;
+    }
+    if (g->is_lftg) {
+        for (k = 0; k < n; k++) {
+            /* bf__lftg_base: cos ti cos ts, -inf at grazing */
+            g->t.a[k] = log(trig != NULL ? trig[k].ci * trig[k].cs
+                                         : bf__lftg_base(&geom[k]));
+        }
+        lftg_factors(n, g->pf->grid_step, g->t.a, g->t.p);
+    } else {
+        /* FC's refractive index is parameter 1, fixed here */
+        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
+        g->defined = terms_bk(factor, g->corr, n_index, n, geom, trig,
+                              &g->t);
+    }
+    return 1;
+}
+
+/* The normalised curves of grid points g0 .. g0 + CURVE_LANES - 1 into
+ * c[k * stride + j] and their flags ok[j]. Padding lanes (grid indices >=
+ * points) repeat the last grid point and are marked not ok. */
+/* The grid values of the block at g0 (padding repeats the last). */
+static void gen_x(const gen_t *g, size_t g0, double *x)
+{
+    size_t j;
+    for (j = 0; j < CURVE_LANES; j++) {
+        size_t i = g0 + j < g->points ? g0 + j : g->points - 1;
+        x[j] = g->pf->grid_lo + g->pf->grid_step * (double)i; /* §7.4 */
+    }
+}
+
+/* ok of the block at g0: padding lanes and undefined grids are not. */
+static void gen_ok(const gen_t *g, size_t g0, unsigned char *ok)
+{
+    size_t j;
+    for (j = 0; j < CURVE_LANES; j++) {
+        if (g0 + j >= g->points || !g->defined) {
+            ok[j] = 0;
+        }
+    }
+}
+
+static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
+                      double *c, unsigned char *ok)
+{
+    double x[CURVE_LANES];
+    gen_x(g, g0, x);
+    if (g->is_lftg) {
+        block_lftg(n, &g->t, x, stride, c, ok);
+    } else if (g->corr == BF__BK_CORR_GAUSS) {
+        block_gauss(n, &g->t, x, stride, c, ok);
+    } else {
+        block_exp(n, &g->t, x, stride, c, ok);
+    }
+    gen_ok(g, g0, ok);
+}
+
 /* Fills the transposed normalised curves of every grid point with a
- * vectorised kernel when one exists for type: BK family with the slope m
- * free, or LFTG with n_d free on a grid of positive values (a single free
- * parameter, the paper's protocol). Returns 1 when done, 0 when type has
- * no kernel (the caller uses the plain evaluation), or -BF_ENOMEM. Padding
- * lanes (grid indices >= points, up to cols) repeat the last grid point
- * and are marked not ok. */
+ * vectorised kernel when one exists for type (see gen_t). Returns 1 when
+ * done, 0 when type has no kernel (the caller uses the plain evaluation),
+ * or -BF_ENOMEM. */
 int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t n, const bf_geom *geom, size_t cols,
                     size_t stride, double *curves, unsigned char *ok)
 {
-    int factor = 0;
-    int corr = 0;
-    int is_bk = bf__bk_kind(type, &factor, &corr);
-    int is_lftg = bf__is_lftg(type);
-    const bf_param *pf;
-    terms_t t;
-    long n_blocks;
-    long b;
-    size_t k;
-    int defined = 1;
+    gen_t g;
+    size_t g0;
+    int rc;
 
-    if ((!is_bk && !is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
-        cols % CURVE_LANES != 0 || lay->points > cols ||
-        (is_lftg && !(type->param[0].grid_lo > 0.0))) {
+    if (cols % CURVE_LANES != 0 || lay->points > cols) {
         return 0;
     }
-    pf = &type->param[0];
-    if (terms_alloc(&t, n) != BF_OK) {
-        return -BF_ENOMEM;
+    rc = gen_init(&g, type, lay, n, geom, NULL);
+    if (rc <= 0) {
+        return rc;
     }
-    if (is_lftg) {
-        for (k = 0; k < n; k++) {
-            t.a[k] = log(bf__lftg_base(&geom[k])); /* -inf at grazing */
-        }
-        lftg_factors(n, pf->grid_step, t.a, t.p);
-    } else {
-        /* FC's refractive index is parameter 1, fixed here */
-        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
-        defined = terms_bk(factor, corr, n_index, n, geom, &t);
+    for (g0 = 0; g0 < cols; g0 += CURVE_LANES) {
+        gen_block(&g, n, g0, stride, curves + g0, ok + g0);
     }
-    n_blocks = (long)(cols / CURVE_LANES);
-    for (b = 0; b < n_blocks; b++) {
-        size_t g0 = (size_t)b * CURVE_LANES;
-        double x[CURVE_LANES];
-        size_t j;
-        for (j = 0; j < CURVE_LANES; j++) {
-            size_t i = g0 + j < lay->points ? g0 + j : lay->points - 1;
-            x[j] = pf->grid_lo + pf->grid_step * (double)i; /* SPEC §7.4 */
-        }
-        if (is_lftg) {
-            block_lftg(n, &t, x, stride, curves + g0, ok + g0);
-        } else if (corr == BF__BK_CORR_GAUSS) {
-            block_gauss(n, &t, x, stride, curves + g0, ok + g0);
-        } else {
-            block_exp(n, &t, x, stride, curves + g0, ok + g0);
-        }
-        for (j = 0; j < CURVE_LANES; j++) {
-            if (g0 + j >= lay->points || !defined) {
-                ok[g0 + j] = 0;
-            }
-        }
-    }
-    free(t.mem);
+    free(g.t.mem);
     return 1;
 }
 
@@ -517,6 +570,208 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
             }
         }
     }
+}
+
+/* ==== streaming: curves of one block, scored at once (the study) ======== */
+
+/* Samples scored together against one block of streamed curves. */
+#define STREAM_SAMPLES 8
+
+/* The raw curves of the next block of an E model (P2), computed while the
+ * current block is scored (interleaved): the divider's work (a division
+ * and a square root per value) then overlaps the scoring's FMA work.
+ * Exactly block_exp's operations, row by row. */
+typedef struct {
+    const terms_t *t;
+    double m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    double *out;  /* n x CURVE_LANES, contiguous */
+    size_t first; /* rows first, first + every, ... are this call's */
+    size_t every;
+} erows_t;
+
+/* LSE of the CURVE_LANES grid points of one block (curves c[k *
+ * CURVE_LANES + j], contiguous) against STREAM_SAMPLES samples d[q]:
+ * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
+ * order with one fma per term, as score_tile forms it. When e is not
+ * NULL, also the rows of e (see erows_t). */
+BF__CLONES
+static void score_stream(size_t n, const double *restrict c,
+                         const double *const *d, double *restrict lse,
+                         erows_t *restrict e)
+{
+    double a[STREAM_SAMPLES][CURVE_LANES];
+    double m2[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    size_t next_e = e != NULL ? e->first : SIZE_MAX;
+    size_t j;
+    size_t k;
+    size_t q;
+    for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (j = 0; j < CURVE_LANES; j++) {
+            a[q][j] = 0.0;
+        }
+    }
+    if (e != NULL) {
+        memcpy(m2, e->m2, sizeof m2);
+        memcpy(mx, e->mx, sizeof mx);
+        memcpy(nf, e->nf, sizeof nf);
+    } else {
+        memset(m2, 0, sizeof m2);
+        memset(mx, 0, sizeof mx);
+        memset(nf, 0, sizeof nf);
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * CURVE_LANES);
+        double x[STREAM_SAMPLES];
+        for (q = 0; q < STREAM_SAMPLES; q++) {
+            x[q] = d[q][k];
+        }
+        for (q = 0; q < STREAM_SAMPLES; q++) {
+#pragma omp simd simdlen(CURVE_LANES)
+            for (j = 0; j < CURVE_LANES; j++) {
+                double r = ck[j] - x[q]; /* SPEC §7.3 */
+                a[q][j] = fma(r, r, a[q][j]);
+            }
+        }
+        if (k == next_e) { /* block_exp's row k, SPEC §3.2 */
+            double ea = e->t->a[k];
+            double vz2 = e->t->b[k];
+            double vxy2 = e->t->c[k];
+            double *restrict ok_ = e->out + (k * CURVE_LANES);
+#pragma omp simd simdlen(CURVE_LANES)
+            for (j = 0; j < CURVE_LANES; j++) {
+                double dd = fma(m2[j], vz2, vxy2); /* (P2) */
+                double v = ea / (dd * sqrt(dd));
+                ok_[j] = v;
+                nf[j] += v - v;
+                mx[j] = (v > mx[j]) ? v : mx[j];
+            }
+            next_e += e->every;
+        }
+    }
+    for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (j = 0; j < CURVE_LANES; j++) {
+            lse[(q * CURVE_LANES) + j] = a[q][j];
+        }
+    }
+    if (e != NULL) {
+        memcpy(e->mx, mx, sizeof mx);
+        memcpy(e->nf, nf, sizeof nf);
+    }
+}
+
+/* 1 when some defined value v[j] + pen[j] (pen 0 where defined, +inf
+ * elsewhere) is below best; NaN never is. */
+static inline int block_beats(const double *restrict v,
+                              const double *restrict pen, double best)
+{
+    int any = 0;
+    size_t j;
+#pragma omp simd reduction(| : any)
+    for (j = 0; j < CURVE_LANES; j++) {
+        any |= (v[j] + pen[j]) < best;
+    }
+    return any;
+}
+
+BF__CLONES
+int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
+                    size_t n_samples,
+                    const double *const *data, double *best_lse,
+                    size_t *best)
+{
+    double lse[STREAM_SAMPLES * CURVE_LANES];
+    unsigned char ok[CURVE_LANES];
+    double pen[CURVE_LANES];
+    erows_t e;
+    double *c;
+    double *nxt;
+    gen_t g;
+    size_t n_tiles = (n_samples + STREAM_SAMPLES - 1) / STREAM_SAMPLES;
+    size_t g0;
+    size_t s;
+    int pipe; /* E models: the next block's curves during the scoring */
+    int rc = gen_init(&g, type, lay, n, geom, trig);
+
+    if (rc <= 0) {
+        return rc;
+    }
+    pipe = !g.is_lftg && g.corr == BF__BK_CORR_EXP;
+    c = aligned_alloc(64, 2 * n * CURVE_LANES * sizeof *c); /* 256 n B */
+    if (c == NULL) {
+        free(g.t.mem);
+        return -BF_ENOMEM;
+    }
+    nxt = c + (n * CURVE_LANES);
+    for (s = 0; s < n_samples; s++) {
+        best_lse[s] = INFINITY;
+        best[s] = SIZE_MAX;
+    }
+    gen_block(&g, n, 0, CURVE_LANES, c, ok);
+    for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
+        int more = pipe && g0 + CURVE_LANES < g.points;
+        for (s = 0; s < CURVE_LANES; s++) {
+            pen[s] = ok[s] ? 0.0 : INFINITY;
+        }
+        if (more) { /* block_exp's set-up for the next block */
+            double x[CURVE_LANES];
+            gen_x(&g, g0 + CURVE_LANES, x);
+            for (s = 0; s < CURVE_LANES; s++) {
+                e.m2[s] = x[s] * x[s];
+                e.mx[s] = -INFINITY;
+                e.nf[s] = 0.0;
+            }
+            e.t = &g.t;
+            e.out = nxt;
+            e.every = n_tiles;
+        }
+        for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
+            const double *d[STREAM_SAMPLES];
+            size_t left = n_samples - s;
+            size_t q;
+            size_t j;
+            for (q = 0; q < STREAM_SAMPLES; q++) {
+                d[q] = data[s + (q < left ? q : left - 1)];
+            }
+            e.first = s / STREAM_SAMPLES; /* rows spread over the tiles */
+            score_stream(n, c, d, lse, more ? &e : NULL);
+            if (left > STREAM_SAMPLES) {
+                left = STREAM_SAMPLES;
+            }
+            /* the running argmin: grid points in index order, strict <
+             * (ties keep the first point, NaN never wins), defined points
+             * only -- bf__argmin's result. A vector test first: only when
+             * some point of the block beats the best so far, the scan. */
+            for (q = 0; q < left; q++) {
+                const double *lq = lse + (q * CURVE_LANES);
+                if (!block_beats(lq, pen, best_lse[s + q])) {
+                    continue; /* the usual case */
+                }
+                for (j = 0; j < CURVE_LANES; j++) {
+                    if (ok[j] && lq[j] < best_lse[s + q]) {
+                        best_lse[s + q] = lq[j];
+                        best[s + q] = g0 + j;
+                    }
+                }
+            }
+        }
+        if (more) { /* the next block is complete: normalise, swap */
+            double *tmp = c;
+            normalise_block(n, CURVE_LANES, nxt, e.mx, e.nf, ok);
+            gen_ok(&g, g0 + CURVE_LANES, ok);
+            c = nxt;
+            nxt = tmp;
+        } else if (g0 + CURVE_LANES < g.points) {
+            gen_block(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, ok);
+        }
+    }
+    free(c < nxt ? c : nxt);
+    free(g.t.mem);
+    return 1;
 }
 
 /* Lanes of the argmin below. */

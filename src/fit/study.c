@@ -71,6 +71,7 @@ int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
 int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
                    bf_error *err)
 {
+    double *cti;
     size_t s;
     size_t k;
     int rc;
@@ -82,27 +83,43 @@ int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
         geom[k] = bf_table_geom(spec->table, spec->sel[k]);
     }
 
-    /* SPEC §2: normalised measured radiance of every sample. */
+    /* SPEC §2: normalised measured radiance of every sample, as
+     * bf_data_radiance forms it (the same products, bf_normalise), with
+     * cos(theta_i) taken once per configuration for all samples. */
+    cti = malloc(spec->n_sel * sizeof *cti);
+    if (cti == NULL) {
+        set_error(err, BF_ENOMEM, "out of memory");
+        return BF_ENOMEM;
+    }
+    for (k = 0; k < spec->n_sel; k++) {
+        cti[k] = cos(geom[k].theta_i);
+    }
     for (s = 0; s < spec->n_samples; s++) {
         long row = bf_brdf_find(spec->brdf, spec->samples[s]);
+        const double *v;
+        double *out = data + s * spec->n_sel;
         if (row < 0) {
             rc = BF_ENOTFOUND;
             set_error(err, rc, "sample %d is not in the BRDF file",
                       spec->samples[s]);
+            free(cti);
             return rc;
         }
-        rc = bf_data_radiance(spec->table,
-                              bf_brdf_values(spec->brdf, (size_t)row),
-                              spec->n_sel, spec->sel,
-                              data + s * spec->n_sel);
+        v = bf_brdf_values(spec->brdf, (size_t)row);
+        for (k = 0; k < spec->n_sel; k++) {
+            out[k] = v[spec->sel[k]] * cti[k]; /* SPEC §2: BRDF x cos(ti) */
+        }
+        rc = bf_normalise(spec->n_sel, out, out);
         if (rc != BF_OK) {
             set_error(err, rc,
                       "sample %d: the measured radiance has no positive "
                       "maximum over the used configurations",
                       spec->samples[s]);
+            free(cti);
             return rc;
         }
     }
+    free(cti);
     return BF_OK;
 }
 
@@ -110,6 +127,7 @@ int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
 typedef struct {
     const bf_study_spec *spec;
     const bf_geom *geom;  /* n_sel used configurations */
+    const bf__trig_t *trig; /* their sines and cosines, once per study */
     const double *data;   /* n_samples x n_sel normalised radiances */
     double *fixed;        /* n_models x n_samples x BF_MAX_PARAMS inputs */
     size_t *leader;       /* n_models x n_samples: the first sample with the
@@ -192,6 +210,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     size_t *members = malloc((ns + 1) * sizeof *members);
     double *lse = NULL;
     bf_grid *gr = NULL;
+    bf__grid_layout_t lay;
     size_t n_group = 0;
     size_t cols;
     size_t q;
@@ -206,6 +225,30 @@ static int run_group(const study_t *st, size_t m, size_t leader)
         if (st->leader[m * ns + q] == leader) {
             members[n_group] = q;
             group[n_group++] = st->data + q * spec->n_sel;
+        }
+    }
+    /* the streaming kernels where the model has one: no stored curves */
+    if (n_group > 0 && bf__grid_layout(spec->models[m],
+                                       st->fixed + ((m * ns) + leader) *
+                                                       BF_MAX_PARAMS,
+                                       0, &lay) == BF_OK) {
+        double *best_lse = malloc(n_group * sizeof *best_lse);
+        size_t *best = malloc(n_group * sizeof *best);
+        int done = -BF_ENOMEM;
+        if (best_lse != NULL && best != NULL) {
+            done = bf__stream_fast(spec->models[m], &lay, spec->n_sel,
+                                   st->geom, st->trig, n_group, group, best_lse, best);
+        }
+        for (q = 0; done == 1 && q < n_group; q++) {
+            bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+            r->status = bf__grid_result(spec->models[m], &lay, best[q],
+                                        best_lse[q], &r->fit);
+        }
+        free(best_lse);
+        free(best);
+        if (done != 0) {
+            rc = done < 0 ? -done : BF_OK;
+            goto done;
         }
     }
     gr = bf__grid_build(spec->models[m],
@@ -287,9 +330,11 @@ static int fit_all(study_t *st)
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 {
     bf_geom *geom = NULL;
+    bf__trig_t *trig = NULL;
     double *data = NULL;
     double *fixed = NULL;
     size_t *leader = NULL;
+    size_t k;
     study_t st;
     int rc = BF_OK;
 
@@ -302,12 +347,14 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         return BF_EINVAL;
     }
     geom = malloc(spec->n_sel * sizeof *geom);
+    trig = malloc(spec->n_sel * sizeof *trig);
     data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
     fixed = malloc((spec->n_models * spec->n_samples + 1) * BF_MAX_PARAMS *
                    sizeof *fixed);
     leader = malloc((spec->n_models * spec->n_samples + 1) *
                     sizeof *leader);
-    if (geom == NULL || data == NULL || fixed == NULL || leader == NULL) {
+    if (geom == NULL || trig == NULL || data == NULL || fixed == NULL ||
+        leader == NULL) {
         rc = BF_ENOMEM;
         set_error(err, rc, "out of memory");
         goto done;
@@ -317,9 +364,14 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         goto done;
     }
 
+    for (k = 0; k < spec->n_sel; k++) {
+        bf__geom_trig(&geom[k], &trig[k]);
+    }
+
     /* SPEC §7.3-7.5: each model, each sample. */
     st.spec = spec;
     st.geom = geom;
+    st.trig = trig;
     st.data = data;
     st.fixed = fixed;
     st.leader = leader;
@@ -332,6 +384,7 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
 
 done:
     free(geom);
+    free(trig);
     free(data);
     free(fixed);
     free(leader);

@@ -58,17 +58,31 @@
  * unset) where F_BK diverges: BK at theta_i = pi/2 (SPEC §3.3). */
 int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t)
 {
-    double si;
-    double ci;
-    double ss;
-    double cs;
-    double sp = sin(g->phi_s);
-    double cp = cos(g->phi_s);
+    bf__trig_t tr;
+    bf__geom_trig(g, &tr);
+    return bf__bk_terms_trig(factor, n, &tr, t);
+}
+
+void bf__geom_trig(const bf_geom *g, bf__trig_t *tr)
+{
+    tr->sp = sin(g->phi_s);
+    tr->cp = cos(g->phi_s);
+    bf__zenith_sincos(g->theta_i, &tr->si, &tr->ci);
+    bf__zenith_sincos(g->theta_s, &tr->ss, &tr->cs);
+}
+
+int bf__bk_terms_trig(int factor, double n, const bf__trig_t *tr,
+                      bf__bk_terms_t *t)
+{
+    double si = tr->si;
+    double ci = tr->ci;
+    double ss = tr->ss;
+    double cs = tr->cs;
+    double sp = tr->sp;
+    double cp = tr->cp;
     double vx;
     double vy;
     double vz;
-    bf__zenith_sincos(g->theta_i, &si, &ci);
-    bf__zenith_sincos(g->theta_s, &ss, &cs);
     vx = si - (ss * cp); /* SPEC §3, k = 1 */
     vy = -(ss * sp);     /* SPEC §3 */
     vz = -(ci + cs);     /* SPEC §3 */
