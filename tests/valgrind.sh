@@ -12,6 +12,9 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
+# test_uncertainty repeats 200 fits per model for its coverage checks; the
+# profile and bootstrap code it covers runs under valgrind in test_cli_exact
+# (compare --fit exact --bootstrap 30: both intervals for every fit).
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -20,6 +23,7 @@ set -eu
 build=$1
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
+    test_uncertainty
     grid/study_path_equals_plain_path_on_all_61_samples
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
