@@ -50,6 +50,10 @@ int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* Prints the exit statuses of the study commands (after a blank line):
+ * the text of their --help. */
+void bf_cli_exit_usage(FILE *fp);
+
 /* Maps a loader failure to a message on stderr and an exit status. */
 int bf_cli_load_error(const bf_error *err);
 

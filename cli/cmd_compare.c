@@ -20,14 +20,7 @@ static void usage(FILE *fp)
 "Options:\n",
         fp);
     bf_cli_opts_usage(fp);
-    fputs(
-"\n"
-"Exit status: 0 success; 61 option without its value; 62 conflicting\n"
-"options; 63 malformed or out-of-range option value; 64 unknown option or\n"
-"unexpected argument; 65 bad input data; 66 input file not found; 70\n"
-"internal error; 73 output folder cannot be created or written; 74 write\n"
-"error.\n",
-        fp);
+    bf_cli_exit_usage(fp);
 }
 
 int bf_cmd_compare(int argc, char **argv)

@@ -33,11 +33,7 @@ RANK_MODELS ").\n"
 "                    summary lead with (ranking.csv has all three)\n",
         fp);
     bf_cli_opts_usage(fp);
-    fputs(
-"\n"
-"Exit status: 0 success, 64 usage error, 65 bad input data, 66 input file\n"
-"not found, 70 internal error, 73 cannot create output, 74 write error.\n",
-        fp);
+    bf_cli_exit_usage(fp);
 }
 
 enum { O_CRITERION = 512 };

@@ -54,11 +54,9 @@ static void usage(FILE *fp)
 "  --incidence LIST  incidence angles of the plane-of-incidence figures,\n"
 "                    degrees, at most 4 (default 11.25,33.75,56.25,78.75)\n"
 "\n"
-"A progress line is printed on stderr when it is a terminal.\n"
-"\n"
-"Exit status: 0 success, 64 usage error, 65 bad input data, 66 input file\n"
-"not found, 70 internal error, 73 cannot create output, 74 write error.\n",
+"A progress line is printed on stderr when it is a terminal.\n",
         fp);
+    bf_cli_exit_usage(fp);
 }
 
 static int parse_formats(const char *arg, unsigned *formats)

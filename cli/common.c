@@ -52,6 +52,17 @@ int bf_cli_usage_error(const char *cmd, const char *fmt, ...)
     return rc;
 }
 
+void bf_cli_exit_usage(FILE *fp)
+{
+    fputs("\n"
+          "Exit status: 0 success; 61 option without its value; 62 conflicting\n"
+          "options; 63 malformed or out-of-range option value; 64 unknown option or\n"
+          "unexpected argument; 65 bad input data; 66 input file not found; 70\n"
+          "internal error; 73 output folder cannot be created or written; 74 write\n"
+          "error.\n",
+          fp);
+}
+
 int bf_cli_load_error(const bf_error *err)
 {
     char buf[BF_ERROR_FILE_MAX + BF_ERROR_MSG_MAX + 64];
