@@ -117,9 +117,11 @@ int bf__field_long(const bf__lines *r, size_t i, const char *what, long min,
 int bf__field_error(const bf__lines *r, size_t i, const char *what,
                     int status, long min, long max, bf_error *err);
 
-/* Opens path for reading for a _load function: BF_EIO (message with
- * strerror(errno), line 0) when it cannot be opened, is a directory, or is
- * neither a regular file nor a FIFO/pipe. On success *fp is the stream. */
+/* Opens path for reading for a _load function. First resets err to name
+ * path (bf__error_clear), so every report of the load names its file. Then
+ * BF_EIO (message with strerror(errno), line 0) when it cannot be opened,
+ * is a directory, or is neither a regular file nor a FIFO/pipe. On success
+ * *fp is the stream. */
 int bf__open(const char *path, FILE **fp, bf_error *err);
 
 /* ======================================================================

@@ -210,7 +210,6 @@ int bf_brdf_load(const char *path, size_t n_conf, bf_brdf **out,
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }

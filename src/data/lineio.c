@@ -486,6 +486,7 @@ int bf__open(const char *path, FILE **fp, bf_error *err)
     struct stat st;
     FILE *f;
     *fp = NULL;
+    bf__error_clear(err, path); /* every report of a _load names its file */
     if (path == NULL) {
         return bf__error_set(err, BF_EINVAL, 0, "no file name given");
     }

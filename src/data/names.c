@@ -157,7 +157,6 @@ int bf_names_load(const char *path, bf_names **out, bf_error *err)
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }

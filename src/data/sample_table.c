@@ -206,7 +206,6 @@ int bf_sample_table_load(const char *path, size_t min_cols, size_t max_cols,
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }
@@ -306,7 +305,6 @@ int bf_on_params_load(const char *path, bf_sample_table **out, bf_error *err)
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }
@@ -333,7 +331,6 @@ int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err)
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }

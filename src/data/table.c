@@ -154,7 +154,6 @@ int bf_table_load(const char *path, bf_table **out, bf_error *err)
 {
     FILE *fp = NULL;
     int rc;
-    bf__error_clear(err, path);
     if (out != NULL) {
         *out = NULL;
     }
