@@ -380,33 +380,22 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
 
 /* Fills sel with the used configurations: SPEC §1.4 (non-specular), within
  * --max-theta, minus --exclude. */
-static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table *t, size_t *sel,
-                          size_t *n)
+static int select_configs(const char *hint, const bf_cli_opts *o,
+                          const int *ex, size_t n_ex, const bf_table *t,
+                          size_t *sel, size_t *n)
 {
-    int *ex = NULL;
-    size_t n_ex = 0;
     size_t i;
     size_t j;
     size_t k = 0;
-    char msg[256];
     size_t size = bf_table_size(t);
 
     *n = bf_table_select(t, o->max_theta * DEG, sel);
-    if (o->exclude != NULL) {
-        if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
-            0) {
+    for (j = 0; j < n_ex; j++) {
+        if ((size_t)ex[j] > size) {
             return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                     "--exclude: %s", msg);
-        }
-        for (j = 0; j < n_ex; j++) {
-            if ((size_t)ex[j] > size) {
-                int bad = ex[j];
-                free(ex);
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                         "--exclude: configuration %d does "
-                                         "not exist (the table has %zu)",
-                                         bad, size);
-            }
+                                     "--exclude: configuration %d does "
+                                     "not exist (the table has %zu)",
+                                     ex[j], size);
         }
     }
     for (i = 0; i < *n; i++) {
@@ -421,7 +410,6 @@ static int select_configs(const char *hint, const bf_cli_opts *o, const bf_table
         }
     }
     *n = k;
-    free(ex);
     if (k == 0) {
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                  "--exclude/--max-theta: no configuration "
@@ -451,15 +439,12 @@ int bf_cli_study_prepare(bf_cli_study *st)
         return rc;
     }
     if (o->exclude != NULL) { /* syntax now; range once the table is read */
-        int *ex = NULL;
-        size_t n_ex = 0;
         char msg[256];
-        if (bf_cli_parse_int_list(o->exclude, &ex, &n_ex, msg, sizeof msg) !=
-            0) {
+        if (bf_cli_parse_int_list(o->exclude, &st->exclude, &st->n_exclude,
+                                  msg, sizeof msg) != 0) {
             return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
                                      msg);
         }
-        free(ex);
     }
     rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
     if (rc != BF_EXIT_OK) {
@@ -480,7 +465,8 @@ int bf_cli_study_prepare(bf_cli_study *st)
         bf_cli_err("out of memory");
         return BF_EXIT_SOFTWARE;
     }
-    rc = select_configs(hint, o, st->in.table, st->sel, &st->n_sel);
+    rc = select_configs(hint, o, st->exclude, st->n_exclude, st->in.table,
+                        st->sel, &st->n_sel);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
@@ -559,6 +545,7 @@ void bf_cli_study_free(bf_cli_study *st)
     free(st->rows);
     free(st->stats);
     free(st->variants);
+    free(st->exclude);
     free(st->sel);
     free(st->models);
     free(st->samples);
@@ -566,6 +553,7 @@ void bf_cli_study_free(bf_cli_study *st)
     st->rows = NULL;
     st->stats = NULL;
     st->variants = NULL;
+    st->exclude = NULL;
     st->sel = NULL;
     st->models = NULL;
     st->samples = NULL;

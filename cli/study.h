@@ -69,6 +69,8 @@ typedef struct {
     size_t n_samples;
     const bf_model_type **models;
     size_t n_models;
+    int *exclude;         /* --exclude, parsed (configuration numbers) */
+    size_t n_exclude;
     size_t *sel;          /* used configurations (0-based) */
     size_t n_sel;
     bf_study_spec spec;
