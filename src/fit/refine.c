@@ -27,6 +27,8 @@
 #define UNDEFINED_VALUE 1e300
 /* Points sampled over the whole range before Brent (bf_fit_minimise). */
 #define SCAN_POINTS 17
+/* A refined parameter this close to an inner edge of its box is on it. */
+#define EDGE_TOL (10.0 * BF_REFINE_TOL)
 /* Initial simplex step in the mapped coordinates u (radians). */
 #define SIMPLEX_STEP 0.5
 
@@ -318,24 +320,57 @@ static int check_problem(const bf_problem *pb)
     return BF_OK;
 }
 
+/* 1 when a free parameter of r ends on an edge of the box [a, b] that is
+ * not a bound of pb's search range: the minimum lies beyond the box. */
+static int on_inner_edge(const bf_problem *pb, const bf_fit_result *r,
+                         const double *a, const double *b)
+{
+    size_t j;
+    for (j = 0; j < pb->type->p; j++) {
+        if (!((pb->free_mask >> j) & 1u)) {
+            continue;
+        }
+        if ((a[j] > pb->lo[j] && r->param[j] <= a[j] + EDGE_TOL) ||
+            (b[j] < pb->hi[j] && r->param[j] >= b[j] - EDGE_TOL)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
                   bf_fit_result *result)
 {
     double a[BF_MAX_PARAMS] = {0};
     double b[BF_MAX_PARAMS] = {0};
+    bf_fit_result from;
+    size_t n_eval = 0;
+    size_t walk;
     size_t j;
     int rc = check_problem(pb);
     if (rc != BF_OK || start == NULL || result == NULL) {
         return BF_EINVAL;
     }
-    for (j = 0; j < pb->type->p; j++) {
-        const bf_param *pj = &pb->type->param[j];
-        double step = pj->grid_n > 0 ? pj->grid_step : pb->hi[j] - pb->lo[j];
-        double x = start->param[j];
-        a[j] = x - step > pb->lo[j] ? x - step : pb->lo[j];
-        b[j] = x + step < pb->hi[j] ? x + step : pb->hi[j];
+    from = *start;
+    for (walk = 0; walk <= BF_REFINE_WALKS; walk++) {
+        for (j = 0; j < pb->type->p; j++) {
+            const bf_param *pj = &pb->type->param[j];
+            double step =
+                pj->grid_n > 0 ? pj->grid_step : pb->hi[j] - pb->lo[j];
+            double x = from.param[j];
+            a[j] = x - step > pb->lo[j] ? x - step : pb->lo[j];
+            b[j] = x + step < pb->hi[j] ? x + step : pb->hi[j];
+        }
+        rc = minimise_box(pb, from.param, a, b, 0, result);
+        n_eval += result->n_eval;
+        if ((rc != BF_OK && rc != BF_ENOCONV) || !on_inner_edge(pb, result, a, b)
+            || !(result->lse < from.lse)) {
+            break; /* interior minimum, a failure, or no progress */
+        }
+        from = *result; /* the minimum lies beyond the box: move it */
     }
-    return minimise_box(pb, start->param, a, b, 0, result);
+    result->n_eval = n_eval;
+    return rc;
 }
 
 int bf_fit_minimise(const bf_problem *pb, const double *start,
