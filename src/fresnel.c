@@ -24,22 +24,10 @@
 #include "internal.h"
 
 /* f(alpha_i, r) of SPEC §4.1 from s = sin alpha_i, c = cos alpha_i and
- * ct = cos alpha_t (sin alpha_t = s / r by Snell, (P5)).
- *
- * Expanding the sines and cosines of alpha_i +- alpha_t and dividing
- * numerator and denominator by sin(alpha_i) / r (resp. 1 / r) gives
- *     sin(ai - at) / sin(ai + at) = (r ct - c) / (r ct + c)
- *     cos(ai + at) / cos(ai - at) = (r c ct - s^2) / (r c ct + s^2).
- * Neither quotient is 0/0 anywhere on [0, pi/2] (for r != 1, or r = 1 below
- * grazing), so f is continuous at alpha_i = 0 and equals the SPEC §4.1 limit
- * ((r - 1)/(r + 1))^2 there without a special case. At grazing on the air
- * side (c = 0, r > 1) it gives 1/2 * 1 * (1 + 1) = 1. */
+ * ct = cos alpha_t: bf__fresnel_s2ct (src/internal.h) with s^2. */
 static double fresnel_sct(double s, double c, double ct, double r)
 {
-    double a = (r * ct - c) / (r * ct + c); /* sin(ai-at)/sin(ai+at), (P4) */
-    /* cos(ai+at)/cos(ai-at), (P4) */
-    double b = (r * c * ct - s * s) / (r * c * ct + s * s);
-    return 0.5 * (a * a) * (1.0 + (b * b)); /* (P4) with the 1/2, SPEC §4.1 */
+    return bf__fresnel_s2ct(s * s, c, ct, r);
 }
 
 /* f(alpha_i, r) from s = sin alpha_i and c = cos alpha_i (see

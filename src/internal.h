@@ -131,6 +131,22 @@ int bf__open(const char *path, FILE **fp, bf_error *err);
 
 #include <math.h>
 
+/* Run-time dispatch of the vector loops (src/fit/kernels.c and WNO-R's
+ * facet loop): compiled for x86-64-v4 (AVX-512), x86-64-v3 (AVX2 + FMA) and
+ * the baseline; the loader picks one (GCC's target_clones). Never
+ * -march=native. Empty elsewhere. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&   \
+    defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define BF__CLONES                                                         \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3",     \
+                                 "default")))
+#endif
+#endif
+#ifndef BF__CLONES
+#define BF__CLONES
+#endif
+
 /* pi and pi/2 to double precision (M_PI is not part of strict C11). */
 #define BF__PI 3.14159265358979323846
 #define BF__PI_2 1.57079632679489661923
@@ -149,6 +165,27 @@ static inline void bf__zenith_sincos(double theta, double *s, double *c)
         *s = sin(theta);
         *c = cos(theta);
     }
+}
+
+/* f(alpha_i, r) of SPEC §4.1 from s2 = sin^2 alpha_i, c = cos alpha_i and
+ * ct = cos alpha_t (sin alpha_t = sin alpha_i / r by Snell, (P5)).
+ *
+ * Expanding the sines and cosines of alpha_i +- alpha_t and dividing
+ * numerator and denominator by sin(alpha_i) / r (resp. 1 / r) gives
+ *     sin(ai - at) / sin(ai + at) = (r ct - c) / (r ct + c)
+ *     cos(ai + at) / cos(ai - at) = (r c ct - s^2) / (r c ct + s^2).
+ * Neither quotient is 0/0 anywhere on [0, pi/2] (for r != 1, or r = 1 below
+ * grazing), so f is continuous at alpha_i = 0 and equals the SPEC §4.1 limit
+ * ((r - 1)/(r + 1))^2 there without a special case. At grazing on the air
+ * side (c = 0, r > 1) it gives 1/2 * 1 * (1 + 1) = 1. Inline so that the
+ * facet loop of WNO-R (src/models/wolff_nayar_oren.c) vectorises. */
+static inline double bf__fresnel_s2ct(double s2, double c, double ct,
+                                      double r)
+{
+    double a = (r * ct - c) / (r * ct + c); /* sin(ai-at)/sin(ai+at), (P4) */
+    /* cos(ai+at)/cos(ai-at), (P4) */
+    double b = (r * c * ct - s2) / (r * c * ct + s2);
+    return 0.5 * (a * a) * (1.0 + (b * b)); /* (P4) with the 1/2, SPEC §4.1 */
 }
 
 /* Unpolarised Fresnel reflectance f of SPEC §4.1 from the sine s and cosine

@@ -48,17 +48,6 @@
 #include "internal.h"
 
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&   \
-    defined(__has_attribute)
-#if __has_attribute(target_clones)
-#define BF__CLONES                                                         \
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3",     \
-                                 "default")))
-#endif
-#endif
-#ifndef BF__CLONES
-#define BF__CLONES
-#endif
 
 /* Grid points per curve block: one AVX-512 register of doubles. */
 #define CURVE_LANES 16
