@@ -11,8 +11,8 @@
 #include "texttable.h"
 
 /* The models rank compares by default: the paper's six, the Lambert
- * baseline and WNO. */
-#define RANK_MODELS "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO"
+ * baseline and the two Wolff-Nayar-Oren models. */
+#define RANK_MODELS "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO,WNO-R"
 
 
 static void usage(FILE *fp)

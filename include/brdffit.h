@@ -175,6 +175,9 @@ extern const bf_model_type *const bf_model_lftg;   /* LFTG  SPEC §6 */
 extern const bf_model_type *const bf_model_lambert;/* LAMBERT SPEC §6a */
 extern const bf_model_type *const bf_model_wno;    /* WNO  Wolff's smooth
                                                       dielectric, doc/methods.md */
+extern const bf_model_type *const bf_model_wno_r;  /* WNO-R rough dielectric:
+                                                      V-cavities of WNO facets,
+                                                      doc/methods.md §7 */
 
 /* The registry: number of models, the i-th model (NULL past the end). */
 size_t bf_model_count(void);
@@ -189,6 +192,7 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
 /* Evaluates type at n configurations after checking every parameter against
  * its domain (BF_EINVAL when out of range or not finite) and every geometry
  * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
+ * Returns BF_ENOMEM (all NaN) when WNO-R cannot allocate its quadrature.
  * Returns BF_EDOM when the model is undefined at a configuration, with NaN
  * there and the other values filled: BK-G, BK-E at theta_i = pi/2 (F_BK
  * diverges, SPEC §3.3). Every other model is finite and >= 0 on the whole

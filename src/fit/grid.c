@@ -78,14 +78,15 @@ double bf__sum_sq_diff(size_t n, const double *curve, const double *data)
 }
 
 /* Evaluates type at param on the n configurations and normalises in place.
- * Returns BF_OK, or BF_EDOM when the model is undefined or its maximum is
- * not positive. Parameters are assumed valid (checked by the callers). */
+ * Returns BF_OK, BF_ENOMEM (WNO-R's quadrature table), or BF_EDOM when the
+ * model is undefined or its maximum is not positive. Parameters are assumed
+ * valid (checked by the callers). */
 int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
                     const bf_geom *geom, double *curve)
 {
     int rc = type->eval(param, n, geom, curve);
     if (rc != BF_OK) {
-        return BF_EDOM;
+        return (rc == BF_ENOMEM) ? BF_ENOMEM : BF_EDOM;
     }
     return bf_normalise(n, curve, curve);
 }

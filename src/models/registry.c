@@ -14,15 +14,15 @@
 #include "internal.h"
 
 /* Registry order is part of the API (bf_model_get): the paper's six
- * Beckmann variants, then ON, LFTG, the Lambert baseline and WNO (added
- * last so earlier indices keep their meaning). Adding a model means one new
- * file and one line here. The addresses of the pointer variables are
+ * Beckmann variants, then ON, LFTG, the Lambert baseline, WNO and WNO-R
+ * (added last so earlier indices keep their meaning). Adding a model means
+ * one new file and one line here. The addresses of the pointer variables are
  * constant expressions; the pointers themselves are not. */
 static const bf_model_type *const *const registry[] = {
     &bf_model_bk_g, &bf_model_bk_e, &bf_model_vh_g, &bf_model_vh_e,
     &bf_model_fc_g, &bf_model_fc_e, &bf_model_on,   &bf_model_lftg,
     &bf_model_lambert,
-    &bf_model_wno,
+    &bf_model_wno,  &bf_model_wno_r,
 };
 
 #define REGISTRY_N (sizeof registry / sizeof registry[0])

@@ -93,7 +93,7 @@ Test(refine, refined_optima_are_within_one_grid_step_and_no_worse_than_the_grid)
     size_t improved = 0;
     size_t total = 0;
 
-    cr_assert_eq(n_models, 11u);
+    cr_assert_eq(n_models, 12u);
     for (m = 0; m < n_models; m++) {
         bf_problem pb;
         bf_curves *c;

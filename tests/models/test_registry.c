@@ -9,17 +9,19 @@
 #define PI 3.14159265358979323846
 #define PI_2 1.57079632679489661923
 
-Test(registry, lists_the_ten_models_in_order)
+Test(registry, lists_the_eleven_models_in_order)
 {
-    static const char *names[] = {"BK-G", "BK-E", "VH-G",    "VH-E", "FC-G",
-                                  "FC-E", "ON",   "LFTG", "LAMBERT", "WNO"};
+    static const char *names[] = {"BK-G", "BK-E",    "VH-G", "VH-E",
+                                  "FC-G", "FC-E",    "ON",   "LFTG",
+                                  "LAMBERT", "WNO", "WNO-R"};
     size_t i;
-    cr_assert_eq(bf_model_count(), (size_t)10);
-    for (i = 0; i < 10; i++) {
+    cr_assert_eq(bf_model_count(), (size_t)11);
+    for (i = 0; i < 11; i++) {
         cr_assert_str_eq(bf_model_get(i)->name, names[i]);
     }
-    cr_assert_null(bf_model_get(10));
+    cr_assert_null(bf_model_get(11));
     cr_assert_eq(bf_model_get(9), bf_model_wno);
+    cr_assert_eq(bf_model_get(10), bf_model_wno_r);
     cr_assert_eq(bf_model_get(0), bf_model_bk_g);
     cr_assert_eq(bf_model_get(5), bf_model_fc_e);
     cr_assert_eq(bf_model_get(8), bf_model_lambert);
@@ -166,7 +168,7 @@ Test(registry, eval_rejects_geometry_outside_the_closed_hemisphere)
     size_t i;
     for (i = 0; i < bf_model_count(); i++) {
         const bf_model_type *t = bf_model_get(i);
-        /* WNO's only parameter is n >= 1 */
+        /* WNO's only parameter is n >= 1; WNO-R's are sigma, n */
         double q[2] = {(t == bf_model_on) ? 0.4
                                           : (t == bf_model_wno ? 1.6173 : 0.6173),
                        (t == bf_model_on) ? 0.5 : 1.7};
