@@ -12,6 +12,9 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
+# WNO-R's quadrature (1152 facets per value) makes the two runs over every
+# fitted model on real data (grid/..._61_samples, test_refine) the slowest;
+# WNO-R itself runs under valgrind in test_wno_r and test_cli.
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
@@ -24,7 +27,8 @@ build=$1
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     test_uncertainty
-    grid/study_path_equals_plain_path_on_all_61_samples
+    grid/study_path_finds_the_plain_optimum_on_all_61_samples
+    test_refine
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
     bk/original_beckmann_peaks_at_specular_below_the_slope_threshold
