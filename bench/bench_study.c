@@ -343,6 +343,7 @@ static void eval_rates(const inputs_t *in, int reps)
         snprintf(label, sizeof label, "%s | plain", type->name);
         print_rate(label, (double)(points * in->n_sel), median(t, reps));
         if (points > 1) {
+            size_t grid_points = points;
             for (r = 0; r < reps; r++) {
                 int st;
                 double t0 = now();
@@ -353,10 +354,13 @@ static void eval_rates(const inputs_t *in, int reps)
                 if (gr == NULL) {
                     die(type->name, NULL);
                 }
+                /* the whole grid: every fitted parameter (WNO-R has two) */
+                grid_points = bf_grid_points(gr);
                 bf_grid_free(gr);
             }
             snprintf(label, sizeof label, "%s | study", type->name);
-            print_rate(label, (double)(points * in->n_sel), median(t, reps));
+            print_rate(label, (double)(grid_points * in->n_sel),
+                       median(t, reps));
         }
     }
     printf("\n");
