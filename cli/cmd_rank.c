@@ -66,7 +66,7 @@ static void write_csv(const bf_cli_study *st, FILE *fp)
 {
     size_t s;
     size_t m;
-    fputs("sample,name,model,objective,fit,k,n,objective_value,aic,bic,cv,"
+    fputs("sample,name,channel,model,objective,fit,k,n,objective_value,aic,bic,cv,"
           "rank_aic,rank_bic,rank_cv\n",
           fp);
     for (s = 0; s < st->n_samples; s++) {
@@ -76,8 +76,7 @@ static void write_csv(const bf_cli_study *st, FILE *fp)
             if (st->rows[i].status != BF_OK || !f->done) {
                 continue;
             }
-            fprintf(fp, "%d,", st->samples[s]);
-            bf_cli_csv_field(fp, bf_cli_sample_name(st, st->samples[s]));
+            bf_cli_csv_sample(fp, st, s);
             fprintf(fp, ",%s,%s,%s,%zu,%zu,%.10g,%.10g,%.10g,",
                     st->models[m]->name, bf_objective_name(f->objective),
                     st->opts.exact ? "exact" : "paper", f->k, f->n,

@@ -54,3 +54,10 @@ int bf_configs_load(const char *path, double **angles, size_t *n,
     bf__error_clear(err, path);
     return bf__error_set(err, BF_EPARSE, 0, "format readers not built yet");
 }
+
+int bf_format_detect(const char *path, bf_format *f, bf_error *err)
+{
+    (void)f;
+    bf__error_clear(err, path);
+    return bf__error_set(err, BF_EPARSE, 0, "format readers not built yet");
+}
