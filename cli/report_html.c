@@ -325,7 +325,7 @@ static void conventions(FILE *fp, const bf_cli_study *st,
           "divided by its own maximum over the same configurations, so the "
           "models' scale constants cancel (SPEC §2).</li>\n", fp);
     {
-        char cone[128];
+        char cone[256];
         bf_cli_describe_cone(st, cone, sizeof cone);
         fputs("<li>Specular exclusion: ", fp);
         put_text(fp, cone);

@@ -798,11 +798,31 @@ void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
 void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
 {
     double cone = st->opts.cone;
-    if (cone < 0.0) {
-        snprintf(buf, len, "%s",
-                 st->in.curet ? "CURET's 7 specular configurations (SPEC "
-                                "§1.4)"
-                              : "none (no --exclude-specular)");
+    if (cone < 0.0 && st->in.curet && st->n_samples > 0) {
+        /* the configurations of SPEC §1.4's test, from the data */
+        size_t m = st->targets[0].material;
+        const bf_geom *g = bf_dataset_geom(st->in.ds, m);
+        size_t n = bf_dataset_nconf(st->in.ds, m);
+        size_t count = 0;
+        size_t k;
+        size_t at;
+        for (k = 0; k < n; k++) {
+            count += (size_t)bf_geom_is_specular(&g[k]);
+        }
+        at = (size_t)snprintf(buf, len, "CURET's %zu specular "
+                                        "configurations (",
+                              count);
+        for (k = 0; k < n && at < len; k++) {
+            if (bf_geom_is_specular(&g[k])) {
+                at += (size_t)snprintf(buf + at, len - at, "%s%zu",
+                                       buf[at - 1] == '(' ? "" : ", ", k + 1);
+            }
+        }
+        if (at < len) {
+            snprintf(buf + at, len - at, "; SPEC §1.4)");
+        }
+    } else if (cone < 0.0) {
+        snprintf(buf, len, "none (no --exclude-specular)");
     } else if (cone == 0.0) {
         snprintf(buf, len, "none (--exclude-specular 0)");
     } else {
@@ -821,7 +841,7 @@ static void describe_configs(const bf_cli_study *st, FILE *fp)
     size_t *sel = NULL;
     double *data = NULL;
     size_t cap = 0;
-    char cone[128];
+    char cone[256];
     bf_cli_describe_cone(st, cone, sizeof cone);
     fprintf(fp, "Specular exclusion: %s\n", cone);
     for (s = 0; s < st->n_samples; s++) {

@@ -138,14 +138,22 @@ int bf_curet_load(const char *dir, const char *brdf_path, bf_dataset **out,
 
     rc = bf_table_load(table_path, &t, err);
     if (rc == BF_OK) {
-        rc = bf_brdf_load(path, 0, &b, err); /* count checked below */
+        rc = bf_brdf_load(path, bf_table_size(t), &b, err);
     }
-    if (rc == BF_OK && bf_brdf_nconf(b) != bf_table_size(t)) {
-        bf__error_clear(err, path);
-        rc = bf__error_set(err, BF_EPARSE, bf_brdf_line(b, 0),
-                           "the BRDF rows have %zu values but %s has %zu "
-                           "configurations",
-                           bf_brdf_nconf(b), table_path, bf_table_size(t));
+    if (rc == BF_EPARSE && t != NULL && stat(path, &sb) == 0 &&
+        S_ISREG(sb.st_mode)) {
+        /* Rows that agree with each other but not with the table: say so,
+         * naming both files (the first error otherwise stands). A pipe
+         * cannot be read twice, so only a regular file is. */
+        bf_error again;
+        if (bf_brdf_load(path, 0, &b, &again) == BF_OK &&
+            bf_brdf_nconf(b) != bf_table_size(t)) {
+            bf__error_clear(err, path);
+            bf__error_set(err, BF_EPARSE, bf_brdf_line(b, 0),
+                          "the BRDF rows have %zu values but %s has %zu "
+                          "configurations",
+                          bf_brdf_nconf(b), table_path, bf_table_size(t));
+        }
     }
     if (rc == BF_OK && stat(names_path, &sb) == 0) {
         rc = bf_names_load(names_path, &names, err);
