@@ -133,6 +133,8 @@ void bf_out_abort(bf_out *o);
 
 /* Subcommands. */
 int bf_cmd_compare(int argc, char **argv);
+int bf_cmd_convert(int argc, char **argv);
+int bf_cmd_info(int argc, char **argv);
 int bf_cmd_models(int argc, char **argv);
 int bf_cmd_report(int argc, char **argv);
 int bf_cmd_rank(int argc, char **argv);

@@ -551,6 +551,32 @@ int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
 int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
                         const size_t *sel, double *out);
 
+/* What one material holds, for `brdffit info` and for users checking
+ * their data (all angles in radians, in the measurement frame). */
+#define BF_SUMMARY_NCONES 5
+extern const double bf_summary_cones_deg[BF_SUMMARY_NCONES]; /* 1 5 10 15
+                                                                25 deg */
+typedef struct {
+    size_t n_conf;              /* configurations */
+    size_t n_channels;
+    double theta_i_min, theta_i_max;
+    double theta_o_min, theta_o_max;
+    double phi_i_min, phi_i_max; /* as given */
+    double phi_o_min, phi_o_max;
+    size_t n_specular;          /* SPEC §1.4's test (CURET's default) */
+    size_t n_cone[BF_SUMMARY_NCONES]; /* with delta < bf_summary_cones_deg */
+    double delta_min;           /* the nearest to the mirror direction */
+    size_t n_negative;          /* valid values < 0 (kept, SPEC §2) */
+    size_t n_zero;              /* valid values == 0 */
+    size_t n_invalid;           /* values marked invalid */
+    size_t n_conf_invalid;      /* configurations with an invalid value */
+    double value_min, value_max; /* over the valid values */
+} bf_material_summary;
+
+/* Fills out for material m. BF_EINVAL when m is out of range. */
+int bf_dataset_summary(const bf_dataset *ds, size_t m,
+                       bf_material_summary *out);
+
 /* ---- readers: each has a read-from-FILE form (name used in messages;
  *      fp is never closed) and a load-from-path form; on error *out is
  *      NULL and err names the file and the line (text formats) or the byte
