@@ -427,9 +427,9 @@ static int fig_lse(render_ctx *c)
     panel.title = c->o->log_lse ? "Figure 2(b): LSE of each model "
                                   "(logarithmic axis)"
                                 : "Figure 2(b): LSE of each model";
-    panel.xlabel = by_slope ? "CURET sample number, sorted by increasing "
+    panel.xlabel = by_slope ? "sample number, sorted by increasing "
                               "fitted FC-E slope σ/T"
-                            : "CURET sample number (FC-E not fitted: in "
+                            : "sample number (FC-E not fitted: in "
                               "numerical order)";
     panel.ylabel = "LSE = Σ (L_model − L_data)² (dimensionless)";
     panel.xmin = 0.5;

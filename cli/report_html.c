@@ -414,9 +414,9 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
     fputs("</style>\n<script>", fp);
     fputs(script, fp);
     fputs("</script>\n</head>\n<body>\n", fp);
-    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu CURET "
+    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu %s"
                 "samples</h1>\n",
-            st->n_models, st->n_samples);
+            st->n_models, st->n_samples, st->in.curet ? "CURET " : "");
     fputs("<p>Rough-surface reflectance models fitted to measured BRDF data "
           "with the protocol of Ragheb &amp; Hancock, “Comparing Variants of "
           "the Beckmann Model” (tables and figures numbered as in the "
