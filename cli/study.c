@@ -874,7 +874,7 @@ static void describe_configs(const bf_cli_study *st, FILE *fp)
             fprintf(fp, " (%s)", bf_cli_sample_name(st, s));
         }
         fprintf(fp, ": K = %zu of %zu used", k, nconf);
-        if (st->n_cone[s] > 0 && !st->in.curet) {
+        if (st->opts.cone >= 0.0 || !st->in.curet) {
             fprintf(fp, " (%zu in the specular cone)", st->n_cone[s]);
         }
         if (nconf - k > LIST_MAX) {
