@@ -102,6 +102,29 @@ int bf_cli_load_data(const bf_cli_source *src, const char *n_file,
                      const char *on_file, bf_cli_inputs *in);
 void bf_cli_free_inputs(bf_cli_inputs *in);
 
+/* Fills src with the defaults: the CURET folder of $BRDFFIT_DATA or
+ * BF_DEFAULT_DATA_DIR, no input, format detected. */
+void bf_cli_source_init(bf_cli_source *src);
+
+/* Parses a --input-format value into *f; a usage error (status returned,
+ * message printed) when it names no format. cmd is "compare " etc. */
+int bf_cli_parse_format(const char *cmd, const char *arg, bf_format *f);
+
+/* Parses the options of the commands that read files (info, convert):
+ * --input-format, --configs, --data, and --to when to is not NULL. *first
+ * gets the index of the first operand. Returns 0, -1 after --help, or an
+ * exit status after a usage error. */
+int bf_cli_file_args(const char *cmd, int argc, char **argv,
+                     void (*usage)(FILE *fp), const char **to,
+                     bf_cli_source *src, int *first);
+
+/* Prints the help lines of the options bf_cli_file_args parses. */
+void bf_cli_file_args_usage(FILE *fp);
+
+/* Makes path src's only input: a folder is read as CURET, anything else
+ * as an --input file. */
+void bf_cli_source_path(bf_cli_source *src, const char *path);
+
 /* The label of material m: "16 Leather" (number, name), or "16". */
 void bf_cli_material_label(const bf_dataset *ds, size_t m, char *buf,
                            size_t len);

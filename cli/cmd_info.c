@@ -2,11 +2,9 @@
  * materials, channels, configurations, angle ranges, how many
  * configurations lie near the mirror direction (SPEC §1.4, §1.6), and its
  * negative, zero and invalid values (SPEC §2). */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "texttable.h"
@@ -15,7 +13,7 @@
 
 static void usage(FILE *fp)
 {
-    fprintf(fp,
+    fputs(
 "Usage: brdffit info [OPTIONS] FILE|DIR...\n"
 "\n"
 "Describes measured BRDF data in any format brdffit reads (a CURET folder,\n"
@@ -25,14 +23,9 @@ static void usage(FILE *fp)
 "the mirror direction (the specular cone of --exclude-specular, SPEC §1.6),\n"
 "and the negative, zero and invalid values.\n"
 "\n"
-"Options:\n"
-"  --input-format F  force the format (pbrt, astm, merl, csv, curet)\n"
-"  --configs FILE|all  where a MERL table is sampled (default: CURET's\n"
-"                    205 configurations from --data DIR/table.txt)\n"
-"  --data DIR        CURET folder for MERL's default configurations\n"
-"                    (default $BRDFFIT_DATA, else %s)\n"
-"  -h, --help        show this help\n",
-            BF_DEFAULT_DATA_DIR);
+"Options:\n",
+          fp);
+    bf_cli_file_args_usage(fp);
     bf_cli_exit_usage(fp);
 }
 
@@ -148,66 +141,24 @@ static int describe(const char *path, const bf_dataset *ds, int curet)
 
 int bf_cmd_info(int argc, char **argv)
 {
-    enum { O_FORMAT = 256, O_CONFIGS, O_DATA };
-    static const struct option longopts[] = {
-        {"input-format", required_argument, NULL, O_FORMAT},
-        {"format", required_argument, NULL, O_FORMAT},
-        {"configs", required_argument, NULL, O_CONFIGS},
-        {"data", required_argument, NULL, O_DATA},
-        {"help", no_argument, NULL, 'h'},
-        {NULL, 0, NULL, 0}};
     bf_cli_source src;
-    int c;
+    int first;
     int a;
-    int rc = BF_EXIT_OK;
-
-    memset(&src, 0, sizeof src);
-    src.data_dir = getenv("BRDFFIT_DATA");
-    if (src.data_dir == NULL || src.data_dir[0] == '\0') {
-        src.data_dir = BF_DEFAULT_DATA_DIR;
+    int rc = bf_cli_file_args("info ", argc, argv, usage, NULL, &src, &first);
+    if (rc != 0) {
+        return rc < 0 ? BF_EXIT_OK : rc;
     }
-    opterr = 0;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
-        switch (c) {
-        case O_FORMAT:
-            if (bf_format_find(optarg, &src.format) != BF_OK ||
-                src.format == BF_FORMAT_MEMORY) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, "info ",
-                                         "--input-format: '%s' is not "
-                                         "pbrt, astm, merl, csv, curet or "
-                                         "auto", optarg);
-            }
-            break;
-        case O_CONFIGS: src.configs = optarg; break;
-        case O_DATA: src.data_dir = optarg; break;
-        case 'h': usage(stdout); return BF_EXIT_OK;
-        case ':':
-            return bf_cli_usage_fail(BF_EXIT_NOVALUE, "info ",
-                                     "option '%s' needs a value",
-                                     argv[optind - 1]);
-        default:
-            return bf_cli_usage_error("info ", "unknown option '%s'",
-                                      argv[optind - 1]);
-        }
-    }
-    if (optind >= argc) {
+    if (first >= argc) {
         return bf_cli_usage_fail(BF_EXIT_NOVALUE, "info ",
                                  "no FILE or DIR given");
     }
-    for (a = optind; a < argc && rc == BF_EXIT_OK; a++) {
+    for (a = first; a < argc && rc == BF_EXIT_OK; a++) {
         bf_cli_source one = src;
         bf_cli_inputs in;
-        struct stat sb;
-        if (stat(argv[a], &sb) == 0 && S_ISDIR(sb.st_mode)) {
-            one.data_dir = argv[a]; /* a folder is CURET */
-        } else {
-            one.inputs[0] = argv[a];
-            one.n_inputs = 1;
-        }
+        bf_cli_source_path(&one, argv[a]);
         rc = bf_cli_load_data(&one, NULL, NULL, &in);
         if (rc == BF_EXIT_OK) {
-            if (a > optind) {
+            if (a > first) {
                 putchar('\n');
             }
             rc = describe(argv[a], in.ds, in.curet);

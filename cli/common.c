@@ -1,6 +1,7 @@
 /* common.c: messages, argument parsing, input loading and atomic output
  * files shared by the brdffit subcommands. */
 #include <errno.h>
+#include <getopt.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -346,6 +347,97 @@ void bf_cli_free_inputs(bf_cli_inputs *in)
     bf_sample_table_free(in->n_file);
     bf_sample_table_free(in->on_params);
     memset(in, 0, sizeof *in);
+}
+
+void bf_cli_source_init(bf_cli_source *src)
+{
+    memset(src, 0, sizeof *src);
+    src->data_dir = getenv("BRDFFIT_DATA");
+    if (src->data_dir == NULL || src->data_dir[0] == '\0') {
+        src->data_dir = BF_DEFAULT_DATA_DIR;
+    }
+}
+
+int bf_cli_parse_format(const char *cmd, const char *arg, bf_format *f)
+{
+    if (bf_format_find(arg, f) != BF_OK || *f == BF_FORMAT_MEMORY) {
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, cmd,
+                                 "--input-format: '%s' is not pbrt, astm, "
+                                 "merl, csv, curet or auto",
+                                 arg);
+    }
+    return BF_EXIT_OK;
+}
+
+void bf_cli_file_args_usage(FILE *fp)
+{
+    fprintf(fp,
+"  --input-format F  force the format (pbrt, astm, merl, csv, curet)\n"
+"  --configs FILE|all  where a MERL table is sampled (default: CURET's\n"
+"                    205 configurations from --data DIR/table.txt)\n"
+"  --data DIR        CURET folder for MERL's default configurations\n"
+"                    (default $BRDFFIT_DATA, else %s)\n"
+"  -h, --help        show this help\n",
+            BF_DEFAULT_DATA_DIR);
+}
+
+int bf_cli_file_args(const char *cmd, int argc, char **argv,
+                     void (*usage)(FILE *fp), const char **to,
+                     bf_cli_source *src, int *first)
+{
+    enum { O_FORMAT = 256, O_CONFIGS, O_DATA, O_TO };
+    static const struct option longopts[] = {
+        {"input-format", required_argument, NULL, O_FORMAT},
+        {"format", required_argument, NULL, O_FORMAT},
+        {"configs", required_argument, NULL, O_CONFIGS},
+        {"data", required_argument, NULL, O_DATA},
+        {"to", required_argument, NULL, O_TO},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    int c;
+    bf_cli_source_init(src);
+    opterr = 0;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+        int rc = BF_EXIT_OK;
+        switch (c) {
+        case O_FORMAT: rc = bf_cli_parse_format(cmd, optarg, &src->format);
+            break;
+        case O_CONFIGS: src->configs = optarg; break;
+        case O_DATA: src->data_dir = optarg; break;
+        case O_TO:
+            if (to == NULL) {
+                return bf_cli_usage_error(cmd, "unknown option '--to'");
+            }
+            *to = optarg;
+            break;
+        case 'h': usage(stdout); return -1;
+        case ':':
+            return bf_cli_usage_fail(BF_EXIT_NOVALUE, cmd,
+                                     "option '%s' needs a value",
+                                     argv[optind - 1]);
+        default:
+            return bf_cli_usage_error(cmd, "unknown option '%s'",
+                                      argv[optind - 1]);
+        }
+        if (rc != BF_EXIT_OK) {
+            return rc;
+        }
+    }
+    *first = optind;
+    return BF_EXIT_OK;
+}
+
+void bf_cli_source_path(bf_cli_source *src, const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        src->data_dir = path; /* a folder is CURET */
+        src->n_inputs = 0;
+    } else {
+        src->inputs[0] = path;
+        src->n_inputs = 1;
+    }
 }
 
 void bf_cli_material_label(const bf_dataset *ds, size_t m, char *buf,

@@ -137,10 +137,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     snprintf(hint, sizeof hint, "%s ", cmd);
 
     memset(o, 0, sizeof *o);
-    o->src.data_dir = getenv("BRDFFIT_DATA");
-    if (o->src.data_dir == NULL || o->src.data_dir[0] == '\0') {
-        o->src.data_dir = BF_DEFAULT_DATA_DIR;
-    }
+    bf_cli_source_init(&o->src);
     o->cone = -1.0;
     o->out_dir = "out";
     o->n = BF_DEFAULT_N;
@@ -163,15 +160,13 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
             }
             o->src.inputs[o->src.n_inputs++] = optarg;
             break;
-        case O_INFORMAT:
-            if (bf_format_find(optarg, &o->src.format) != BF_OK ||
-                o->src.format == BF_FORMAT_MEMORY) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                         "--input-format: '%s' is not "
-                                         "pbrt, astm, merl, csv, curet or "
-                                         "auto", optarg);
+        case O_INFORMAT: {
+            int rc = bf_cli_parse_format(hint, optarg, &o->src.format);
+            if (rc != BF_EXIT_OK) {
+                return rc;
             }
             break;
+        }
         case O_CONFIGS: o->src.configs = optarg; break;
         case O_CHANNEL: o->channel = optarg; break;
         case O_CONE:
