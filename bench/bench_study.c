@@ -83,6 +83,8 @@ static void die(const char *what, const bf_error *err)
 typedef struct {
     bf_table *t;
     bf_brdf *b;
+    bf_dataset *ds;            /* the same data as a dataset */
+    bf_target paper_t[BF_STUDY_NSAMPLES]; /* the study's 24 samples */
     bf_sample_table *on;
     size_t sel[BF_CURET_NCONF];
     size_t n_sel;
@@ -93,12 +95,10 @@ typedef struct {
 static void spec_init(const inputs_t *in, bf_study_spec *spec)
 {
     memset(spec, 0, sizeof *spec);
-    spec->table = in->t;
-    spec->brdf = in->b;
-    spec->sel = in->sel;
-    spec->n_sel = in->n_sel;
-    spec->samples = bf_study_samples;
-    spec->n_samples = BF_STUDY_NSAMPLES;
+    spec->data = in->ds;
+    bf_select_init(&spec->select); /* SPEC §1.4: K = 198 */
+    spec->targets = in->paper_t;
+    spec->n_targets = BF_STUDY_NSAMPLES;
     spec->models = in->paper;
     spec->n_models = 6;
     spec->n_default = BF_DEFAULT_N;
@@ -109,7 +109,7 @@ static void spec_init(const inputs_t *in, bf_study_spec *spec)
 /* Median time of reps runs of the study spec (seconds). */
 static double time_study(const bf_study_spec *spec, int reps)
 {
-    bf_study_row *rows = calloc(spec->n_samples * spec->n_models + 1,
+    bf_study_row *rows = calloc(spec->n_targets * spec->n_models + 1,
                                 sizeof *rows);
     double *t = malloc((size_t)reps * sizeof *t);
     bf_error err;
@@ -541,7 +541,8 @@ static void scaling(const inputs_t *in, const reps_t *reps)
     static const size_t n_samples[] = {6, 12, 24, 48, 96};
     static const size_t grids[] = {125, 250, 501, 1002, 2004};
     static const size_t ks[] = {50, 100, 150, 198};
-    int samples[96];
+    bf_target samples[96];
+    size_t excl[BF_CURET_NCONF];
     bf_study_spec spec;
     size_t prev = 0;
     double prev_t = 0.0;
@@ -556,12 +557,12 @@ static void scaling(const inputs_t *in, const reps_t *reps)
            "sample. Samples beyond the paper's 24 repeat them.\n\n");
     printf("| size | value | median ms | marginal |\n|---|---|---|---|\n");
     for (i = 0; i < 96; i++) {
-        samples[i] = bf_study_samples[i % BF_STUDY_NSAMPLES];
+        samples[i] = in->paper_t[i % BF_STUDY_NSAMPLES];
     }
     for (i = 0; i < sizeof n_samples / sizeof *n_samples; i++) {
         spec_init(in, &spec);
-        spec.samples = samples;
-        spec.n_samples = n_samples[i];
+        spec.targets = samples;
+        spec.n_targets = n_samples[i];
         scaling_row("samples", n_samples[i], time_study(&spec, reps->scale),
                     &prev, &prev_t, "sample");
     }
@@ -576,9 +577,16 @@ static void scaling(const inputs_t *in, const reps_t *reps)
     }
     prev = 0;
     for (i = 0; i < sizeof ks / sizeof *ks; i++) {
+        size_t k = ks[i] < in->n_sel ? ks[i] : in->n_sel;
+        size_t j;
         spec_init(in, &spec);
-        spec.n_sel = ks[i] < in->n_sel ? ks[i] : in->n_sel;
-        scaling_row("configurations", spec.n_sel,
+        /* the first k used configurations: leave out the others */
+        for (j = k; j < in->n_sel; j++) {
+            excl[j - k] = in->sel[j] + 1;
+        }
+        spec.select.exclude = excl;
+        spec.select.n_exclude = in->n_sel - k;
+        scaling_row("configurations", k,
                     time_study(&spec, reps->scale), &prev, &prev_t,
                     "configuration");
     }
@@ -676,6 +684,15 @@ int main(int argc, char **argv)
     if (bf_on_params_load(on_path, &in.on, &err) != BF_OK) {
         die("ON parameters", &err);
     }
+    if (bf_curet_dataset(in.t, in.b, NULL, dir, "mean", &in.ds, &err) !=
+        BF_OK) {
+        die("dataset", &err);
+    }
+    for (i = 0; i < BF_STUDY_NSAMPLES; i++) {
+        in.paper_t[i].material = (size_t)bf_dataset_find(in.ds,
+                                                         bf_study_samples[i]);
+        in.paper_t[i].channel = BF_CHANNEL_MEAN;
+    }
     in.n_sel = bf_table_select(in.t, M_PI_2, in.sel); /* SPEC §1.4 */
     for (i = 0; i < in.n_sel; i++) {
         in.geom[i] = bf_table_geom(in.t, in.sel[i]);
@@ -770,7 +787,7 @@ int main(int argc, char **argv)
     /* all 61 samples x all models; bootstrap */
     {
         const bf_model_type *all[MAX_MODELS];
-        int samples[128];
+        bf_target samples[128];
         double t;
         double tb[8];
         size_t n_all = bf_model_count();
@@ -778,21 +795,22 @@ int main(int argc, char **argv)
         for (i = 0; i < n_all && i < MAX_MODELS; i++) {
             all[i] = bf_model_get(i);
         }
-        for (i = 0; i < bf_brdf_count(in.b) && i < 128; i++) {
-            samples[i] = bf_brdf_sample(in.b, i);
+        for (i = 0; i < bf_dataset_count(in.ds) && i < 128; i++) {
+            samples[i].material = i;
+            samples[i].channel = BF_CHANNEL_MEAN;
         }
         spec_init(&in, &spec);
         spec.models = all;
         spec.n_models = n_all;
-        spec.samples = samples;
-        spec.n_samples = bf_brdf_count(in.b);
+        spec.targets = samples;
+        spec.n_targets = i;
         t = time_study(&spec, reps.all);
         spec.n_threads = 2;
         printf("## Larger runs\n\n| run | median | 2 threads |\n|---|---|---|"
                "\n");
         printf("| all %zu samples x all %zu models (ON for the 24 with "
                "parameters) | %.3f ms | %.3f ms |\n",
-               spec.n_samples, n_all, 1e3 * t,
+               spec.n_targets, n_all, 1e3 * t,
                1e3 * time_study(&spec, reps.all));
         for (r = 0; r < reps.boot && r < 8; r++) {
             tb[r] = bootstrap(&in);

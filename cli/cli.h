@@ -65,25 +65,69 @@ int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
 /* Parses a finite double; returns 0 on success. */
 int bf_cli_parse_double(const char *s, double *out);
 
-/* The inputs of a study run. */
+/* At most this many --input files. */
+#define BF_CLI_MAX_INPUTS 64
+
+/* Where a run's measurements come from: a CURET folder, or --input files
+ * in any format (SPEC §8). */
 typedef struct {
-    char table_path[4096];
+    const char *data_dir;    /* CURET folder: read when there is no input,
+                                and MERL's default configurations */
+    const char *brdf_file;   /* CURET: --brdf, or NULL for abrdf.dat */
+    const char *inputs[BF_CLI_MAX_INPUTS]; /* --input files, in order */
+    size_t n_inputs;
+    bf_format format;        /* --input-format, BF_FORMAT_AUTO to detect */
+    const char *configs;     /* MERL: NULL (CURET's table of data_dir),
+                                "all" (every valid cell) or a CSV file */
+} bf_cli_source;
+
+/* The inputs of a run: the dataset and the per-sample tables, with the
+ * files they came from (for provenance). */
+typedef struct {
+    int curet;                /* 1 when the data are a CURET folder */
+    char table_path[4096];    /* CURET's files ("" otherwise) */
     char brdf_path[4096];
-    char names_path[4096];
-    bf_table *table;
-    bf_brdf *brdf;
-    bf_names *names;          /* NULL when samples.tsv is absent */
+    char names_path[4096];    /* "" when there is no samples.tsv */
+    char configs_path[4096];  /* the file MERL was sampled at, or "" */
+    bf_dataset *ds;
     bf_sample_table *n_file;  /* NULL unless --n-file */
     bf_sample_table *on_params;
 } bf_cli_inputs;
 
-/* Loads table.txt, the BRDF file (brdf_file, or DIR/abrdf.dat when NULL)
- * and samples.tsv (optional) from data_dir, and the optional n and ON files.
- * Returns BF_EXIT_OK or an exit status after printing the error. */
-int bf_cli_load_inputs(const char *data_dir, const char *brdf_file,
-                       const char *n_file, const char *on_file,
-                       bf_cli_inputs *in);
+/* Loads the measurements of src (a CURET folder, or every --input
+ * appended in order, MERL sampled as src->configs says) and the optional n
+ * and ON files. Returns BF_EXIT_OK or an exit status after printing the
+ * error. */
+int bf_cli_load_data(const bf_cli_source *src, const char *n_file,
+                     const char *on_file, bf_cli_inputs *in);
 void bf_cli_free_inputs(bf_cli_inputs *in);
+
+/* Fills src with the defaults: the CURET folder of $BRDFFIT_DATA or
+ * BF_DEFAULT_DATA_DIR, no input, format detected. */
+void bf_cli_source_init(bf_cli_source *src);
+
+/* Parses a --input-format value into *f; a usage error (status returned,
+ * message printed) when it names no format. cmd is "compare " etc. */
+int bf_cli_parse_format(const char *cmd, const char *arg, bf_format *f);
+
+/* Parses the options of the commands that read files (info, convert):
+ * --input-format, --configs, --data, and --to when to is not NULL. *first
+ * gets the index of the first operand. Returns 0, -1 after --help, or an
+ * exit status after a usage error. */
+int bf_cli_file_args(const char *cmd, int argc, char **argv,
+                     void (*usage)(FILE *fp), const char **to,
+                     bf_cli_source *src, int *first);
+
+/* Prints the help lines of the options bf_cli_file_args parses. */
+void bf_cli_file_args_usage(FILE *fp);
+
+/* Makes path src's only input: a folder is read as CURET, anything else
+ * as an --input file. */
+void bf_cli_source_path(bf_cli_source *src, const char *path);
+
+/* The label of material m: "16 Leather" (number, name), or "16". */
+void bf_cli_material_label(const bf_dataset *ds, size_t m, char *buf,
+                           size_t len);
 
 /* An output file written atomically: data go to a temporary file in the
  * same folder, renamed over the final path by bf_out_commit. */
@@ -112,6 +156,8 @@ void bf_out_abort(bf_out *o);
 
 /* Subcommands. */
 int bf_cmd_compare(int argc, char **argv);
+int bf_cmd_convert(int argc, char **argv);
+int bf_cmd_info(int argc, char **argv);
 int bf_cmd_models(int argc, char **argv);
 int bf_cmd_report(int argc, char **argv);
 int bf_cmd_rank(int argc, char **argv);

@@ -1,4 +1,4 @@
-/* cmd_compare.c: `brdffit compare` -- the study of SPEC §7 on CURET data:
+/* cmd_compare.c: `brdffit compare` -- the study of SPEC §7 on any data:
  * fits every selected model to every selected sample, prints Table 2
  * (parameters) and Table 3 (LSE) in the paper's layout and writes fits.csv,
  * table2.md and table3.md atomically into the output folder. */
@@ -11,11 +11,12 @@ static void usage(FILE *fp)
     fputs(
 "Usage: brdffit compare [OPTIONS]\n"
 "\n"
-"Fit reflectance models to CURET BRDF data with the protocol of Ragheb &\n"
-"Hancock (SPEC §7): max-normalised radiance over the non-specular\n"
-"configurations, LSE as a sum, 501-point grids. Prints Table 2 (fitted\n"
-"parameters) and Table 3 (LSE) and writes fits.csv, table2.md and table3.md\n"
-"into the output folder.\n"
+"Fit reflectance models to measured BRDF data (a CURET folder, or --input\n"
+"files: pbrt-v2/Cornell .brdf, ASTM E1392, MERL .binary, tidy CSV) with\n"
+"the protocol of Ragheb & Hancock (SPEC §7): max-normalised radiance over\n"
+"the used configurations (the specular ones left out), LSE as a sum,\n"
+"501-point grids. Prints Table 2 (fitted parameters) and Table 3 (LSE) and\n"
+"writes fits.csv, table2.md and table3.md into the output folder.\n"
 "\n"
 "Options:\n",
         fp);

@@ -1,5 +1,5 @@
 /* cmd_rank.c: `brdffit rank` -- model selection per sample: fits every
- * model to every sample (by default all 61 CURET samples, --fit exact),
+ * model to every sample (by default all samples of the data, --fit exact),
  * ranks the models of each sample by AIC, BIC and cross-validated error
  * (doc/methods.md §4-5), prints the ranking and a summary over samples and
  * writes ranking.csv and ranking.md atomically into the output folder. */
@@ -20,9 +20,9 @@ static void usage(FILE *fp)
     fputs(
 "Usage: brdffit rank [OPTIONS]\n"
 "\n"
-"Ranks reflectance models per CURET sample by AIC, BIC and K-fold\n"
+"Ranks reflectance models per sample by AIC, BIC and K-fold\n"
 "cross-validated error (doc/methods.md), after fitting each model (by\n"
-"default with --fit exact, on all 61 samples, models\n"
+"default with --fit exact, on every sample of the data, models\n"
 RANK_MODELS ").\n"
 "Prints the ranking and a summary over samples ('FC-E best for 32 of 61\n"
 "samples, ...') and writes ranking.csv and ranking.md into the output\n"
@@ -66,7 +66,7 @@ static void write_csv(const bf_cli_study *st, FILE *fp)
 {
     size_t s;
     size_t m;
-    fputs("sample,name,model,objective,fit,k,n,objective_value,aic,bic,cv,"
+    fputs("sample,name,channel,model,objective,fit,k,n,objective_value,aic,bic,cv,"
           "rank_aic,rank_bic,rank_cv\n",
           fp);
     for (s = 0; s < st->n_samples; s++) {
@@ -76,8 +76,7 @@ static void write_csv(const bf_cli_study *st, FILE *fp)
             if (st->rows[i].status != BF_OK || !f->done) {
                 continue;
             }
-            fprintf(fp, "%d,", st->samples[s]);
-            bf_cli_csv_field(fp, bf_cli_sample_name(st, st->samples[s]));
+            bf_cli_csv_sample(fp, st, s);
             fprintf(fp, ",%s,%s,%s,%zu,%zu,%.10g,%.10g,%.10g,",
                     st->models[m]->name, bf_objective_name(f->objective),
                     st->opts.exact ? "exact" : "paper", f->k, f->n,
@@ -152,7 +151,7 @@ int bf_cmd_rank(int argc, char **argv)
         return rc < 0 ? BF_EXIT_OK : rc;
     }
     if (!st.opts.samples_given) {
-        st.opts.samples = "all"; /* every CURET sample */
+        st.opts.samples = "all"; /* every sample of the data */
     }
     if (st.opts.models == NULL) {
         st.opts.models = RANK_MODELS;

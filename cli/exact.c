@@ -282,7 +282,7 @@ void bf_cli_exact_on_compare(const bf_cli_study *st, FILE *fp)
             continue;
         }
         bf_tt_set(t, 0, "%d", st->samples[s]);
-        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, st->samples[s]));
+        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, s));
         bf_tt_set(t, 2, "%.3f [%.3f, %.3f]", f->refined.param[0],
                   f->ci_low[0], f->ci_high[0]);
         bf_tt_set(t, 3, "%.2f", rho);

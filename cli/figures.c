@@ -57,6 +57,7 @@ static const char *const paper_scatter[] = {"ON", "LFTG", "VH-E", "FC-E"};
 typedef struct {
     size_t K;
     size_t n_models;
+    bf_geom *geom; /* the K used configurations (Beckmann's frame) */
     double *data;
     double *pred;
     double *scale;
@@ -65,6 +66,7 @@ typedef struct {
 
 static void radiances_free(radiances *r)
 {
+    free(r->geom);
     free(r->data);
     free(r->pred);
     free(r->scale);
@@ -72,28 +74,36 @@ static void radiances_free(radiances *r)
     memset(r, 0, sizeof *r);
 }
 
-/* Fills r for sample index s of st. Returns BF_OK or a BF_E* code. */
-static int radiances_compute(const bf_cli_study *st, const bf_geom *geom,
-                             size_t s, radiances *r)
+/* Fills r for sample index s of st: its used configurations and data as
+ * the study fitted them. Returns BF_OK or a BF_E* code. */
+static int radiances_compute(const bf_cli_study *st, size_t s, radiances *r)
 {
-    size_t K = st->n_sel;
+    size_t nconf = bf_dataset_nconf(st->in.ds, st->targets[s].material);
+    const bf_geom *all = bf_dataset_geom(st->in.ds, st->targets[s].material);
+    size_t *sel = malloc((nconf + 1) * sizeof *sel);
+    size_t K = 0;
+    size_t k;
     size_t m;
-    long row = bf_brdf_find(st->in.brdf, st->samples[s]);
     int rc;
 
     memset(r, 0, sizeof *r);
-    r->K = K;
     r->n_models = st->n_models;
-    r->data = malloc(K * sizeof *r->data);
-    r->pred = malloc(K * st->n_models * sizeof *r->pred);
-    r->scale = calloc(st->n_models, sizeof *r->scale);
-    r->ok = calloc(st->n_models, sizeof *r->ok);
-    if (r->data == NULL || r->pred == NULL || r->scale == NULL ||
-        r->ok == NULL || row < 0) {
-        return row < 0 ? BF_ENOTFOUND : BF_ENOMEM;
+    r->geom = malloc((nconf + 1) * sizeof *r->geom);
+    r->data = malloc((nconf + 1) * sizeof *r->data);
+    r->pred = malloc((nconf * st->n_models + 1) * sizeof *r->pred);
+    r->scale = calloc(st->n_models + 1, sizeof *r->scale);
+    r->ok = calloc(st->n_models + 1, sizeof *r->ok);
+    if (sel == NULL || r->geom == NULL || r->data == NULL ||
+        r->pred == NULL || r->scale == NULL || r->ok == NULL) {
+        free(sel);
+        return BF_ENOMEM;
     }
-    rc = bf_data_radiance(st->in.table, bf_brdf_values(st->in.brdf, (size_t)row),
-                          K, st->sel, r->data);
+    rc = bf_cli_target_data(st, s, sel, &K, r->data);
+    for (k = 0; rc == BF_OK && k < K; k++) {
+        r->geom[k] = all[sel[k]];
+    }
+    free(sel);
+    r->K = K;
     if (rc != BF_OK) {
         return rc;
     }
@@ -101,11 +111,10 @@ static int radiances_compute(const bf_cli_study *st, const bf_geom *geom,
         const bf_study_row *row_m = &st->rows[s * st->n_models + m];
         double *p = &r->pred[m * K];
         double mx = -HUGE_VAL;
-        size_t k;
         if (row_m->status != BF_OK) {
             continue;
         }
-        rc = bf_model_eval(row_m->type, row_m->fit.param, K, geom, p);
+        rc = bf_model_eval(row_m->type, row_m->fit.param, K, r->geom, p);
         if (rc != BF_OK) {
             return rc;
         }
@@ -327,14 +336,16 @@ static int draw(render_ctx *c, bf_fig_entry *e, const bf_plot_figure *fig)
     return BF_EXIT_OK;
 }
 
-static const char *sample_label(const bf_cli_study *st, int sample, char *buf,
+/* "Leather (16)", "Leather [R] (16)" or "sample 16" for target s. */
+static const char *sample_label(const bf_cli_study *st, size_t s, char *buf,
                                 size_t len)
 {
-    const char *name = bf_cli_sample_name(st, sample);
-    if (name[0] != '\0') {
-        snprintf(buf, len, "%s (%d)", name, sample);
+    char title[96]; /* long names are cut: the label is a panel title */
+    bf_cli_sample_title(st, s, title, sizeof title);
+    if (title[0] != '\0') {
+        snprintf(buf, len, "%.95s (%d)", title, st->samples[s]);
     } else {
-        snprintf(buf, len, "sample %d", sample);
+        snprintf(buf, len, "sample %d", st->samples[s]);
     }
     return buf;
 }
@@ -416,9 +427,9 @@ static int fig_lse(render_ctx *c)
     panel.title = c->o->log_lse ? "Figure 2(b): LSE of each model "
                                   "(logarithmic axis)"
                                 : "Figure 2(b): LSE of each model";
-    panel.xlabel = by_slope ? "CURET sample number, sorted by increasing "
+    panel.xlabel = by_slope ? "sample number, sorted by increasing "
                               "fitted FC-E slope σ/T"
-                            : "CURET sample number (FC-E not fitted: in "
+                            : "sample number (FC-E not fitted: in "
                               "numerical order)";
     panel.ylabel = "LSE = Σ (L_model − L_data)² (dimensionless)";
     panel.xmin = 0.5;
@@ -472,7 +483,7 @@ static void scatter_panels(const bf_cli_study *st, const size_t *samples,
             size_t p = a * nm + b;
             const bf_study_row *row = &st->rows[samples[a] * st->n_models + m];
             char who[128];
-            sample_label(st, st->samples[samples[a]], who, sizeof who);
+            sample_label(st, samples[a], who, sizeof who);
             if (row->status == BF_OK) {
                 snprintf(titles[p], sizeof titles[p], "%s: %s, LSE %.2f", who,
                          row->type->name, row->fit.lse);
@@ -542,7 +553,7 @@ static int fig_scatter(render_ctx *c, bf_fig_kind kind, const size_t *samples,
         snprintf(e->base, sizeof e->base, "scatter_sample%d",
                  st->samples[samples[0]]);
         snprintf(e->title, sizeof e->title, "%s: predicted against measured",
-                 sample_label(st, st->samples[samples[0]], who, sizeof who));
+                 sample_label(st, samples[0], who, sizeof who));
     } else {
         snprintf(e->base, sizeof e->base, "scatter%zu", number);
         snprintf(e->title, sizeof e->title,
@@ -588,8 +599,8 @@ typedef struct {
  * (within PLANE_TOL) and each model's curve, normalised by its maximum
  * over the K used configurations so points and curves compare as in the
  * fit (SPEC §2). Returns the largest value drawn. */
-static double plane_compute(const bf_cli_study *st, const bf_geom *geom,
-                            const radiances *r, size_t s, const size_t *idx,
+static double plane_compute(const bf_cli_study *st, const radiances *r,
+                            size_t s, const size_t *idx,
                             size_t nm, double theta_i, plane_data *pd)
 {
     double top = 0.0;
@@ -598,8 +609,8 @@ static double plane_compute(const bf_cli_study *st, const bf_geom *geom,
     bf_geom cg[CURVE_POINTS];
 
     pd->np = 0;
-    for (k = 0; k < st->n_sel && pd->np < 64; k++) {
-        const bf_geom *g = &geom[k];
+    for (k = 0; k < r->K && pd->np < 64; k++) {
+        const bf_geom *g = &r->geom[k];
         double off = asin(fmin(1.0, sin(g->theta_s) * fabs(sin(g->phi_s))));
         if (fabs(g->theta_i - theta_i) <= PLANE_TOL && off <= PLANE_TOL) {
             pd->px[pd->np] = signed_theta(g);
@@ -641,8 +652,7 @@ static double plane_compute(const bf_cli_study *st, const bf_geom *geom,
 }
 
 /* The plane-of-incidence figure of sample index s, Cartesian or polar. */
-static int fig_plane(render_ctx *c, size_t s, const bf_geom *geom,
-                     const radiances *r, const size_t *idx, size_t nm,
+static int fig_plane(render_ctx *c, size_t s, const radiances *r, const size_t *idx, size_t nm,
                      int polar)
 {
     const bf_cli_study *st = c->st;
@@ -668,9 +678,9 @@ static int fig_plane(render_ctx *c, size_t s, const bf_geom *geom,
         bf_cli_err("out of memory");
         goto done;
     }
-    sample_label(st, st->samples[s], who, sizeof who);
+    sample_label(st, s, who, sizeof who);
     for (a = 0; a < na; a++) {
-        top = fmax(top, plane_compute(st, geom, r, s, idx, nm,
+        top = fmax(top, plane_compute(st, r, s, idx, nm,
                                       c->o->incidence[a], &pd[a]));
     }
     ymax = fmin(1.05 * top, PLANE_YMAX_CAP);
@@ -849,7 +859,6 @@ int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
     size_t k;
     size_t g;
     size_t groups = (N + SAMPLES_PER_FIGURE - 1) / SAMPLES_PER_FIGURE;
-    bf_geom *geom = malloc(st->n_sel * sizeof *geom);
     radiances *rad = calloc(N, sizeof *rad);
     size_t *all = malloc(N * sizeof *all);
     int rc;
@@ -857,7 +866,7 @@ int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
     memset(set, 0, sizeof *set);
     set->formats = o->formats;
     snprintf(set->dir, sizeof set->dir, "%s/%s", out_dir, BF_FIG_DIR);
-    if (geom == NULL || rad == NULL || all == NULL) {
+    if (rad == NULL || all == NULL) {
         bf_cli_err("out of memory");
         rc = BF_EXIT_SOFTWARE;
         goto done;
@@ -869,11 +878,8 @@ int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
     if (rc != BF_EXIT_OK) {
         goto done;
     }
-    for (k = 0; k < st->n_sel; k++) {
-        geom[k] = bf_table_geom(st->in.table, st->sel[k]);
-    }
     for (s = 0; s < N; s++) {
-        int e = radiances_compute(st, geom, s, &rad[s]);
+        int e = radiances_compute(st, s, &rad[s]);
         all[s] = s;
         if (e != BF_OK) {
             bf_cli_err("sample %d: cannot compute the radiances to plot: %s",
@@ -913,10 +919,10 @@ int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
                              0, 0);
         }
         if (rc == BF_EXIT_OK) {
-            rc = fig_plane(&c, s, geom, &rad[s], idx, nm, 0);
+            rc = fig_plane(&c, s, &rad[s], idx, nm, 0);
         }
         if (rc == BF_EXIT_OK) {
-            rc = fig_plane(&c, s, geom, &rad[s], idx, nm, 1);
+            rc = fig_plane(&c, s, &rad[s], idx, nm, 1);
         }
     }
     if (o->progress && c.done > 0) {
@@ -929,7 +935,6 @@ done:
         }
     }
     free(rad);
-    free(geom);
     free(all);
     if (rc != BF_EXIT_OK) {
         bf_figures_free(set);

@@ -14,10 +14,13 @@ static void usage(FILE *fp)
 "them (Ragheb & Hancock, \"Comparing Variants of the Beckmann Model\").\n"
 "\n"
 "Commands:\n"
-"  compare   fit models to CURET samples; print Tables 2 and 3, write CSV\n"
-"  models    list the models, their parameters, ranges and equations\n"
+"  compare   fit models to measured BRDFs (CURET, Cornell .brdf, ASTM,\n"
+"            MERL, CSV); print Tables 2 and 3, write CSV\n"
 "  report    run compare and write every figure and report.html\n"
 "  rank      rank the models per sample by AIC, BIC and cross-validation\n"
+"  info      describe a data file or folder (format, materials, angles)\n"
+"  convert   write any data file brdffit reads as tidy CSV\n"
+"  models    list the models, their parameters, ranges and equations\n"
 "\n"
 "Options:\n"
 "  -h, --help     show this help ('brdffit COMMAND --help' for a command)\n"
@@ -59,6 +62,12 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "rank") == 0) {
         return bf_cmd_rank(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "info") == 0) {
+        return bf_cmd_info(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "convert") == 0) {
+        return bf_cmd_convert(argc - 1, argv + 1);
     }
     return bf_cli_usage_error(NULL, "unknown command '%s'", cmd);
 }

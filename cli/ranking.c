@@ -85,7 +85,7 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
             return NULL;
         }
         bf_tt_set(t, 0, "%d", st->samples[s]);
-        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, st->samples[s]));
+        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, s));
         for (m = 0; m < st->n_models; m++) {
             double v = bf_cli_rank_value(st, s * st->n_models + m, crit);
             if (isfinite(v)) {

@@ -70,13 +70,26 @@ static int add_input(bf_report_meta *meta, const char *role, const char *path)
 int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta)
 {
     int rc;
+    size_t i;
     meta->n_inputs = 0;
-    rc = add_input(meta, "configuration table", st->in.table_path);
-    if (rc == BF_EXIT_OK) {
-        rc = add_input(meta, "BRDF values", st->in.brdf_path);
-    }
-    if (rc == BF_EXIT_OK && st->in.names != NULL) {
-        rc = add_input(meta, "sample names", st->in.names_path);
+    if (st->in.curet) {
+        rc = add_input(meta, "configuration table", st->in.table_path);
+        if (rc == BF_EXIT_OK) {
+            rc = add_input(meta, "BRDF values", st->in.brdf_path);
+        }
+        if (rc == BF_EXIT_OK && st->in.names_path[0] != '\0') {
+            rc = add_input(meta, "sample names", st->in.names_path);
+        }
+    } else {
+        rc = BF_EXIT_OK;
+        for (i = 0; rc == BF_EXIT_OK && i < st->opts.src.n_inputs; i++) {
+            rc = add_input(meta, "measurements", st->opts.src.inputs[i]);
+        }
+        if (rc == BF_EXIT_OK && st->in.configs_path[0] != '\0' &&
+            strcmp(st->in.configs_path, "all") != 0) {
+            rc = add_input(meta, "MERL sampling configurations",
+                           st->in.configs_path);
+        }
     }
     if (rc == BF_EXIT_OK && st->opts.on_file != NULL) {
         rc = add_input(meta, "Oren-Nayar parameters", st->opts.on_file);
@@ -110,10 +123,12 @@ static const char *script =
     "'data-images',ok+'/'+im.length);document.body.setAttribute("
     "'data-images-ok',ok===im.length?'yes':'no');});";
 
-static void sample_cells(FILE *fp, const bf_cli_study *st, int sample)
+static void sample_cells(FILE *fp, const bf_cli_study *st, size_t s)
 {
-    fprintf(fp, "<td class=\"n\">%d</td><td>", sample);
-    put_text(fp, bf_cli_sample_name(st, sample));
+    char title[512];
+    bf_cli_sample_title(st, s, title, sizeof title);
+    fprintf(fp, "<td class=\"n\">%d</td><td>", st->samples[s]);
+    put_text(fp, title);
     fputs("</td>", fp);
 }
 
@@ -139,7 +154,7 @@ static void table2(FILE *fp, const bf_cli_study *st)
     fputs("</tr>\n", fp);
     for (s = 0; s < st->n_samples; s++) {
         fputs("<tr>", fp);
-        sample_cells(fp, st, st->samples[s]);
+        sample_cells(fp, st, s);
         for (m = 0; m < st->n_models; m++) {
             const bf_study_row *r = &st->rows[s * st->n_models + m];
             for (j = 0; j < r->type->p; j++) {
@@ -180,7 +195,7 @@ static void table3(FILE *fp, const bf_cli_study *st)
             }
         }
         fputs("<tr>", fp);
-        sample_cells(fp, st, st->samples[s]);
+        sample_cells(fp, st, s);
         for (m = 0; m < st->n_models; m++) {
             if (row[m].status != BF_OK) {
                 fputs("<td class=\"n\">-</td>", fp);
@@ -309,13 +324,17 @@ static void conventions(FILE *fp, const bf_cli_study *st,
           "maximum over the K used configurations; every model curve is "
           "divided by its own maximum over the same configurations, so the "
           "models' scale constants cancel (SPEC §2).</li>\n", fp);
-    fprintf(fp, "<li>Configurations: K = %zu of %zu used. CURET's 7 specular "
-                "configurations (54, 97, 131, 161, 183, 196, 202) are always "
-                "left out (SPEC §1.4)%s.</li>\n",
-            st->n_sel, bf_table_size(st->in.table),
-            (st->opts.exclude != NULL || st->opts.max_theta < 90.0)
-                ? ", and more by --exclude or --max-theta (listed below)"
-                : "");
+    {
+        char cone[256];
+        bf_cli_describe_cone(st, cone, sizeof cone);
+        fputs("<li>Specular exclusion: ", fp);
+        put_text(fp, cone);
+        fprintf(fp, "%s; the configurations used and left out are listed "
+                    "below.</li>\n",
+                (st->opts.exclude != NULL || st->opts.max_theta < 90.0)
+                    ? ", and more by --exclude or --max-theta"
+                    : "");
+    }
     fputs("<li>LSE = Σ<sub>k</sub> (L<sub>model,k</sub> − L<sub>data,k"
           "</sub>)², a sum over the K configurations (SPEC §7.3).</li>\n"
           "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "
@@ -395,9 +414,9 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
     fputs("</style>\n<script>", fp);
     fputs(script, fp);
     fputs("</script>\n</head>\n<body>\n", fp);
-    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu CURET "
+    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu %s"
                 "samples</h1>\n",
-            st->n_models, st->n_samples);
+            st->n_models, st->n_samples, st->in.curet ? "CURET " : "");
     fputs("<p>Rough-surface reflectance models fitted to measured BRDF data "
           "with the protocol of Ragheb &amp; Hancock, “Comparing Variants of "
           "the Beckmann Model” (tables and figures numbered as in the "
@@ -427,9 +446,10 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
     fputs("<h3 id=\"samples\">Per sample</h3>\n", fp);
     for (s = 0; s < st->n_samples; s++) {
         int sample = st->samples[s];
-        const char *name = bf_cli_sample_name(st, sample);
+        char title[512];
+        bf_cli_sample_title(st, s, title, sizeof title);
         fprintf(fp, "<h4 id=\"sample%d\">", sample);
-        put_text(fp, name[0] != '\0' ? name : "sample");
+        put_text(fp, title[0] != '\0' ? title : "sample");
         fprintf(fp, " (%d)</h4>\n", sample);
         figures_of(fp, figs, BF_FIG_SAMPLE, sample);
         figures_of(fp, figs, BF_FIG_PLANE, sample);

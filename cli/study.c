@@ -23,22 +23,43 @@ static const char *const paper_models[] = {"VH-G", "VH-E", "FC-G",
 void bf_cli_opts_usage(FILE *fp)
 {
     fprintf(fp,
+"Data (a CURET folder, or --input files in any format; README 'Data'):\n"
 "  --data DIR        CURET folder with table.txt, abrdf.dat and optionally\n"
 "                    samples.tsv (default $BRDFFIT_DATA, else %s)\n"
-"  --brdf FILE       BRDF file with rows 'sample v1 ... v205' (default\n"
+"  --brdf FILE       CURET BRDF file with rows 'sample v1 ... vN' (default\n"
 "                    DIR/abrdf.dat; rbrdf.dat, gbrdf.dat, bbrdf.dat work too)\n"
-"  --samples SET     'paper' (the study's 24 samples, default), 'all', or a\n"
-"                    list such as 1,5,7-9\n"
+"  --input FILE      measurements in another format (repeatable, at most\n"
+"                    %d): pbrt-v2/Cornell .brdf, ASTM E1392 .astm, MERL\n"
+"                    .binary, tidy CSV; one material per file (CSV: one or\n"
+"                    more), numbered 1, 2, ... in input order\n"
+"  --input-format F  force the format of every --input: pbrt, astm, merl,\n"
+"                    csv, curet (default: detected from the content)\n"
+"  --configs FILE|all  where a MERL table is sampled: the angles of a CSV\n"
+"                    file, or every valid cell (default: CURET's 205\n"
+"                    configurations, from DIR/table.txt)\n"
+"  --channel C       channel to fit: 'mean' (of all channels, default), a\n"
+"                    channel name (R, G, B) or wavelength (550), or 'each'\n"
+"                    (every channel, one set of rows per channel)\n"
+"  --samples SET     'paper' (the study's 24 CURET samples; the default on\n"
+"                    CURET), 'all' (the default for --input), or a list of\n"
+"                    sample numbers such as 1,5,7-9\n"
+"\n"
+"Configurations:\n"
+"  --exclude-specular DEG  leave out every configuration within DEG degrees\n"
+"                    of the mirror direction (SPEC §1.6; default: CURET's 7\n"
+"                    specular configurations on CURET, none on other data)\n"
+"  --exclude LIST    configuration numbers (1-based, in each material's\n"
+"                    order) to leave out as well, e.g. 1-4,17\n"
+"  --max-theta DEG   leave out configurations with theta_i or theta_o above\n"
+"                    DEG degrees (default 90: none)\n"
+"\n"
+"Models and fitting:\n"
 "  --models LIST     comma-separated model names, or 'all' (default\n"
 "                    VH-G,VH-E,FC-G,FC-E,ON,LFTG); see 'brdffit models'\n"
 "  --n VALUE         refractive index of the FC models (default %.1f)\n"
 "  --n-file FILE     per-sample refractive index, rows 'sample n'\n"
 "  --on-params FILE  Oren-Nayar rho, sigma per sample: rows 'sample rho\n"
 "                    sigma [kd]' (CURET op.dat layout accepted)\n"
-"  --exclude LIST    configuration numbers (1-205) to leave out besides the\n"
-"                    7 specular ones, e.g. 1-4,17\n"
-"  --max-theta DEG   leave out configurations with theta_i or theta_v above\n"
-"                    DEG degrees (default 90: none)\n"
 "  --fit MODE        'paper' (the paper's grids; default of compare) or\n"
 "                    'exact' (grid, then GSL refinement; FC's n and ON's\n"
 "                    rho, sigma fitted too; default of rank)\n"
@@ -54,12 +75,14 @@ void bf_cli_opts_usage(FILE *fp)
 "                    (default 0: profile intervals only)\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
 "  --seed S          seed of the bootstrap and the folds (default 1)\n"
+"\n"
+"Output:\n"
 "  --out DIR         output folder (default out; created if missing)\n"
 "  --threads N       fit on N threads (default 1; 0: one per core); the\n"
 "                    results do not depend on N\n"
 "  -q, --quiet       do not print the tables\n"
 "  -h, --help        show this help\n",
-            BF_DEFAULT_DATA_DIR, BF_DEFAULT_N);
+            BF_DEFAULT_DATA_DIR, BF_CLI_MAX_INPUTS, BF_DEFAULT_N);
 }
 
 /* ==== argument parsing =================================================== */
@@ -70,10 +93,16 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
 {
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
-           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS };
+           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
+           O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
+        {"input", required_argument, NULL, O_INPUT},
+        {"input-format", required_argument, NULL, O_INFORMAT},
+        {"configs", required_argument, NULL, O_CONFIGS},
+        {"channel", required_argument, NULL, O_CHANNEL},
+        {"exclude-specular", required_argument, NULL, O_CONE},
         {"samples", required_argument, NULL, O_SAMPLES},
         {"models", required_argument, NULL, O_MODELS},
         {"n", required_argument, NULL, O_N},
@@ -108,11 +137,8 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     snprintf(hint, sizeof hint, "%s ", cmd);
 
     memset(o, 0, sizeof *o);
-    o->data_dir = getenv("BRDFFIT_DATA");
-    if (o->data_dir == NULL || o->data_dir[0] == '\0') {
-        o->data_dir = BF_DEFAULT_DATA_DIR;
-    }
-    o->samples = "paper";
+    bf_cli_source_init(&o->src);
+    o->cone = -1.0;
     o->out_dir = "out";
     o->n = BF_DEFAULT_N;
     o->max_theta = 90.0;
@@ -124,8 +150,34 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     optind = 1;
     while ((c = getopt_long(argc, argv, ":qh", longopts, NULL)) != -1) {
         switch (c) {
-        case O_DATA: o->data_dir = optarg; break;
-        case O_BRDF: o->brdf_file = optarg; break;
+        case O_DATA: o->src.data_dir = optarg; break;
+        case O_BRDF: o->src.brdf_file = optarg; break;
+        case O_INPUT:
+            if (o->src.n_inputs == BF_CLI_MAX_INPUTS) {
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--input: at most %d files",
+                                         BF_CLI_MAX_INPUTS);
+            }
+            o->src.inputs[o->src.n_inputs++] = optarg;
+            break;
+        case O_INFORMAT: {
+            int rc = bf_cli_parse_format(hint, optarg, &o->src.format);
+            if (rc != BF_EXIT_OK) {
+                return rc;
+            }
+            break;
+        }
+        case O_CONFIGS: o->src.configs = optarg; break;
+        case O_CHANNEL: o->channel = optarg; break;
+        case O_CONE:
+            if (bf_cli_parse_double(optarg, &o->cone) != 0 ||
+                o->cone < 0.0 || o->cone >= 90.0) {
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--exclude-specular: '%s' is not "
+                                         "an angle in [0, 90) degrees",
+                                         optarg);
+            }
+            break;
         case O_SAMPLES: o->samples = optarg; o->samples_given = 1; break;
         case O_MODELS: o->models = optarg; break;
         case O_NFILE: o->n_file = optarg; break;
@@ -246,6 +298,11 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
         return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
                                  "--n and --n-file cannot be combined");
     }
+    if (o->src.n_inputs > 0 && o->src.brdf_file != NULL) {
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
+                                 "--brdf (CURET) and --input cannot be "
+                                 "combined");
+    }
     if (!o->exact && o->objective != BF_OBJ_MAX) {
         return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint, "--objective %s needs --fit exact "
                                   "(the paper's protocol minimises max)",
@@ -258,26 +315,30 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     return 0;
 }
 
-/* Parses --samples before any file is read (usage errors come first). A
- * list is returned in *out; 'paper' gives the study's samples; 'all' gives
- * *out = NULL, resolved by resolve_samples once the BRDF file is read. */
-static int parse_samples(const char *hint, const bf_cli_opts *o, int **out, size_t *n)
+/* Parses --samples before any file is read (usage errors come first): a
+ * list goes to *out; 'paper' and 'all' leave *out NULL and set *mode, and
+ * are resolved by resolve_samples once the data are read. */
+enum { SAMPLES_DEFAULT, SAMPLES_PAPER, SAMPLES_ALL, SAMPLES_LIST };
+
+static int parse_samples(const char *hint, const bf_cli_opts *o, int **out,
+                         size_t *n, int *mode)
 {
     char msg[256];
     *out = NULL;
     *n = 0;
+    *mode = SAMPLES_DEFAULT;
+    if (o->samples == NULL) {
+        return BF_EXIT_OK;
+    }
     if (strcmp(o->samples, "all") == 0) {
+        *mode = SAMPLES_ALL;
         return BF_EXIT_OK;
     }
     if (strcmp(o->samples, "paper") == 0) {
-        *out = malloc(sizeof bf_study_samples);
-        if (*out == NULL) {
-            return BF_EXIT_SOFTWARE;
-        }
-        memcpy(*out, bf_study_samples, sizeof bf_study_samples);
-        *n = BF_STUDY_NSAMPLES;
+        *mode = SAMPLES_PAPER;
         return BF_EXIT_OK;
     }
+    *mode = SAMPLES_LIST;
     if (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg) != 0) {
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--samples: %s",
                                  msg);
@@ -285,28 +346,44 @@ static int parse_samples(const char *hint, const bf_cli_opts *o, int **out, size
     return BF_EXIT_OK;
 }
 
-/* Fills in 'all' and checks that every listed sample is in the file. */
-static int resolve_samples(const char *hint, const bf_brdf *brdf,
-                           int **samples, size_t *n)
+/* The materials (dataset indices) of --samples: the paper's 24 on CURET by
+ * default, every material otherwise; a list names material numbers. */
+static int resolve_samples(const char *hint, const bf_cli_inputs *in,
+                           int mode, const int *list, size_t n_list,
+                           size_t **out, size_t *n)
 {
+    const bf_dataset *ds = in->ds;
+    size_t count = bf_dataset_count(ds);
     size_t i;
-    if (*samples == NULL) {
-        *n = bf_brdf_count(brdf);
-        *samples = malloc((*n ? *n : 1) * sizeof **samples);
-        if (*samples == NULL) {
-            return BF_EXIT_SOFTWARE;
+    if (mode == SAMPLES_DEFAULT) {
+        mode = in->curet ? SAMPLES_PAPER : SAMPLES_ALL;
+    }
+    if (mode == SAMPLES_PAPER) {
+        if (!in->curet) {
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "--samples paper: the paper's samples "
+                                     "are CURET samples; give 'all' or a "
+                                     "list of sample numbers");
         }
-        for (i = 0; i < *n; i++) {
-            (*samples)[i] = bf_brdf_sample(brdf, i);
-        }
+        list = bf_study_samples;
+        n_list = BF_STUDY_NSAMPLES;
+    }
+    *n = mode == SAMPLES_ALL ? count : n_list;
+    *out = malloc((*n + 1) * sizeof **out);
+    if (*out == NULL) {
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
     }
     for (i = 0; i < *n; i++) {
-        if (bf_brdf_find(brdf, (*samples)[i]) < 0) {
+        long m = mode == SAMPLES_ALL ? (long)i : bf_dataset_find(ds, list[i]);
+        if (m < 0) {
             return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                     "--samples: sample %d is not in the "
-                                     "BRDF file (it has samples 1-%zu)",
-                                     (*samples)[i], bf_brdf_count(brdf));
+                                     "--samples: sample %d is not in the %s "
+                                     "(it has samples 1-%zu)",
+                                     list[i],
+                                     in->curet ? "BRDF file" : "data", count);
         }
+        (*out)[i] = (size_t)m;
     }
     return BF_EXIT_OK;
 }
@@ -378,44 +455,71 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
     return BF_EXIT_OK;
 }
 
-/* Fills sel with the used configurations: SPEC §1.4 (non-specular), within
- * --max-theta, minus --exclude. */
-static int select_configs(const char *hint, const bf_cli_opts *o,
-                          const int *ex, size_t n_ex, const bf_table *t,
-                          size_t *sel, size_t *n)
+/* The selection of spec (SPEC §1.4, §1.6, --max-theta, --exclude) for
+ * every target: its K and how many the cone left out. An excluded number
+ * beyond a material's configurations, or a target left with nothing, is a
+ * usage error. */
+static int select_configs(const char *hint, bf_cli_study *st)
 {
-    size_t i;
+    const bf_dataset *ds = st->in.ds;
+    size_t *sel = NULL;
+    size_t cap = 0;
+    size_t s;
     size_t j;
-    size_t k = 0;
-    size_t size = bf_table_size(t);
+    int rc = BF_EXIT_OK;
 
-    *n = bf_table_select(t, o->max_theta * DEG, sel);
-    for (j = 0; j < n_ex; j++) {
-        if ((size_t)ex[j] > size) {
-            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                     "--exclude: configuration %d does "
-                                     "not exist (the table has %zu)",
-                                     ex[j], size);
-        }
+    st->k = calloc(st->n_samples + 1, sizeof *st->k);
+    st->n_cone = calloc(st->n_samples + 1, sizeof *st->n_cone);
+    if (st->k == NULL || st->n_cone == NULL) {
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
     }
-    for (i = 0; i < *n; i++) {
-        int keep = 1;
-        for (j = 0; j < n_ex; j++) {
-            if ((size_t)ex[j] == sel[i] + 1) {
-                keep = 0;
+    for (s = 0; s < st->n_samples && rc == BF_EXIT_OK; s++) {
+        size_t m = st->targets[s].material;
+        size_t nconf = bf_dataset_nconf(ds, m);
+        char who[256];
+        bf_cli_material_label(ds, m, who, sizeof who);
+        for (j = 0; j < st->n_exclude; j++) {
+            if (st->exclude[j] > nconf) {
+                rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                       "--exclude: configuration %zu does "
+                                       "not exist (sample %s has %zu)",
+                                       st->exclude[j], who, nconf);
             }
         }
-        if (keep) {
-            sel[k++] = sel[i];
+        if (rc != BF_EXIT_OK) {
+            break;
+        }
+        if (nconf > cap) {
+            free(sel);
+            cap = nconf;
+            sel = malloc(cap * sizeof *sel);
+            if (sel == NULL) {
+                bf_cli_err("out of memory");
+                return BF_EXIT_SOFTWARE;
+            }
+        }
+        if (bf_dataset_select(ds, m, st->targets[s].channel,
+                              &st->spec.select, sel, &st->k[s],
+                              &st->n_cone[s]) != BF_OK) {
+            bf_cli_err("internal error: configuration selection failed");
+            rc = BF_EXIT_SOFTWARE;
+        } else if (st->k[s] == 0) {
+            rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                   "--exclude/--exclude-specular/"
+                                   "--max-theta: no configuration is left "
+                                   "to fit for sample %s",
+                                   who);
         }
     }
-    *n = k;
-    if (k == 0) {
-        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
-                                 "--exclude/--max-theta: no configuration "
-                                 "is left to fit");
+    free(sel);
+    st->n_sel = st->n_samples > 0 ? st->k[0] : 0;
+    for (s = 1; s < st->n_samples; s++) {
+        if (st->k[s] != st->n_sel) {
+            st->n_sel = 0; /* K differs between targets */
+        }
     }
-    return BF_EXIT_OK;
+    return rc;
 }
 
 /* ==== the run ============================================================= */
@@ -423,7 +527,14 @@ static int select_configs(const char *hint, const bf_cli_opts *o,
 int bf_cli_study_prepare(bf_cli_study *st)
 {
     const bf_cli_opts *o = &st->opts;
+    int *list = NULL;
+    size_t n_list = 0;
+    size_t *materials = NULL;
+    size_t n_materials = 0;
+    int mode;
     char hint[64];
+    bf_error err;
+    size_t i;
     int rc;
 
     snprintf(hint, sizeof hint, "%s ", st->cmd);
@@ -431,52 +542,71 @@ int bf_cli_study_prepare(bf_cli_study *st)
     if (rc == BF_EXIT_OK) {
         rc = bf_cli_exact_models(st); /* variants of --fit exact, --range */
     }
-    if (rc != BF_EXIT_OK) {
-        return rc;
+    if (rc == BF_EXIT_OK) {
+        rc = parse_samples(hint, o, &list, &n_list, &mode);
     }
-    rc = parse_samples(hint, o, &st->samples, &st->n_samples);
-    if (rc != BF_EXIT_OK) {
-        return rc;
-    }
-    if (o->exclude != NULL) { /* syntax now; range once the table is read */
+    if (rc == BF_EXIT_OK && o->exclude != NULL) {
+        /* syntax now; range once the data are read */
         char msg[256];
-        if (bf_cli_parse_int_list(o->exclude, &st->exclude, &st->n_exclude,
-                                  msg, sizeof msg) != 0) {
-            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
-                                     msg);
+        int *ex = NULL;
+        if (bf_cli_parse_int_list(o->exclude, &ex, &st->n_exclude, msg,
+                                  sizeof msg) != 0) {
+            rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
+                                   msg);
+        } else {
+            st->exclude = malloc((st->n_exclude + 1) * sizeof *st->exclude);
+            for (i = 0; st->exclude != NULL && i < st->n_exclude; i++) {
+                st->exclude[i] = (size_t)ex[i];
+            }
+            if (st->exclude == NULL) {
+                bf_cli_err("out of memory");
+                rc = BF_EXIT_SOFTWARE;
+            }
         }
+        free(ex);
     }
-    rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
+    if (rc == BF_EXIT_OK) {
+        rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
+    }
+    if (rc == BF_EXIT_OK) {
+        rc = bf_cli_load_data(&o->src, o->n_file, o->on_file, &st->in);
+    }
+    if (rc == BF_EXIT_OK) {
+        rc = resolve_samples(hint, &st->in, mode, list, n_list, &materials,
+                             &n_materials);
+    }
+    free(list);
+    if (rc == BF_EXIT_OK &&
+        bf_study_targets(st->in.ds, materials, n_materials, o->channel,
+                         &st->targets, &st->n_samples, &err) != BF_OK) {
+        rc = err.code == BF_ENOMEM
+                 ? BF_EXIT_SOFTWARE
+                 : bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--channel: %s",
+                                     err.msg);
+    }
+    free(materials);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = bf_cli_load_inputs(o->data_dir, o->brdf_file, o->n_file, o->on_file,
-                            &st->in);
-    if (rc != BF_EXIT_OK) {
-        return rc;
-    }
-    rc = resolve_samples(hint, st->in.brdf, &st->samples, &st->n_samples);
-    if (rc != BF_EXIT_OK) {
-        return rc;
-    }
-    st->sel = malloc(bf_table_size(st->in.table) * sizeof *st->sel);
+    st->samples = malloc((st->n_samples + 1) * sizeof *st->samples);
     st->rows = calloc(st->n_samples * st->n_models + 1, sizeof *st->rows);
-    if (st->sel == NULL || st->rows == NULL) {
+    if (st->samples == NULL || st->rows == NULL) {
         bf_cli_err("out of memory");
         return BF_EXIT_SOFTWARE;
     }
-    rc = select_configs(hint, o, st->exclude, st->n_exclude, st->in.table,
-                        st->sel, &st->n_sel);
-    if (rc != BF_EXIT_OK) {
-        return rc;
+    for (i = 0; i < st->n_samples; i++) {
+        st->samples[i] = bf_dataset_number(st->in.ds,
+                                           st->targets[i].material);
     }
     memset(&st->spec, 0, sizeof st->spec);
-    st->spec.table = st->in.table;
-    st->spec.brdf = st->in.brdf;
-    st->spec.sel = st->sel;
-    st->spec.n_sel = st->n_sel;
-    st->spec.samples = st->samples;
-    st->spec.n_samples = st->n_samples;
+    st->spec.data = st->in.ds;
+    st->spec.targets = st->targets;
+    st->spec.n_targets = st->n_samples;
+    bf_select_init(&st->spec.select);
+    st->spec.select.cone = o->cone < 0.0 ? BF_CONE_DEFAULT : o->cone * DEG;
+    st->spec.select.max_theta = o->max_theta * DEG;
+    st->spec.select.exclude = st->exclude;
+    st->spec.select.n_exclude = st->n_exclude;
     st->spec.models = st->models;
     st->spec.n_models = st->n_models;
     st->spec.n_default = o->n;
@@ -489,7 +619,14 @@ int bf_cli_study_prepare(bf_cli_study *st)
                                  ? (int)cores
                                  : 1;
     }
-    return BF_EXIT_OK;
+    return select_configs(hint, st);
+}
+
+int bf_cli_target_data(const bf_cli_study *st, size_t s, size_t *sel,
+                       size_t *k, double *data)
+{
+    bf_error err;
+    return bf_study_target_data(&st->spec, s, sel, k, data, &err);
 }
 
 /* A row whose model could not be normalised on the used configurations
@@ -511,12 +648,23 @@ static int check_rows(const bf_cli_study *st)
         bf_cli_err("%s cannot be fitted to sample %d: the model is "
                    "undefined at some of the K = %zu used configurations or "
                    "zero at all of them, so it cannot be normalised (SPEC "
-                   "§2); leave configurations out with --exclude or "
-                   "--max-theta",
-                   r->type->name, r->sample, st->n_sel);
+                   "§2); leave configurations out with --exclude, "
+                   "--exclude-specular or --max-theta",
+                   r->type->name, r->sample, r->k);
         return BF_EXIT_DATAERR;
     }
     return BF_EXIT_OK;
+}
+
+int bf_cli_study_error(const bf_error *err)
+{
+    char buf[BF_ERROR_FILE_MAX + BF_ERROR_MSG_MAX + 64];
+    if (strcmp(err->file, "study") == 0) { /* no file to name */
+        bf_cli_err("%s", err->msg);
+    } else {
+        bf_cli_err("%s", bf_error_format(err, buf, sizeof buf));
+    }
+    return err->code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
 }
 
 int bf_cli_study_run(bf_cli_study *st)
@@ -524,8 +672,7 @@ int bf_cli_study_run(bf_cli_study *st)
     bf_error err;
     if (!st->opts.exact &&
         bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
-        bf_cli_err("%s", err.msg);
-        return err.code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+        return bf_cli_study_error(&err);
     }
     /* The analysis beyond the paper (refinement, intervals, AIC, BIC, CV;
      * with --fit exact also the study itself) runs with --fit exact,
@@ -546,17 +693,21 @@ void bf_cli_study_free(bf_cli_study *st)
     free(st->stats);
     free(st->variants);
     free(st->exclude);
-    free(st->sel);
+    free(st->k);
+    free(st->n_cone);
     free(st->models);
     free(st->samples);
+    free(st->targets);
     bf_cli_free_inputs(&st->in);
     st->rows = NULL;
     st->stats = NULL;
     st->variants = NULL;
     st->exclude = NULL;
-    st->sel = NULL;
+    st->k = NULL;
+    st->n_cone = NULL;
     st->models = NULL;
     st->samples = NULL;
+    st->targets = NULL;
 }
 
 /* ==== tables ============================================================== */
@@ -577,34 +728,179 @@ int bf_cli_shows_param(const bf_model_type *type, size_t j)
     return 1;
 }
 
-const char *bf_cli_sample_name(const bf_cli_study *st, int sample)
+const char *bf_cli_sample_name(const bf_cli_study *st, size_t s)
 {
-    const char *nm = bf_names_get(st->in.names, sample);
+    const char *nm = bf_dataset_name(st->in.ds, st->targets[s].material);
     return nm != NULL ? nm : "";
+}
+
+const char *bf_cli_channel_name(const bf_cli_study *st, size_t s)
+{
+    return bf_dataset_channel(st->in.ds, st->targets[s].material,
+                              st->targets[s].channel);
+}
+
+void bf_cli_sample_title(const bf_cli_study *st, size_t s, char *buf,
+                         size_t len)
+{
+    if (st->targets[s].channel == BF_CHANNEL_MEAN) {
+        snprintf(buf, len, "%s", bf_cli_sample_name(st, s));
+    } else {
+        snprintf(buf, len, "%s [%s]", bf_cli_sample_name(st, s),
+                 bf_cli_channel_name(st, s));
+    }
+}
+
+/* At most this many left-out configuration numbers are listed. */
+#define LIST_MAX 40
+
+void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
+{
+    const bf_cli_inputs *in = &st->in;
+    const bf_dataset *ds = in->ds;
+    size_t m;
+    if (in->curet) {
+        fprintf(fp, "Data: CURET, %s (%zu samples), %s\n", in->brdf_path,
+                bf_dataset_count(ds), in->table_path);
+        return;
+    }
+    fprintf(fp, "Data: %zu material%s from %zu file%s\n",
+            bf_dataset_count(ds), bf_dataset_count(ds) == 1 ? "" : "s",
+            st->opts.src.n_inputs, st->opts.src.n_inputs == 1 ? "" : "s");
+    for (m = 0; m < bf_dataset_count(ds); m++) {
+        size_t nc = bf_dataset_nchannels(ds, m);
+        char who[256];
+        bf_cli_material_label(ds, m, who, sizeof who);
+        fprintf(fp, "  %s: %s (%s), %zu configurations, %zu channel%s", who,
+                bf_dataset_source(ds, m),
+                bf_format_name(bf_dataset_format(ds, m)),
+                bf_dataset_nconf(ds, m), nc, nc == 1 ? "" : "s");
+        if (nc > 1) {
+            fprintf(fp, " (%s ... %s)", bf_dataset_channel(ds, m, 0),
+                    bf_dataset_channel(ds, m, nc - 1));
+        }
+        fputc('\n', fp);
+    }
+    if (in->configs_path[0] != '\0') {
+        fprintf(fp, "MERL sampled at: %s\n",
+                strcmp(in->configs_path, "all") == 0
+                    ? "every valid cell"
+                    : in->configs_path);
+    }
+}
+
+/* The specular exclusion in words (SPEC §1.4, §1.6). */
+void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
+{
+    double cone = st->opts.cone;
+    if (cone < 0.0 && st->in.curet && st->n_samples > 0) {
+        /* the configurations of SPEC §1.4's test, from the data */
+        size_t m = st->targets[0].material;
+        const bf_geom *g = bf_dataset_geom(st->in.ds, m);
+        size_t n = bf_dataset_nconf(st->in.ds, m);
+        size_t count = 0;
+        size_t k;
+        size_t at;
+        for (k = 0; k < n; k++) {
+            count += (size_t)bf_geom_is_specular(&g[k]);
+        }
+        at = (size_t)snprintf(buf, len, "CURET's %zu specular "
+                                        "configurations (",
+                              count);
+        for (k = 0; k < n && at < len; k++) {
+            if (bf_geom_is_specular(&g[k])) {
+                at += (size_t)snprintf(buf + at, len - at, "%s%zu",
+                                       buf[at - 1] == '(' ? "" : ", ", k + 1);
+            }
+        }
+        if (at < len) {
+            snprintf(buf + at, len - at, "; SPEC §1.4)");
+        }
+    } else if (cone < 0.0) {
+        snprintf(buf, len, "none (no --exclude-specular)");
+    } else if (cone == 0.0) {
+        snprintf(buf, len, "none (--exclude-specular 0)");
+    } else {
+        snprintf(buf, len, "every configuration within %g deg of the "
+                           "mirror direction (SPEC §1.6)",
+                 cone);
+    }
+}
+
+/* One line per group of targets with the same material configuration
+ * list and selection: K, how many the cone left out, and which ones. */
+static void describe_configs(const bf_cli_study *st, FILE *fp)
+{
+    const bf_dataset *ds = st->in.ds;
+    size_t s;
+    size_t *sel = NULL;
+    double *data = NULL;
+    size_t cap = 0;
+    char cone[256];
+    bf_cli_describe_cone(st, cone, sizeof cone);
+    fprintf(fp, "Specular exclusion: %s\n", cone);
+    for (s = 0; s < st->n_samples; s++) {
+        size_t m = st->targets[s].material;
+        size_t nconf = bf_dataset_nconf(ds, m);
+        size_t k;
+        size_t j = 0;
+        size_t c;
+        size_t listed = 0;
+        if (s > 0 && bf_dataset_set(ds, st->targets[s - 1].material) ==
+                         bf_dataset_set(ds, m) &&
+            st->k[s - 1] == st->k[s] && st->n_cone[s - 1] == st->n_cone[s]) {
+            continue; /* the same as the line above */
+        }
+        if (nconf > cap) {
+            free(sel);
+            free(data);
+            cap = nconf;
+            sel = malloc(cap * sizeof *sel);
+            data = malloc(cap * sizeof *data);
+            if (sel == NULL || data == NULL) {
+                break;
+            }
+        }
+        if (bf_cli_target_data(st, s, sel, &k, data) != BF_OK) {
+            continue;
+        }
+        fprintf(fp, "Configurations");
+        if (!st->in.curet || st->n_sel == 0) {
+            fprintf(fp, " (%s)", bf_cli_sample_name(st, s));
+        }
+        fprintf(fp, ": K = %zu of %zu used", k, nconf);
+        if (st->opts.cone >= 0.0 || !st->in.curet) {
+            fprintf(fp, " (%zu in the specular cone)", st->n_cone[s]);
+        }
+        if (nconf - k > LIST_MAX) {
+            fprintf(fp, "; %zu left out\n", nconf - k);
+            continue;
+        }
+        fprintf(fp, "; left out:");
+        for (c = 0; c < nconf; c++) {
+            if (j < k && sel[j] == c) {
+                j++;
+                continue;
+            }
+            fprintf(fp, " %zu", c + 1);
+            listed++;
+        }
+        fprintf(fp, "%s\n", listed == 0 ? " none" : "");
+    }
+    free(sel);
+    free(data);
 }
 
 void bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
 {
     const bf_cli_opts *o = &st->opts;
-    const bf_cli_inputs *in = &st->in;
-    const size_t *sel = st->sel;
-    size_t n_sel = st->n_sel;
-    size_t k;
-    size_t j = 0;
-    size_t size = bf_table_size(in->table);
-    fprintf(fp, "Data: %s (%zu samples), %s\n", in->brdf_path,
-            bf_brdf_count(in->brdf), in->table_path);
-    fprintf(fp, "Configurations: K = %zu of %zu used; left out:", n_sel,
-            size);
-    for (k = 0; k < size; k++) {
-        if (j < n_sel && sel[j] == k) {
-            j++;
-            continue;
-        }
-        fprintf(fp, " %zu", k + 1);
-    }
-    fprintf(fp, "\nNormalisation: radiance = BRDF x cos(theta_i), divided by "
+    bf_cli_describe_data(st, fp);
+    describe_configs(st, fp);
+    fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided by "
                 "its maximum over the K used configurations (SPEC §2)\n");
+    if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
+        fprintf(fp, "Channel: %s\n", o->channel);
+    }
     if (!o->exact) {
         fprintf(fp, "Fit: exhaustive 501-point grids (SPEC §7.4), LSE = sum "
                     "of squared differences\n");
@@ -665,15 +961,17 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         bf_tt_header(*t3, 2 + m, type->name);
         bf_tt_right(*t3, 2 + m);
     }
-    for (s = 0; s < spec->n_samples; s++) {
-        int sample = spec->samples[s];
+    for (s = 0; s < st->n_samples; s++) {
+        int sample = st->samples[s];
+        char title[512];
         if (bf_tt_add_row(*t2) != 0 || bf_tt_add_row(*t3) != 0) {
             return -1;
         }
+        bf_cli_sample_title(st, s, title, sizeof title);
         bf_tt_set(*t2, 0, "%d", sample);
-        bf_tt_set(*t2, 1, "%s", bf_cli_sample_name(st, sample));
+        bf_tt_set(*t2, 1, "%s", title);
         bf_tt_set(*t3, 0, "%d", sample);
-        bf_tt_set(*t3, 1, "%s", bf_cli_sample_name(st, sample));
+        bf_tt_set(*t3, 1, "%s", title);
         c = 2;
         for (m = 0; m < spec->n_models; m++) {
             const bf_study_row *r = &rows[s * spec->n_models + m];
@@ -721,6 +1019,14 @@ void bf_cli_csv_field(FILE *fp, const char *s)
     fputc('"', fp);
 }
 
+void bf_cli_csv_sample(FILE *fp, const bf_cli_study *st, size_t s)
+{
+    fprintf(fp, "%d,", st->samples[s]);
+    bf_cli_csv_field(fp, bf_cli_sample_name(st, s));
+    fputc(',', fp);
+    bf_cli_csv_field(fp, bf_cli_channel_name(st, s));
+}
+
 /* fits.csv: one row per (sample, model, fitted parameter); a model with no
  * fitted parameter has one row with parameter and value empty. */
 static void write_csv(FILE *fp, const bf_cli_study *st)
@@ -728,10 +1034,11 @@ static void write_csv(FILE *fp, const bf_cli_study *st)
     const bf_study_spec *spec = &st->spec;
     const bf_study_row *rows = st->rows;
     size_t i;
-    fputs("sample,name,model,parameter,unit,value,lse,bound_hit,k", fp);
+    fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k",
+          fp);
     bf_cli_exact_csv_header(fp); /* columns added at the end */
     fputc('\n', fp);
-    for (i = 0; i < spec->n_samples * spec->n_models; i++) {
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
         const bf_study_row *r = &rows[i];
         size_t j;
         int any = 0;
@@ -743,20 +1050,18 @@ static void write_csv(FILE *fp, const bf_cli_study *st)
                 continue;
             }
             any = 1;
-            fprintf(fp, "%d,", r->sample);
-            bf_cli_csv_field(fp, bf_cli_sample_name(st, r->sample));
+            bf_cli_csv_sample(fp, st, r->target);
             fprintf(fp, ",%s,%s,%s,%.10g,%.10g,%d,%zu", r->type->name,
                     r->type->param[j].name, r->type->param[j].unit,
                     r->fit.param[j], r->fit.lse,
-                    (r->fit.bound_hit & (1u << j)) ? 1 : 0, spec->n_sel);
+                    (r->fit.bound_hit & (1u << j)) ? 1 : 0, r->k);
             bf_cli_exact_csv_cols(st, i, j, fp);
             fputc('\n', fp);
         }
         if (!any) {
-            fprintf(fp, "%d,", r->sample);
-            bf_cli_csv_field(fp, bf_cli_sample_name(st, r->sample));
+            bf_cli_csv_sample(fp, st, r->target);
             fprintf(fp, ",%s,,,,%.10g,0,%zu", r->type->name, r->fit.lse,
-                    spec->n_sel);
+                    r->k);
             bf_cli_exact_csv_cols(st, i, SIZE_MAX, fp);
             fputc('\n', fp);
         }
@@ -766,7 +1071,7 @@ static void write_csv(FILE *fp, const bf_cli_study *st)
 static int any_bound_hit(const bf_study_spec *spec, const bf_study_row *rows)
 {
     size_t i;
-    for (i = 0; i < spec->n_samples * spec->n_models; i++) {
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
         if (rows[i].status == BF_OK && rows[i].fit.bound_hit != 0) {
             return 1;
         }
@@ -781,12 +1086,12 @@ static void report_missing(const bf_study_spec *spec,
     size_t s;
     for (m = 0; m < spec->n_models; m++) {
         size_t missing = 0;
-        for (s = 0; s < spec->n_samples; s++) {
+        for (s = 0; s < spec->n_targets; s++) {
             missing += rows[s * spec->n_models + m].status != BF_OK;
         }
         if (missing > 0) {
             bf_cli_err("note: %s not evaluated for %zu of %zu samples (%s)",
-                       spec->models[m]->name, missing, spec->n_samples,
+                       spec->models[m]->name, missing, spec->n_targets,
                        strcmp(spec->models[m]->name, "ON") == 0
                            ? "no rho, sigma given: use --on-params"
                            : "missing per-sample input");
@@ -865,9 +1170,16 @@ int bf_cli_study_write_tables(const bf_cli_study *st)
                                  : "; * on a grid bound")
                : "");
     bf_tt_print(t2, stdout);
-    printf("\nTable 3: %s (sum over the K = %zu used configurations)\n\n",
-           st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S",
-           st->n_sel);
+    if (st->n_sel > 0) {
+        printf("\nTable 3: %s (sum over the K = %zu used configurations)"
+               "\n\n",
+               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S",
+               st->n_sel);
+    } else {
+        printf("\nTable 3: %s (sum over each sample's K used "
+               "configurations)\n\n",
+               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S");
+    }
     bf_tt_print(t3, stdout);
     bf_cli_exact_on_compare(st, stdout);
     printf("\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",

@@ -15,9 +15,12 @@
 
 /* The options every study command accepts (see bf_cli_study_usage). */
 typedef struct {
-    const char *data_dir;
-    const char *brdf_file;
-    const char *samples;
+    bf_cli_source src;        /* --data, --brdf, --input, --input-format,
+                                 --configs */
+    const char *channel;      /* --channel NAME|mean|each (NULL: mean) */
+    double cone;              /* --exclude-specular DEG, in degrees; < 0:
+                                 the data's default (CURET: its 7) */
+    const char *samples;      /* NULL: 'paper' on CURET, else 'all' */
     const char *models;
     const char *n_file;
     const char *on_file;
@@ -60,19 +63,23 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
 /* Prints the help lines of the common options. */
 void bf_cli_opts_usage(FILE *fp);
 
-/* A study run: its inputs, selections and results. */
+/* A study run: its inputs, selections and results. The study's targets
+ * (material x channel) are called samples below, as in the paper: target
+ * s is material targets[s].material, numbered samples[s]. */
 typedef struct {
     const char *cmd;      /* "compare", for messages */
     bf_cli_opts opts;
     bf_cli_inputs in;
-    int *samples;
-    size_t n_samples;
+    bf_target *targets;   /* what is fitted */
+    int *samples;         /* n_samples material numbers, one per target */
+    size_t n_samples;     /* number of targets */
     const bf_model_type **models;
     size_t n_models;
-    int *exclude;         /* --exclude, parsed (configuration numbers) */
+    size_t *exclude;      /* --exclude, parsed (configuration numbers) */
     size_t n_exclude;
-    size_t *sel;          /* used configurations (0-based) */
-    size_t n_sel;
+    size_t *k;            /* K of each target */
+    size_t *n_cone;       /* configurations each target lost to the cone */
+    size_t n_sel;         /* K when every target has the same K, else 0 */
     bf_study_spec spec;
     bf_study_row *rows;   /* n_samples x n_models, sample-major */
     bf_model_variant *variants; /* n_models derived types (cli/exact.c) */
@@ -82,6 +89,10 @@ typedef struct {
 /* Loads the inputs and resolves the selections of st->opts. Returns
  * BF_EXIT_OK or an exit status after printing the error. */
 int bf_cli_study_prepare(bf_cli_study *st);
+
+/* Prints a study error (naming the material's file and line when known)
+ * and returns its exit status. */
+int bf_cli_study_error(const bf_error *err);
 
 /* Runs the study (after prepare). Returns BF_EXIT_OK or an exit status. */
 int bf_cli_study_run(bf_cli_study *st);
@@ -93,8 +104,29 @@ void bf_cli_study_free(bf_cli_study *st);
  * inputs of a model that fits none (ON's tabulated rho, sigma). */
 int bf_cli_shows_param(const bf_model_type *type, size_t j);
 
-/* Name of a sample from samples.tsv, or "" (borrowed). */
-const char *bf_cli_sample_name(const bf_cli_study *st, int sample);
+/* Name of target s's material (borrowed; "" when it has none). */
+const char *bf_cli_sample_name(const bf_cli_study *st, size_t s);
+
+/* Name of target s's channel: "mean", or the channel's name (borrowed). */
+const char *bf_cli_channel_name(const bf_cli_study *st, size_t s);
+
+/* "Leather" or, when the study fits single channels, "Leather [R]", into
+ * buf (the label of Tables 2 and 3 and of the figures). */
+void bf_cli_sample_title(const bf_cli_study *st, size_t s, char *buf,
+                         size_t len);
+
+/* The used configurations (sel, capacity bf_dataset_nconf of its
+ * material), their number *k and the normalised data of target s, as the
+ * study fitted them. Returns BF_OK or a BF_E* code. */
+int bf_cli_target_data(const bf_cli_study *st, size_t s, size_t *sel,
+                       size_t *k, double *data);
+
+/* Prints the "Data:" lines: CURET's files, or each material's file,
+ * format, configurations and channels. */
+void bf_cli_describe_data(const bf_cli_study *st, FILE *fp);
+
+/* The specular exclusion in words, into buf. */
+void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len);
 
 /* Prints what was run: data, configurations used, conventions. */
 void bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
@@ -133,6 +165,10 @@ void bf_cli_exact_csv_cols(const bf_cli_study *st, size_t i, size_t j,
 /* Parses --range NAME=LO:HI. Returns 0, or -1 with a message in msg. */
 int bf_cli_parse_range(const char *s, char *name, size_t name_len,
                        double *lo, double *hi, char *msg, size_t msg_len);
+
+/* Writes the sample, name and channel fields of target s (no trailing
+ * comma) to a CSV file. */
+void bf_cli_csv_sample(FILE *fp, const bf_cli_study *st, size_t s);
 
 /* Writes a field to a CSV file, quoted when needed (cli/study.c). */
 void bf_cli_csv_field(FILE *fp, const char *s);

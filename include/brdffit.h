@@ -104,6 +104,18 @@ double bf_wrap_angle(double a);
 bf_geom bf_geom_from_curet(double theta_v, double phi_v, double theta_i,
                            double phi_i);
 
+/* The angle delta between the viewing direction and the mirror direction
+ * of the incident one (SPEC §1.6), in radians, [0, pi]. The same in either
+ * frame; computed here from Beckmann's. */
+double bf_geom_mirror_angle(const bf_geom *g);
+
+/* Converts a configuration in the measurement frame of SPEC §1.5 to
+ * Beckmann's: theta_s = theta_o, phi_s = wrap(phi_o - phi_i - pi),
+ * phi_i = pi. bf_geom_from_curet(tv, pv, ti, pi) is
+ * bf_geom_from_measurement(ti, pi, tv, pv), bit for bit. */
+bf_geom bf_geom_from_measurement(double theta_i, double phi_i,
+                                 double theta_o, double phi_o);
+
 /* Tolerance of the specular test, SPEC §1.4 (radians). */
 #define BF_SPECULAR_TOL 1e-3
 
@@ -269,14 +281,15 @@ size_t bf_table_select(const bf_table *t, double max_theta, size_t *sel);
  * layout). Opaque; owns memory. */
 typedef struct bf_brdf bf_brdf;
 
-/* Reads BRDF rows with exactly n_conf values each. Sample numbers must be
+/* Reads BRDF rows with exactly n_conf values each (n_conf = 0: as many as
+ * the first row has, at least one). Sample numbers must be
  * positive, unique and run 1, 2, 3, ... without gaps. Values must be finite.
  * Returns BF_OK and *out (free with bf_brdf_free) or an error with err.
  * Rows may come in any order; they are stored sorted by sample number, so
  * row r holds sample r + 1. Negative values are kept as measured. Errors
  * (BF_EPARSE): wrong value count, bad number (field named), duplicate
  * sample (at its second line, naming the first), missing sample (line 0,
- * naming the smallest missing number), empty file. n_conf = 0: BF_EINVAL. */
+ * naming the smallest missing number), empty file. */
 int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
                  bf_error *err);
 int bf_brdf_load(const char *path, size_t n_conf, bf_brdf **out,
@@ -287,6 +300,8 @@ size_t bf_brdf_count(const bf_brdf *b);      /* number of samples */
 size_t bf_brdf_nconf(const bf_brdf *b);      /* values per sample */
 int bf_brdf_sample(const bf_brdf *b, size_t row);  /* sample number, -1 if
                                                       row is out of range */
+/* Line of the file that row came from (0 if out of range). */
+long bf_brdf_line(const bf_brdf *b, size_t row);
 /* Values of a row (borrowed until bf_brdf_free); NULL if out of range. */
 const double *bf_brdf_values(const bf_brdf *b, size_t row);
 /* Row of sample number s, or -1. */
@@ -344,6 +359,329 @@ int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err);
 /* The same from a stream (name is used in messages). */
 int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
                    bf_error *err);
+
+/* ======================================================================
+ * --- datasets: measured BRDFs in any format (SPEC §1.5, §2, §8) ---
+ * ====================================================================== */
+
+/* A dataset holds materials. Each material has a name, a number, its own
+ * list of configurations, its channels and one BRDF value (sr^-1) per
+ * configuration and channel, each with a valid mark. Configurations are
+ * stored twice: as given, in the measurement frame of SPEC §1.5 (theta_i,
+ * phi_i, theta_o, phi_o; radians; the mirror direction of (theta_i, phi_i)
+ * is (theta_i, phi_i + pi)), and converted to Beckmann's frame
+ * (bf_geom_from_measurement). CURET's table.txt, whose columns are view
+ * first, is stored in the same order (theta_o = theta_v, phi_o = phi_v).
+ *
+ * Materials that share a configuration list share one "configuration set"
+ * (the study computes the geometry once per set). Readers produce
+ * datasets; the study, the analysis, the report and rank take a dataset
+ * and never a format's own tables. Opaque; owns all its memory (every
+ * input is copied). */
+typedef struct bf_dataset bf_dataset;
+
+/* The formats brdffit reads (SPEC §8). */
+typedef enum {
+    BF_FORMAT_AUTO = 0, /* detect from the content (bf_format_detect) */
+    BF_FORMAT_CURET,    /* folder: table.txt + abrdf.dat (or r/g/bbrdf.dat),
+                           samples.tsv optional (SPEC §1.3, §2) */
+    BF_FORMAT_PBRT,     /* pbrt-v2 / Cornell .brdf (spectral) */
+    BF_FORMAT_ASTM,     /* ASTM E1392 .astm (Cornell's exports) */
+    BF_FORMAT_MERL,     /* MERL .binary (dense RGB table) */
+    BF_FORMAT_CSV,      /* brdffit's tidy CSV (README "Tidy CSV") */
+    BF_FORMAT_MEMORY    /* built by the caller (bf_dataset_add_material) */
+} bf_format;
+
+/* Name of a format: "auto", "curet", "pbrt", "astm", "merl", "csv",
+ * "memory" (static storage), NULL for an unknown value. */
+const char *bf_format_name(bf_format f);
+
+/* Finds a format by name (case-insensitive; also "brdf" for pbrt and
+ * "binary" for merl). BF_ENOTFOUND when unknown. */
+int bf_format_find(const char *name, bf_format *f);
+
+/* Detects the format of path from its content, never from its name alone:
+ * a folder holding table.txt is CURET; MERL by its three int32 dimensions
+ * 90, 90, 180 and the file size they imply; ASTM by its header keywords
+ * (NUM_POINTS, VARS); CSV by a header row naming theta_i, phi_i, theta_o,
+ * phi_o; pbrt by a first number token that is a plausible wavelength
+ * count. BF_OK and *f, or BF_EIO (cannot open) / BF_EPARSE (no format
+ * recognised: err names the file and says which formats were tried). */
+int bf_format_detect(const char *path, bf_format *f, bf_error *err);
+
+/* ---- building a dataset (readers, tests, Python) ---- */
+
+/* A new, empty dataset. NULL when out of memory. */
+bf_dataset *bf_dataset_alloc(void);
+
+/* Frees ds; NULL does nothing. */
+void bf_dataset_free(bf_dataset *ds);
+
+/* Adds a configuration set of n >= 1 configurations, given in the
+ * measurement frame as n rows (theta_i, phi_i, theta_o, phi_o) in radians
+ * (SPEC §1.5), copied. Zeniths must lie in [0, pi/2] and azimuths be
+ * finite (BF_EINVAL otherwise; *bad, when not NULL, gets the offending
+ * row). Its id, 0, 1, ..., goes to *set. */
+int bf_dataset_add_configs(bf_dataset *ds, size_t n, const double *angles,
+                           size_t *set, size_t *bad);
+
+/* What bf_dataset_add_material copies into a dataset. */
+typedef struct {
+    const char *name;    /* material name; NULL or "": none (CURET
+                            without samples.tsv) */
+    int number;          /* material number > 0 (CURET's sample number),
+                            or 0: its position, 1-based (index + 1) */
+    bf_format format;    /* format it was read from */
+    const char *source;  /* file or folder it was read from, or NULL */
+    long line;           /* 1-based line of source where its data start
+                            (for messages), 0 when none */
+    size_t set;          /* its configuration set */
+    size_t n_channels;   /* >= 1 */
+    const char *const *channel; /* n_channels names ("R", "G", "B",
+                            "550", "mean"); NULL: "1", "2", ... */
+    const double *wavelength;   /* n_channels wavelengths in nm, or NULL */
+    const double *values;       /* n_conf x n_channels, row-major: value
+                                   of configuration k, channel c at
+                                   values[k * n_channels + c] */
+    const unsigned char *valid; /* same layout, 1 valid, 0 invalid (e.g.
+                                   MERL's negative cells); NULL: all valid.
+                                   A valid value must be finite (negative
+                                   is fine: kept as measured, SPEC §2). */
+} bf_material_desc;
+
+/* Adds a material (every field copied). BF_EINVAL when the set does not
+ * exist, a count is 0, a valid value is not finite, a channel name is
+ * empty or the material's number (explicit, or its position) is already taken.
+ * Its index goes to *index (may be NULL). */
+int bf_dataset_add_material(bf_dataset *ds, const bf_material_desc *desc,
+                            size_t *index);
+
+/* Appends every material of src (with their configuration sets) to dst;
+ * materials numbered by position get their new position. BF_EINVAL on a
+ * number clash (dst unchanged). Used for several --input files. */
+int bf_dataset_append(bf_dataset *dst, const bf_dataset *src);
+
+/* ---- reading a dataset (all borrowed pointers live until
+ *      bf_dataset_free; m is a material index < bf_dataset_count) ---- */
+
+size_t bf_dataset_count(const bf_dataset *ds);    /* materials */
+const char *bf_dataset_name(const bf_dataset *ds, size_t m);
+int bf_dataset_number(const bf_dataset *ds, size_t m);
+/* Index of the material numbered number, or -1. */
+long bf_dataset_find(const bf_dataset *ds, int number);
+bf_format bf_dataset_format(const bf_dataset *ds, size_t m);
+const char *bf_dataset_source(const bf_dataset *ds, size_t m); /* or "" */
+long bf_dataset_line(const bf_dataset *ds, size_t m);  /* or 0 */
+size_t bf_dataset_nconf(const bf_dataset *ds, size_t m);
+/* Configuration set id of material m: materials with the same id share
+ * their configurations (the same geom and angle arrays). */
+size_t bf_dataset_set(const bf_dataset *ds, size_t m);
+/* The configurations in Beckmann's frame (nconf values). */
+const bf_geom *bf_dataset_geom(const bf_dataset *ds, size_t m);
+/* The configurations as given, nconf x 4: theta_i, phi_i, theta_o, phi_o
+ * (measurement frame, radians). */
+const double *bf_dataset_angles(const bf_dataset *ds, size_t m);
+size_t bf_dataset_nchannels(const bf_dataset *ds, size_t m);
+const char *bf_dataset_channel(const bf_dataset *ds, size_t m, size_t c);
+/* Wavelength of channel c in nm, NaN when the channel has none. */
+double bf_dataset_wavelength(const bf_dataset *ds, size_t m, size_t c);
+/* Values, nconf x nchannels row-major (see bf_material_desc). */
+const double *bf_dataset_values(const bf_dataset *ds, size_t m);
+/* Valid marks in the same layout, or NULL when every value is valid. */
+const unsigned char *bf_dataset_valid(const bf_dataset *ds, size_t m);
+
+/* ---- channels, configuration selection and radiance (SPEC §1.6, §2) ---- */
+
+/* The channel "mean": the mean over every channel (the default; CURET's
+ * abrdf.dat is itself the mean of R, G, B). A configuration has a mean
+ * only when every channel is valid there. For one channel the mean is the
+ * channel's value, bit for bit. */
+#define BF_CHANNEL_MEAN ((size_t)-1)
+
+/* Finds channel name of material m: its name (case-insensitive) or, for a
+ * spectral channel, its wavelength in nm ("550" matches 550 nm); "mean"
+ * gives BF_CHANNEL_MEAN. BF_ENOTFOUND when absent. */
+int bf_dataset_channel_find(const bf_dataset *ds, size_t m,
+                            const char *name, size_t *c);
+
+/* The value of configuration k of material m for channel c (or the mean),
+ * into *value; returns 1 when valid, 0 when not. */
+int bf_dataset_value(const bf_dataset *ds, size_t m, size_t k, size_t c,
+                     double *value);
+
+/* Which configurations of a material the study uses. */
+typedef struct {
+    /* Half-angle Delta (radians) of the specular cone left out: every
+     * configuration with bf_geom_mirror_angle < Delta (SPEC §1.6).
+     * BF_CONE_DEFAULT: the format's default -- for CURET the specular
+     * test of SPEC §1.4 (bf_geom_is_specular: its 7 configurations), for
+     * every other format none. 0: none. */
+    double cone;
+    /* Leave out configurations whose theta_i or theta_o exceeds it
+     * (radians); >= pi/2 keeps all. */
+    double max_theta;
+    /* Configuration numbers (1-based positions in the material's list, as
+     * CURET numbers its 205) to leave out as well. */
+    const size_t *exclude;
+    size_t n_exclude;
+} bf_select;
+
+#define BF_CONE_DEFAULT (-1.0)
+
+/* Fills s with the defaults: BF_CONE_DEFAULT, max_theta pi/2, nothing
+ * excluded. */
+void bf_select_init(bf_select *s);
+
+/* The used configurations of material m for channel c (or
+ * BF_CHANNEL_MEAN): valid for that channel, outside the cone, within
+ * max_theta, not excluded. Writes their indices (0-based, increasing) into
+ * sel (capacity bf_dataset_nconf(ds, m)) and the count K into *n (K may be
+ * 0). *cone_out, when not NULL, gets how many were left out by the cone
+ * (or CURET's specular test). BF_EINVAL on bad arguments; BF_ENOTFOUND
+ * when an excluded number exceeds the material's configuration count. */
+int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
+                      const bf_select *s, size_t *sel, size_t *n,
+                      size_t *cone_out);
+
+/* Measured radiance of SPEC §2 for material m, channel c, on the n
+ * configurations sel: out[j] = value[sel[j]] * cos(theta_i of sel[j]),
+ * divided by its maximum over the n values (bf_normalise). BF_EDOM when
+ * that maximum is not positive or a selected value is invalid; BF_EINVAL
+ * on bad arguments or n = 0. */
+int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
+                        const size_t *sel, double *out);
+
+/* What one material holds, for `brdffit info` and for users checking
+ * their data (all angles in radians, in the measurement frame). */
+#define BF_SUMMARY_NCONES 5
+extern const double bf_summary_cones_deg[BF_SUMMARY_NCONES]; /* 1 5 10 15
+                                                                25 deg */
+typedef struct {
+    size_t n_conf;              /* configurations */
+    size_t n_channels;
+    double theta_i_min, theta_i_max;
+    double theta_o_min, theta_o_max;
+    double phi_i_min, phi_i_max; /* as given */
+    double phi_o_min, phi_o_max;
+    size_t n_specular;          /* SPEC §1.4's test (CURET's default) */
+    size_t n_cone[BF_SUMMARY_NCONES]; /* with delta < bf_summary_cones_deg */
+    double delta_min;           /* the nearest to the mirror direction */
+    size_t n_negative;          /* valid values < 0 (kept, SPEC §2) */
+    size_t n_zero;              /* valid values == 0 */
+    size_t n_invalid;           /* values marked invalid */
+    size_t n_conf_invalid;      /* configurations with an invalid value */
+    double value_min, value_max; /* over the valid values */
+} bf_material_summary;
+
+/* Fills out for material m. BF_EINVAL when m is out of range. */
+int bf_dataset_summary(const bf_dataset *ds, size_t m,
+                       bf_material_summary *out);
+
+/* ---- readers: each has a read-from-FILE form (name used in messages;
+ *      fp is never closed) and a load-from-path form; on error *out is
+ *      NULL and err names the file and the line (text formats) or the byte
+ *      offset (MERL: err->line is 0, the message says "byte N") ---- */
+
+/* CURET (SPEC §1.3, §2): table.txt and a BRDF file (brdf_path, or
+ * dir/abrdf.dat when NULL) and, when present, dir/samples.tsv (names).
+ * One material per sample row, numbered by its sample number, named from
+ * samples.tsv (else no name), one channel ("mean" for abrdf.dat, "R",
+ * "G", "B" for rbrdf/gbrdf/bbrdf.dat, else the file's base name), all on
+ * one configuration set. A table and a BRDF file whose counts differ is an
+ * error naming both files and both counts. */
+int bf_curet_load(const char *dir, const char *brdf_path, bf_dataset **out,
+                  bf_error *err);
+/* CURET's configurations in the measurement frame (SPEC §1.3, §1.5):
+ * angles (capacity 4 bf_table_size(t)) gets rows theta_i, phi_i,
+ * theta_o = theta_v, phi_o = phi_v. Also MERL's default sampling. */
+void bf_table_angles(const bf_table *t, double *angles);
+
+/* The same from tables already read (names may be NULL); copies them. */
+int bf_curet_dataset(const bf_table *t, const bf_brdf *b,
+                     const bf_names *names, const char *source,
+                     const char *channel, bf_dataset **out, bf_error *err);
+
+/* pbrt-v2 / Cornell .brdf (SPEC §8): one material, W spectral channels
+ * named by wavelength; name from the file's description comment, else the
+ * file name without its extension. */
+int bf_pbrt_read(FILE *fp, const char *name, bf_dataset **out,
+                 bf_error *err);
+int bf_pbrt_load(const char *path, bf_dataset **out, bf_error *err);
+
+/* ASTM E1392 (SPEC §8): one material; channels from VARS (R, G, B, X, Y,
+ * Z, or wavelengths); name from SAMPLE_NAME, else the file name without
+ * its extension. */
+int bf_astm_read(FILE *fp, const char *name, bf_dataset **out,
+                 bf_error *err);
+int bf_astm_load(const char *path, bf_dataset **out, bf_error *err);
+
+/* Tidy CSV (README "Tidy CSV"): header theta_i,phi_i,theta_o,phi_o
+ * (degrees, SPEC §1.5) and one column per channel, optionally a first
+ * column `material`; '#' comment lines; an empty value field is invalid.
+ * One or more materials (in order of first appearance); materials listing
+ * the same configurations share a configuration set. */
+int bf_csv_read(FILE *fp, const char *name, bf_dataset **out,
+                bf_error *err);
+int bf_csv_load(const char *path, bf_dataset **out, bf_error *err);
+
+/* Writes ds as tidy CSV (the `material` column always present). Angles are
+ * written in degrees with as few digits as read back (bf_csv_read) into
+ * the same radians bit for bit; values with %.17g; invalid values as empty
+ * fields. Every material must have the same channel names (BF_EINVAL
+ * otherwise). BF_EIO on a write error. */
+int bf_csv_write(const bf_dataset *ds, FILE *fp);
+
+/* Reads a configuration list: a tidy CSV (bf_csv_read's syntax) whose
+ * header names theta_i, phi_i, theta_o, phi_o (degrees, SPEC §1.5); any
+ * other column is ignored. *angles gets n x 4 radians (measurement frame),
+ * allocated with malloc (the caller frees it with free()). Used to choose
+ * where a MERL table is sampled. */
+int bf_configs_read(FILE *fp, const char *name, double **angles, size_t *n,
+                    bf_error *err);
+int bf_configs_load(const char *path, double **angles, size_t *n,
+                    bf_error *err);
+
+/* MERL .binary (SPEC §8): the dense table, read whole. Opaque. */
+typedef struct bf_merl bf_merl;
+
+/* Reads a MERL table: the three dimensions must be 90, 90, 180 and the
+ * stream must hold exactly the values they imply (checked against the
+ * file size before any allocation when fp is seekable). */
+int bf_merl_read(FILE *fp, const char *name, bf_merl **out, bf_error *err);
+int bf_merl_load(const char *path, bf_merl **out, bf_error *err);
+void bf_merl_free(bf_merl *t);
+
+/* R, G, B values (scaled, SPEC §8) at a configuration in the measurement
+ * frame (radians) by MERL's cell lookup; returns 1 when the cell is valid
+ * (every channel >= 0), 0 when invalid (rgb still written) or the
+ * directions are below the horizon. */
+int bf_merl_lookup(const bf_merl *t, double theta_i, double phi_i,
+                   double theta_o, double phi_o, double rgb[3]);
+
+/* A dataset of one material (channels R, G, B) sampled from t at n
+ * configurations (measurement frame, n x 4, as bf_dataset_add_configs), or
+ * -- when at is NULL -- at every valid cell (one configuration per cell, at
+ * the directions of the cell's centre that lie above the horizon). An
+ * invalid cell gives invalid values (never clamped to 0). */
+int bf_merl_dataset(const bf_merl *t, size_t n, const double *at,
+                    const char *material, const char *source,
+                    bf_dataset **out, bf_error *err);
+
+/* Options of bf_dataset_load. */
+typedef struct {
+    bf_format format;  /* BF_FORMAT_AUTO: bf_format_detect */
+    /* MERL only: the configurations to sample (n_at x 4, measurement
+     * frame), or all_cells = 1 for every valid cell. A MERL file without
+     * either is BF_EINVAL (the CLI passes CURET's 205 by default). */
+    size_t n_at;
+    const double *at;
+    int all_cells;
+} bf_load_opts;
+
+/* Loads path in any format (opts may be NULL: detect, and MERL fails as
+ * above). A folder is read as CURET. */
+int bf_dataset_load(const char *path, const bf_load_opts *opts,
+                    bf_dataset **out, bf_error *err);
 
 /* ======================================================================
  * --- fitting (SPEC §7) ---
@@ -606,41 +944,74 @@ int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
 #define BF_FREE_N_STEP 0.05
 
 /* ======================================================================
- * --- the study (SPEC §7) ---
+ * --- the study (SPEC §7) on a dataset ---
  * ====================================================================== */
 
-/* What to fit: samples x models on one configuration selection. */
+/* One thing the study fits: a material of the dataset on one channel, or
+ * on the mean over its channels (SPEC §2). */
 typedef struct {
-    const bf_table *table;        /* configuration table */
-    const bf_brdf *brdf;          /* measured BRDF rows */
-    const size_t *sel;            /* used configurations (0-based) */
-    size_t n_sel;                 /* K, the number of used configurations */
-    const int *samples;           /* sample numbers to fit */
-    size_t n_samples;
+    size_t material; /* index in the dataset */
+    size_t channel;  /* channel index, or BF_CHANNEL_MEAN */
+} bf_target;
+
+/* Expands materials (n_materials indices; materials = NULL: every material
+ * in order) and a channel request into targets, material-major: NULL or
+ * "mean": one target per material on BF_CHANNEL_MEAN; "each": one per
+ * channel of each material, in channel order; any other text: that channel
+ * of every material (bf_dataset_channel_find; BF_ENOTFOUND with err->msg
+ * naming the first material that lacks it). *out (n_out targets) is
+ * allocated with malloc; the caller frees it with free(). */
+int bf_study_targets(const bf_dataset *ds, const size_t *materials,
+                     size_t n_materials, const char *channel,
+                     bf_target **out, size_t *n_out, bf_error *err);
+
+/* What to fit: targets x models, each target on its own configuration
+ * selection (bf_dataset_select with select, for the target's channel). */
+typedef struct {
+    const bf_dataset *data;       /* the measurements (borrowed) */
+    const bf_target *targets;     /* what to fit */
+    size_t n_targets;
+    bf_select select;             /* which configurations are used */
     const bf_model_type *const *models; /* models to fit */
     size_t n_models;
     double n_default;             /* refractive index for FC models */
-    const bf_sample_table *n_file;    /* per-sample n (NULL: n_default) */
-    const bf_sample_table *on_params; /* ON (rho, sigma) per sample */
+    const bf_sample_table *n_file;    /* n per material number (NULL:
+                                         n_default) */
+    const bf_sample_table *on_params; /* ON (rho, sigma) per material
+                                         number */
     int n_threads;                /* OpenMP threads; 0 or 1: one. The
                                      results do not depend on it. */
 } bf_study_spec;
 
-/* The outcome of one (sample, model) pair. */
+/* The used configurations and the normalised measured radiance (SPEC §2)
+ * of target t of spec, exactly as the study fits them: sel and data need
+ * the capacity bf_dataset_nconf of the target's material; *k gets K.
+ * BF_EDOM (err->msg naming the material) when K = 0 or the data cannot be
+ * normalised; BF_ENOTFOUND when an excluded number does not exist. */
+int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
+                         size_t *k, double *data, bf_error *err);
+
+/* The outcome of one (target, model) pair. */
 typedef struct {
-    int sample;                   /* sample number */
+    size_t target;                /* index into spec->targets */
+    size_t material;              /* its material (dataset index) */
+    int sample;                   /* the material's number
+                                     (bf_dataset_number) */
+    size_t channel;               /* its channel, or BF_CHANNEL_MEAN */
+    size_t k;                     /* K, configurations used */
     const bf_model_type *type;    /* model */
     int status;                   /* BF_OK; BF_ENOTFOUND when an input is
                                      missing (ON without parameters) */
     bf_fit_result fit;            /* valid when status == BF_OK */
 } bf_study_row;
 
-/* Runs the paper's protocol (SPEC §7) for every sample and model, writing
- * n_samples * n_models rows (sample-major) into rows. A sample absent from
- * the BRDF file, or whose data cannot be normalised, is an error (returned,
- * with err->msg naming the sample); a model that cannot be evaluated for a
- * sample for lack of inputs gets its row's status set and the study goes
- * on. */
+/* Runs the paper's protocol (SPEC §7) for every target and model, writing
+ * n_targets * n_models rows (target-major) into rows. Targets that share a
+ * configuration set and selection share the model curves. A target whose
+ * data cannot be normalised, or that keeps no configuration, is an error
+ * (returned, with err->msg naming the material); a model that cannot be
+ * evaluated for a target for lack of inputs gets its row's status set and
+ * the study goes on. */
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
                  bf_error *err);
 
@@ -655,7 +1026,7 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
  * --- the study beyond the paper (doc/methods.md) ---
  * ====================================================================== */
 
-/* What bf_study_analyse computes for each (sample, model). */
+/* What bf_study_analyse computes for each (target, model). */
 typedef struct {
     bf_objective objective; /* what is minimised */
     int exact;              /* 1: rows' fit is the refined optimum */
@@ -685,12 +1056,12 @@ typedef struct {
     double cv;                      /* cross-validated error, NaN if none */
 } bf_fit_stats;
 
-/* Analyses every (sample, model) of spec under opts: grid optimum under
+/* Analyses every (target, model) of spec under opts: grid optimum under
  * the objective, exact refinement, profile (and bootstrap) intervals,
- * AIC, BIC and cross-validated error, into stats (n_samples x n_models,
- * sample-major, like rows; stats[i].done = 0 where a row could not be
- * analysed). When opts->exact, each row's sample, type and status are set
- * here and its fit is the refined optimum; otherwise rows are left as
+ * AIC, BIC and cross-validated error, into stats (n_targets x n_models,
+ * target-major, like rows; stats[i].done = 0 where a row could not be
+ * analysed). When opts->exact, each row's target fields, type and status
+ * are set here and its fit is the refined optimum; otherwise rows are left as
  * bf_study_run wrote them (the paper's grid optima) and only read. Errors
  * as bf_study_run. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,

@@ -291,16 +291,35 @@ int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
                     const bf_geom *geom, double *curve);
 
 
-/* Fixed parameter values of type for one sample (src/fit/study.c):
- * defaults, n from the n file or n_default, ON's rho, sigma from the
- * parameter file; BF_ENOTFOUND when an input is missing. */
+/* Fixed parameter values of type for target t of spec
+ * (src/fit/targets.c): defaults, n from the n file or n_default, ON's
+ * rho, sigma from the parameter file, looked up by the material's number;
+ * BF_ENOTFOUND when an input is missing. */
 int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
-                     int sample, double *fixed);
-/* Configurations of spec in Beckmann's frame (geom, n_sel values) and the
- * normalised data of every sample (n_samples x n_sel, SPEC §2); err->msg
- * names the sample on failure (src/fit/study.c). */
-int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
-                   bf_error *err);
+                     size_t t, double *fixed);
+
+/* Targets of a study that share a configuration set and selection, and so
+ * the geometry and every model curve (src/fit/targets.c). */
+typedef struct {
+    size_t set;        /* the dataset's configuration set */
+    size_t n_sel;      /* K */
+    size_t *sel;       /* K configuration indices in the set */
+    bf_geom *geom;     /* their K configurations, Beckmann's frame */
+    size_t n_members;
+    size_t *members;   /* target indices, increasing */
+    double *data;      /* n_members x K normalised radiances (SPEC §2) */
+} bf__group_t;
+
+typedef struct {
+    bf__group_t *g;
+    size_t n;
+} bf__groups_t;
+
+/* Groups the targets of spec (selection and data of each target as
+ * bf_study_target_data); err names the material on failure. */
+int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
+                     bf_error *err);
+void bf__study_groups_free(bf__groups_t *gs);
 
 /* Objective of pb on a normalised model curve (src/fit/objective.c);
  * scratch holds pb->n doubles. The max objective without weights sums

@@ -21,6 +21,7 @@ struct bf_brdf {
     size_t n_conf; /* values per row */
     int *sample;   /* n sample numbers, 1..n after sorting */
     double *v;     /* n * n_conf values, row-major */
+    long *line;    /* n line numbers of the rows in the file */
 };
 
 /* A row as read: its sample number, position in the file and line. */
@@ -120,9 +121,8 @@ int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
     if (out != NULL) {
         *out = NULL;
     }
-    if ((out == NULL) || (fp == NULL) || (n_conf == 0)) {
-        return bf__error_set(err, BF_EINVAL, 0,
-                             "no stream, no output or n_conf = 0");
+    if ((out == NULL) || (fp == NULL)) {
+        return bf__error_set(err, BF_EINVAL, 0, "no stream or no output");
     }
     for (;;) {
         long sample = 0;
@@ -133,6 +133,14 @@ int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
         }
         rc = bf__lines_split_ws(&r, err);
         if (rc != BF_OK) {
+            goto done;
+        }
+        if (n_conf == 0 && r.nfield > 1) { /* the first row sets the count */
+            n_conf = r.nfield - 1;
+        }
+        if (n_conf == 0) {
+            rc = bf__error_set(err, BF_EPARSE, r.line,
+                               "a sample number without values");
             goto done;
         }
         if (r.nfield != n_conf + 1) {
@@ -186,12 +194,14 @@ int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
     b->n_conf = n_conf;
     b->sample = malloc(n * sizeof *b->sample);
     b->v = malloc(n * n_conf * sizeof *b->v);
-    if ((b->sample == NULL) || (b->v == NULL)) {
+    b->line = malloc(n * sizeof *b->line);
+    if ((b->sample == NULL) || (b->v == NULL) || (b->line == NULL)) {
         rc = bf__error_set(err, BF_ENOMEM, 0, "out of memory");
         goto done;
     }
     for (k = 0; k < n; k++) {
         b->sample[k] = info[k].sample;
+        b->line[k] = info[k].line;
         memcpy(b->v + k * n_conf, v + info[k].pos * n_conf,
                n_conf * sizeof *b->v);
     }
@@ -229,6 +239,7 @@ void bf_brdf_free(bf_brdf *b)
     }
     free(b->sample);
     free(b->v);
+    free(b->line);
     free(b);
 }
 
@@ -245,6 +256,11 @@ size_t bf_brdf_nconf(const bf_brdf *b)
 int bf_brdf_sample(const bf_brdf *b, size_t row)
 {
     return ((b == NULL) || (row >= b->n)) ? -1 : b->sample[row];
+}
+
+long bf_brdf_line(const bf_brdf *b, size_t row)
+{
+    return ((b == NULL) || (row >= b->n)) ? 0 : b->line[row];
 }
 
 const double *bf_brdf_values(const bf_brdf *b, size_t row)

@@ -85,55 +85,34 @@ static int analyse_one(const bf_problem *pb, const bf_curves *curves,
     return BF_OK;
 }
 
-int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
-                     bf_study_row *rows, bf_fit_stats *stats, bf_error *err)
+/* Analyses every model for the targets of group g; curves are built once
+ * per model and rebuilt only when a target's fixed inputs differ (as the
+ * study's grids). Returns BF_OK or BF_ENOMEM (err filled). */
+static int analyse_group(const bf_study_spec *spec, const bf__group_t *g,
+                         const bf_analysis_opts *opts, bf_study_row *rows,
+                         bf_fit_stats *stats, bf_error *err)
 {
-    bf_geom *geom = NULL;
-    double *data = NULL;
     bf_curves *curves = NULL;
     double cur_fixed[BF_MAX_PARAMS];
     size_t s;
     size_t m;
     int rc = BF_OK;
 
-    if (spec == NULL || opts == NULL || rows == NULL || stats == NULL ||
-        spec->table == NULL || spec->brdf == NULL || spec->sel == NULL ||
-        spec->n_sel == 0 || (spec->n_samples > 0 && spec->samples == NULL) ||
-        (spec->n_models > 0 && spec->models == NULL) ||
-        bf_objective_name(opts->objective) == NULL ||
-        !(opts->level > 0.0 && opts->level < 1.0) ||
-        bf_brdf_nconf(spec->brdf) != bf_table_size(spec->table)) {
-        STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
-        return BF_EINVAL;
-    }
-    geom = malloc(spec->n_sel * sizeof *geom);
-    data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
-    if (geom == NULL || data == NULL) {
-        rc = BF_ENOMEM;
-        STUDY_ERR(err, rc, "out of memory");
-        goto done;
-    }
-    rc = bf__study_data(spec, geom, data, err);
-    if (rc != BF_OK) {
-        goto done;
-    }
-
-    /* Each model: its curves are built once and rebuilt only when a
-     * sample's fixed inputs differ (as the study's grids). */
-    for (m = 0; m < spec->n_models; m++) {
+    for (m = 0; m < spec->n_models && rc == BF_OK; m++) {
         const bf_model_type *type = spec->models[m];
-        for (s = 0; s < spec->n_samples; s++) {
-            size_t i = s * spec->n_models + m;
+        for (s = 0; s < g->n_members; s++) {
+            size_t t = g->members[s];
+            size_t i = t * spec->n_models + m;
             bf_study_row *r = &rows[i];
             bf_fit_stats *st = &stats[i];
             double fixed[BF_MAX_PARAMS] = {0};
             bf_problem pb;
             int status;
             stats_clear(st);
-            status = bf__study_inputs(spec, type, spec->samples[s], fixed);
+            status = bf__study_inputs(spec, type, t, fixed);
             if (status == BF_OK) {
-                bf_problem_init(&pb, type, fixed, spec->n_sel, geom,
-                                data + s * spec->n_sel);
+                bf_problem_init(&pb, type, fixed, g->n_sel, g->geom,
+                                g->data + s * g->n_sel);
                 pb.objective = opts->objective;
                 if (curves == NULL ||
                     memcmp(cur_fixed, fixed, sizeof fixed) != 0) {
@@ -148,11 +127,16 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             if (status == BF_ENOMEM) {
                 rc = BF_ENOMEM;
                 STUDY_ERR(err, rc, "out of memory (%s, %zu configurations)",
-                          type->name, spec->n_sel);
-                goto done;
+                          type->name, g->n_sel);
+                break;
             }
             if (opts->exact) { /* the refined optimum is the result */
-                r->sample = spec->samples[s];
+                const bf_target *tg = &spec->targets[t];
+                r->target = t;
+                r->material = tg->material;
+                r->sample = bf_dataset_number(spec->data, tg->material);
+                r->channel = tg->channel;
+                r->k = g->n_sel;
                 r->type = type;
                 r->status = status;
                 if (status == BF_OK) {
@@ -163,10 +147,29 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
         bf_curves_free(curves);
         curves = NULL;
     }
+    return rc;
+}
 
-done:
-    bf_curves_free(curves);
-    free(geom);
-    free(data);
+int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
+                     bf_study_row *rows, bf_fit_stats *stats, bf_error *err)
+{
+    bf__groups_t gs = {NULL, 0};
+    size_t i;
+    int rc;
+
+    if (spec == NULL || opts == NULL || rows == NULL || stats == NULL ||
+        spec->data == NULL ||
+        (spec->n_targets > 0 && spec->targets == NULL) ||
+        (spec->n_models > 0 && spec->models == NULL) ||
+        bf_objective_name(opts->objective) == NULL ||
+        !(opts->level > 0.0 && opts->level < 1.0)) {
+        STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
+        return BF_EINVAL;
+    }
+    rc = bf__study_groups(spec, &gs, err);
+    for (i = 0; rc == BF_OK && i < gs.n; i++) {
+        rc = analyse_group(spec, &gs.g[i], opts, rows, stats, err);
+    }
+    bf__study_groups_free(&gs);
     return rc;
 }

@@ -18,122 +18,27 @@ const int bf_study_samples[BF_STUDY_NSAMPLES] = {
     1,  2,  5,  7,  9,  12, 16, 17, 20, 22, 23, 25,
     29, 31, 33, 34, 36, 37, 39, 41, 44, 54, 55, 56}; /* paper, Table 2 */
 
-static void set_error(bf_error *err, int code, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL) {
-        return;
-    }
-    memset(err, 0, sizeof *err);
-    err->code = code;
-    va_start(ap, fmt);
-    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
-    va_end(ap);
-}
-
-/* The fixed parameter values of type for one sample: defaults, with n from
- * the n file or spec->n_default (SPEC §4.2) and rho, sigma from the ON
- * parameter file (SPEC §5). Returns BF_ENOTFOUND when a needed input is
- * absent for this sample. Also used by bf_study_analyse (analyse.c). */
-int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
-                     int sample, double *fixed)
-{
-    size_t j;
-    for (j = 0; j < type->p; j++) {
-        const bf_param *pj = &type->param[j];
-        fixed[j] = pj->value;
-        if (pj->fitted) {
-            continue;
-        }
-        if (strcmp(pj->name, "n") == 0) {
-            fixed[j] = spec->n_default;
-            if (spec->n_file != NULL &&
-                bf_sample_table_get(spec->n_file, sample, 0, &fixed[j]) !=
-                    BF_OK) {
-                return BF_ENOTFOUND;
-            }
-        } else if (strcmp(pj->name, "rho") == 0 ||
-                   strcmp(pj->name, "sigma") == 0) {
-            size_t col = strcmp(pj->name, "rho") == 0 ? 0 : 1;
-            if (spec->on_params == NULL ||
-                bf_sample_table_get(spec->on_params, sample, col,
-                                    &fixed[j]) != BF_OK) {
-                return BF_ENOTFOUND;
-            }
-        }
-    }
-    return BF_OK;
-}
-
-/* The configurations of spec in Beckmann's frame (geom, n_sel values) and
- * the normalised measured radiance of every sample (data, n_samples x
- * n_sel, SPEC §2). Shared by bf_study_run and bf_study_analyse. */
-int bf__study_data(const bf_study_spec *spec, bf_geom *geom, double *data,
-                   bf_error *err)
-{
-    double *cti;
-    size_t s;
-    size_t k;
-    int rc;
-    for (k = 0; k < spec->n_sel; k++) {
-        if (spec->sel[k] >= bf_table_size(spec->table)) {
-            set_error(err, BF_EINVAL, "configuration selection out of range");
-            return BF_EINVAL;
-        }
-        geom[k] = bf_table_geom(spec->table, spec->sel[k]);
-    }
-
-    /* SPEC §2: normalised measured radiance of every sample, as
-     * bf_data_radiance forms it (the same products, bf_normalise), with
-     * cos(theta_i) taken once per configuration for all samples. */
-    cti = malloc(spec->n_sel * sizeof *cti);
-    if (cti == NULL) {
-        set_error(err, BF_ENOMEM, "out of memory");
-        return BF_ENOMEM;
-    }
-    for (k = 0; k < spec->n_sel; k++) {
-        cti[k] = cos(geom[k].theta_i);
-    }
-    for (s = 0; s < spec->n_samples; s++) {
-        long row = bf_brdf_find(spec->brdf, spec->samples[s]);
-        const double *v;
-        double *out = data + s * spec->n_sel;
-        if (row < 0) {
-            rc = BF_ENOTFOUND;
-            set_error(err, rc, "sample %d is not in the BRDF file",
-                      spec->samples[s]);
-            free(cti);
-            return rc;
-        }
-        v = bf_brdf_values(spec->brdf, (size_t)row);
-        for (k = 0; k < spec->n_sel; k++) {
-            out[k] = v[spec->sel[k]] * cti[k]; /* SPEC §2: BRDF x cos(ti) */
-        }
-        rc = bf_normalise(spec->n_sel, out, out);
-        if (rc != BF_OK) {
-            set_error(err, rc,
-                      "sample %d: the measured radiance has no positive "
-                      "maximum over the used configurations",
-                      spec->samples[s]);
-            free(cti);
-            return rc;
-        }
-    }
-    free(cti);
-    return BF_OK;
-}
-
-/* The study's shared state while it runs. */
+/* The study's shared state while it runs one group of targets (the
+ * targets sharing configurations; "samples" below are its members). */
 typedef struct {
     const bf_study_spec *spec;
-    const bf_geom *geom;  /* n_sel used configurations */
-    const bf__trig_t *trig; /* their sines and cosines, once per study */
+    size_t n_sel;         /* K of the group */
+    const bf_geom *geom;  /* its n_sel configurations */
+    const bf__trig_t *trig; /* their sines and cosines, once per group */
     const double *data;   /* n_samples x n_sel normalised radiances */
+    size_t n_samples;     /* members of the group */
+    const size_t *members; /* their target indices */
     double *fixed;        /* n_models x n_samples x BF_MAX_PARAMS inputs */
     size_t *leader;       /* n_models x n_samples: the first sample with the
                              same inputs, SIZE_MAX when the row failed */
     bf_study_row *rows;
 } study_t;
+
+/* The row of member s and model m. */
+static bf_study_row *row_of(const study_t *st, size_t s, size_t m)
+{
+    return &st->rows[st->members[s] * st->spec->n_models + m];
+}
 
 /* One unit of work: model m for the group of samples led by `leader`
  * (they share one precomputed grid), or for every sample when the model
@@ -149,17 +54,22 @@ typedef struct {
 static void prepare_model(study_t *st, size_t m)
 {
     const bf_study_spec *spec = st->spec;
-    size_t ns = spec->n_samples;
+    size_t ns = st->n_samples;
     size_t s;
     size_t q;
     for (s = 0; s < ns; s++) {
-        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        bf_study_row *r = row_of(st, s, m);
         double *fx = st->fixed + ((m * ns) + s) * BF_MAX_PARAMS;
+        const bf_target *tg = &spec->targets[st->members[s]];
         memset(r, 0, sizeof *r);
         memset(fx, 0, BF_MAX_PARAMS * sizeof *fx);
-        r->sample = spec->samples[s];
+        r->target = st->members[s];
+        r->material = tg->material;
+        r->sample = bf_dataset_number(spec->data, tg->material);
+        r->channel = tg->channel;
+        r->k = st->n_sel;
         r->type = spec->models[m];
-        r->status = bf__study_inputs(spec, r->type, r->sample, fx);
+        r->status = bf__study_inputs(spec, r->type, r->target, fx);
         st->leader[m * ns + s] = SIZE_MAX;
         if (r->status != BF_OK) {
             continue;
@@ -181,19 +91,19 @@ static void prepare_model(study_t *st, size_t m)
 static int run_fixed(const study_t *st, size_t m)
 {
     const bf_study_spec *spec = st->spec;
-    size_t ns = spec->n_samples;
-    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], spec->n_sel,
+    size_t ns = st->n_samples;
+    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], st->n_sel,
                                           st->geom);
     size_t s;
     if (fm == NULL) {
         return BF_ENOMEM;
     }
     for (s = 0; s < ns; s++) {
-        bf_study_row *r = &st->rows[s * spec->n_models + m];
+        bf_study_row *r = row_of(st, s, m);
         if (r->status == BF_OK) {
             r->status = bf__fixed_fit(fm, st->fixed + ((m * ns) + s) *
                                                           BF_MAX_PARAMS,
-                                      st->data + s * spec->n_sel, &r->fit);
+                                      st->data + s * st->n_sel, &r->fit);
         }
     }
     bf__fixed_free(fm);
@@ -205,7 +115,7 @@ static int run_fixed(const study_t *st, size_t m)
 static int run_group(const study_t *st, size_t m, size_t leader)
 {
     const bf_study_spec *spec = st->spec;
-    size_t ns = spec->n_samples;
+    size_t ns = st->n_samples;
     const double **group = malloc((ns + 1) * sizeof *group);
     size_t *members = malloc((ns + 1) * sizeof *members);
     double *lse = NULL;
@@ -224,7 +134,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     for (q = leader; q < ns; q++) {
         if (st->leader[m * ns + q] == leader) {
             members[n_group] = q;
-            group[n_group++] = st->data + q * spec->n_sel;
+            group[n_group++] = st->data + q * st->n_sel;
         }
     }
     /* the streaming kernels where the model has one: no stored curves */
@@ -236,11 +146,12 @@ static int run_group(const study_t *st, size_t m, size_t leader)
         size_t *best = malloc(n_group * sizeof *best);
         int done = -BF_ENOMEM;
         if (best_lse != NULL && best != NULL) {
-            done = bf__stream_fast(spec->models[m], &lay, spec->n_sel,
-                                   st->geom, st->trig, n_group, group, best_lse, best);
+            done = bf__stream_fast(spec->models[m], &lay, st->n_sel,
+                                   st->geom, st->trig, n_group, group,
+                                   best_lse, best);
         }
         for (q = 0; done == 1 && q < n_group; q++) {
-            bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+            bf_study_row *r = row_of(st, members[q], m);
             r->status = bf__grid_result(spec->models[m], &lay, best[q],
                                         best_lse[q], &r->fit);
         }
@@ -253,10 +164,10 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     }
     gr = bf__grid_build(spec->models[m],
                         st->fixed + ((m * ns) + leader) * BF_MAX_PARAMS, 0,
-                        spec->n_sel, st->geom, &status);
+                        st->n_sel, st->geom, &status);
     if (gr == NULL) {
         for (q = 0; q < n_group; q++) {
-            st->rows[members[q] * spec->n_models + m].status = status;
+            row_of(st, members[q], m)->status = status;
         }
         goto done;
     }
@@ -268,7 +179,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     }
     bf__grid_score(gr, n_group, group, lse);
     for (q = 0; q < n_group; q++) {
-        bf_study_row *r = &st->rows[members[q] * spec->n_models + m];
+        bf_study_row *r = row_of(st, members[q], m);
         r->status = bf__grid_best(gr, lse + q * cols, &r->fit);
     }
 
@@ -280,13 +191,14 @@ done:
     return rc;
 }
 
-/* Fits every model to every sample: the units of work are shared among
- * spec->n_threads OpenMP threads in one parallel loop (one fork and one
- * join per study, so a busy machine delays it once, not per grid). */
+/* Fits every model to every member of the group: the units of work are
+ * shared among spec->n_threads OpenMP threads in one parallel loop (one
+ * fork and one join per group, so a busy machine delays it once, not per
+ * grid). */
 static int fit_all(study_t *st)
 {
     const bf_study_spec *spec = st->spec;
-    size_t ns = spec->n_samples;
+    size_t ns = st->n_samples;
     int n_threads = spec->n_threads > 1 ? spec->n_threads : 1;
     work_t *work = malloc((spec->n_models * (ns + 1) + 1) * sizeof *work);
     long n_work = 0;
@@ -327,66 +239,63 @@ static int fit_all(study_t *st)
     return rc;
 }
 
-int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
+/* Runs the study on one group of targets. */
+static int run_group_of_targets(const bf_study_spec *spec,
+                                const bf__group_t *g, bf_study_row *rows)
 {
-    bf_geom *geom = NULL;
-    bf__trig_t *trig = NULL;
-    double *data = NULL;
-    double *fixed = NULL;
-    size_t *leader = NULL;
+    bf__trig_t *trig = malloc(g->n_sel * sizeof *trig);
+    double *fixed = malloc((spec->n_models * g->n_members + 1) *
+                           BF_MAX_PARAMS * sizeof *fixed);
+    size_t *leader = malloc((spec->n_models * g->n_members + 1) *
+                            sizeof *leader);
     size_t k;
     study_t st;
-    int rc = BF_OK;
+    int rc = BF_ENOMEM;
 
-    if (spec == NULL || rows == NULL || spec->table == NULL ||
-        spec->brdf == NULL || spec->sel == NULL || spec->n_sel == 0 ||
-        (spec->n_samples > 0 && spec->samples == NULL) ||
-        (spec->n_models > 0 && spec->models == NULL) ||
-        bf_brdf_nconf(spec->brdf) != bf_table_size(spec->table)) {
-        set_error(err, BF_EINVAL, "invalid study specification");
-        return BF_EINVAL;
+    if (trig != NULL && fixed != NULL && leader != NULL) {
+        for (k = 0; k < g->n_sel; k++) {
+            bf__geom_trig(&g->geom[k], &trig[k]);
+        }
+        /* SPEC §7.3-7.5: each model, each target of the group. */
+        st.spec = spec;
+        st.n_sel = g->n_sel;
+        st.geom = g->geom;
+        st.trig = trig;
+        st.data = g->data;
+        st.n_samples = g->n_members;
+        st.members = g->members;
+        st.fixed = fixed;
+        st.leader = leader;
+        st.rows = rows;
+        rc = fit_all(&st);
     }
-    geom = malloc(spec->n_sel * sizeof *geom);
-    trig = malloc(spec->n_sel * sizeof *trig);
-    data = malloc(spec->n_samples * spec->n_sel * sizeof *data + 1);
-    fixed = malloc((spec->n_models * spec->n_samples + 1) * BF_MAX_PARAMS *
-                   sizeof *fixed);
-    leader = malloc((spec->n_models * spec->n_samples + 1) *
-                    sizeof *leader);
-    if (geom == NULL || trig == NULL || data == NULL || fixed == NULL ||
-        leader == NULL) {
-        rc = BF_ENOMEM;
-        set_error(err, rc, "out of memory");
-        goto done;
-    }
-    rc = bf__study_data(spec, geom, data, err);
-    if (rc != BF_OK) {
-        goto done;
-    }
-
-    for (k = 0; k < spec->n_sel; k++) {
-        bf__geom_trig(&geom[k], &trig[k]);
-    }
-
-    /* SPEC §7.3-7.5: each model, each sample. */
-    st.spec = spec;
-    st.geom = geom;
-    st.trig = trig;
-    st.data = data;
-    st.fixed = fixed;
-    st.leader = leader;
-    st.rows = rows;
-    rc = fit_all(&st);
-    if (rc != BF_OK) {
-        set_error(err, rc, "out of memory");
-        goto done;
-    }
-
-done:
-    free(geom);
     free(trig);
-    free(data);
     free(fixed);
     free(leader);
+    return rc;
+}
+
+int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
+{
+    bf__groups_t gs = {NULL, 0};
+    size_t i;
+    int rc;
+
+    bf__error_clear(err, "study");
+    if (spec == NULL || rows == NULL || spec->data == NULL ||
+        (spec->n_targets > 0 && spec->targets == NULL) ||
+        (spec->n_models > 0 && spec->models == NULL)) {
+        return bf__error_set(err, BF_EINVAL, 0,
+                             "invalid study specification");
+    }
+    rc = bf__study_groups(spec, &gs, err);
+    for (i = 0; rc == BF_OK && i < gs.n; i++) {
+        rc = run_group_of_targets(spec, &gs.g[i], rows);
+        if (rc != BF_OK) {
+            bf__error_clear(err, "study");
+            bf__error_set(err, rc, 0, "out of memory");
+        }
+    }
+    bf__study_groups_free(&gs);
     return rc;
 }

@@ -21,7 +21,8 @@
 #define EXIT_CANTCREAT 73
 
 /* The first columns of fits.csv (README.md); the analysis columns follow. */
-#define CSV_HEADER "sample,name,model,parameter,unit,value,lse,bound_hit,k,"
+#define CSV_HEADER \
+    "sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
 
 static void write_file(const char *dir, const char *name, const char *text)
 {
@@ -203,8 +204,9 @@ Test(cli, tiny_data_set_fits_and_writes_all_outputs)
     csv = bf_test_slurp(out_dir, NULL);
     cr_assert(strncmp(csv, CSV_HEADER, strlen(CSV_HEADER)) == 0, "%s", csv);
     cr_assert(strstr(csv, ",ci_low,ci_high,") != NULL, "%s", csv);
-    cr_assert(strstr(csv, "\n1,,LAMBERT,,,,") != NULL, "%s", csv);
-    cr_assert(strstr(csv, "\n2,,LFTG,n_d,1,") != NULL, "%s", csv);
+    /* no samples.tsv: no names; the default channel is the mean */
+    cr_assert(strstr(csv, "\n1,,mean,LAMBERT,,,,") != NULL, "%s", csv);
+    cr_assert(strstr(csv, "\n2,,mean,LFTG,n_d,1,") != NULL, "%s", csv);
 }
 
 Test(cli, malformed_input_names_file_and_line_and_leaves_no_output)

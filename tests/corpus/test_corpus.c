@@ -192,6 +192,22 @@ static size_t split_tabs(char *s, char **field, size_t n)
     return k;
 }
 
+/* Copies text into buf, replacing each "{DATA}" by the data folder. */
+static void expand_data(char *buf, size_t len, const char *text,
+                        const char *data)
+{
+    size_t at = 0;
+    while (*text != '\0' && at + 1 < len) {
+        if (strncmp(text, "{DATA}", 6) == 0) {
+            at += (size_t)snprintf(buf + at, len - at, "%s", data);
+            text += 6;
+        } else {
+            buf[at++] = *text++;
+        }
+    }
+    buf[at < len ? at : len - 1] = '\0';
+}
+
 /* Runs the case described by one line of expect.tsv. */
 static void run_expect_line(char *line, const char *baseline)
 {
@@ -244,7 +260,9 @@ static void run_expect_line(char *line, const char *baseline)
     } else {
         named[0] = '\0';
     }
-    snprintf(message, sizeof message, "%s%s", named, f[5]);
+    snprintf(message, sizeof message, "%s", named);
+    expand_data(message + strlen(message), sizeof message - strlen(message),
+                f[5], data);
     expect_rejected(f[0], data, f[2], opt, given, status, message,
                     named[0] != '\0');
 }

@@ -235,9 +235,17 @@ Test(brdf, gap_in_sample_numbers_names_the_missing_one)
     expect_error("2 0.2 0.2\n", 2, BF_EPARSE, 0, "sample 1 is missing");
 }
 
-Test(brdf, zero_configurations_is_invalid)
+Test(brdf, zero_configurations_takes_the_count_from_the_first_row)
 {
-    expect_error("1\n", 0, BF_EINVAL, 0, "n_conf");
+    /* the count comes from row 1; row 2 is then checked against it */
+    bf_brdf *b = read_ok("1 0.1 0.2 0.3\n\n2 0.4 0.5 0.6\n", 0);
+    cr_assert_eq(bf_brdf_nconf(b), 3);
+    cr_assert_eq(bf_brdf_line(b, 0), 1);
+    cr_assert_eq(bf_brdf_line(b, 1), 3);
+    bf_brdf_free(b);
+    expect_error("1 0.1 0.2 0.3\n2 0.4 0.5\n", 0, BF_EPARSE, 2,
+                 "expected 3 values after the sample number, found 2");
+    expect_error("1\n", 0, BF_EPARSE, 1, "a sample number without values");
 }
 
 Test(brdf, nonexistent_path_is_an_io_error)

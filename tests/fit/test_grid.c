@@ -369,17 +369,23 @@ static bf_study_row *study_all(const bf_table *t, const bf_brdf *b,
     }
     models[(*n_models)++] = bf_model_lambert;
     models[(*n_models)++] = bf_model_on;
+    bf_dataset *ds = NULL;
+    static bf_target targets[64];
+    cr_assert_eq(bf_curet_dataset(t, b, NULL, "abrdf.dat", "mean", &ds, &err),
+                 BF_OK);
     *n_samples = bf_brdf_count(b);
     for (i = 0; i < *n_samples; i++) {
         samples[i] = bf_brdf_sample(b, i);
+        targets[i].material = i;
+        targets[i].channel = BF_CHANNEL_MEAN;
     }
+    (void)sel;
+    (void)n; /* the dataset's default selection is sel (SPEC §1.4) */
     memset(&spec, 0, sizeof spec);
-    spec.table = t;
-    spec.brdf = b;
-    spec.sel = sel;
-    spec.n_sel = n;
-    spec.samples = samples;
-    spec.n_samples = *n_samples;
+    spec.data = ds;
+    bf_select_init(&spec.select);
+    spec.targets = targets;
+    spec.n_targets = *n_samples;
     spec.models = models;
     spec.n_models = *n_models;
     spec.n_default = BF_DEFAULT_N;
@@ -387,6 +393,10 @@ static bf_study_row *study_all(const bf_table *t, const bf_brdf *b,
     spec.n_threads = n_threads;
     rows = calloc(*n_samples * *n_models, sizeof *rows);
     cr_assert_eq(bf_study_run(&spec, rows, &err), BF_OK, "%s", err.msg);
+    for (i = 0; i < *n_samples * *n_models; i++) {
+        cr_assert_eq(rows[i].k, n, "K of row %zu", i);
+    }
+    bf_dataset_free(ds);
     return rows;
 }
 
@@ -587,30 +597,32 @@ Test(grid, study_reports_a_missing_sample_and_missing_on_parameters)
 {
     bf_table *t = bf_test_load_table();
     bf_brdf *b = bf_test_load_abrdf();
-    size_t sel[BF_CURET_NCONF];
-    size_t n = bf_table_select(t, M_PI, sel);
+    bf_dataset *ds = NULL;
     const bf_model_type *models[1] = {bf_model_on};
-    int samples[1] = {62};
+    bf_target targets[1] = {{61, BF_CHANNEL_MEAN}}; /* 61 materials: 0-60 */
     bf_study_row rows[1];
     bf_study_spec spec;
     bf_error err;
 
+    cr_assert_eq(bf_curet_dataset(t, b, NULL, "abrdf.dat", "mean", &ds, &err),
+                 BF_OK);
+    cr_assert_eq(bf_dataset_find(ds, 62), -1);
     memset(&spec, 0, sizeof spec);
-    spec.table = t;
-    spec.brdf = b;
-    spec.sel = sel;
-    spec.n_sel = n;
-    spec.samples = samples;
-    spec.n_samples = 1;
+    spec.data = ds;
+    bf_select_init(&spec.select);
+    spec.targets = targets;
+    spec.n_targets = 1;
     spec.models = models;
     spec.n_models = 1;
     spec.n_default = BF_DEFAULT_N;
-    cr_assert_eq(bf_study_run(&spec, rows, &err), BF_ENOTFOUND);
-    cr_assert(strstr(err.msg, "sample 62") != NULL, "%s", err.msg);
+    cr_assert_eq(bf_study_run(&spec, rows, &err), BF_EINVAL);
 
-    samples[0] = 3; /* no ON parameters given: the row says so */
+    targets[0].material = 2; /* no ON parameters given: the row says so */
     cr_assert_eq(bf_study_run(&spec, rows, &err), BF_OK);
     cr_assert_eq(rows[0].status, BF_ENOTFOUND);
+    cr_assert_eq(rows[0].sample, 3);
+    cr_assert_eq(rows[0].k, 198);
+    bf_dataset_free(ds);
     bf_brdf_free(b);
     bf_table_free(t);
 }
