@@ -88,4 +88,5 @@ class BuildPy(build_py):
         print("brdffit: recorded libbrdffit at %s" % library)
 
 
-setup(cmdclass={"build_py": BuildPy})
+if __name__ == "__main__":  # also when pip builds; importable for tests
+    setup(cmdclass={"build_py": BuildPy})

@@ -208,4 +208,3 @@ class Spec:
         if rc != 0:
             raise error(rc, context="model curve")
         return out
-

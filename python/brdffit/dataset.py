@@ -365,4 +365,3 @@ def load(path, format="auto", at=None, all_cells=False):
     rc = lib.bf_dataset_load(os.fsencode(os.fspath(path)), opts, out, err)
     check(rc, err)
     return Dataset._adopt(out[0])
-

@@ -212,4 +212,3 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
                                                 rows[0].material)].name),
             int(rows[0].status))
     return FitResult(spec, rows, stats_rows, fit, objective)
-

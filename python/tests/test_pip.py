@@ -4,10 +4,13 @@ installed against with no environment variable. A copy of python/ is
 installed with --target into a temporary folder, so the source tree is not
 written to."""
 
+import importlib.util
 import os
 import shutil
 import subprocess
 import sys
+
+import pytest
 
 import brdffit
 
@@ -54,28 +57,44 @@ def _installed_library(target, cwd):
 
 def test_pip_records_brdffit_lib_and_the_install_finds_it(tmp_path):
     src = _copy_package(tmp_path)
-    lib = brdffit.library_path
+    lib = os.path.abspath(brdffit.library_path)
     run = _pip_install(src, tmp_path / "site", _env(BRDFFIT_LIB=lib))
     assert run.returncode == 0, run.stdout + run.stderr
-    assert _installed_library(tmp_path / "site", tmp_path) == [
-        os.path.abspath(lib), "True"]
+    assert _installed_library(tmp_path / "site", tmp_path) == [lib, "True"]
 
 
-def test_pip_finds_the_library_under_brdffit_prefix(tmp_path):
-    src = _copy_package(tmp_path)
+def _find_library(monkeypatch, here, **env):
+    """setup.py's find_library() under env (and no pkg-config brdffit),
+    as if setup.py were in the folder here (whose parent has no build
+    folder)."""
+    for k in list(os.environ):
+        if k.startswith("BRDFFIT_"):
+            monkeypatch.delenv(k)
+    for k, v in _env(**env).items():
+        monkeypatch.setenv(k, v)
+    spec = importlib.util.spec_from_file_location(
+        "brdffit_setup", os.path.join(PYTHON_DIR, "setup.py"))
+    setup = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(setup)
+    monkeypatch.setattr(setup, "HERE", str(here))
+    return setup.find_library
+
+
+def test_setup_finds_the_library_under_brdffit_prefix(tmp_path, monkeypatch):
     libdir = tmp_path / "prefix" / "lib"
     libdir.mkdir(parents=True)
-    os.symlink(brdffit.library_path, libdir / "libbrdffit.so.0")
-    run = _pip_install(src, tmp_path / "site",
-                       _env(BRDFFIT_PREFIX=str(tmp_path / "prefix")))
-    assert run.returncode == 0, run.stdout + run.stderr
-    assert _installed_library(tmp_path / "site", tmp_path)[0] == str(
-        libdir / "libbrdffit.so.0")
+    os.symlink(os.path.abspath(brdffit.library_path),
+               libdir / "libbrdffit.so.0")
+    find = _find_library(monkeypatch, tmp_path / "src",
+                         BRDFFIT_PREFIX=str(tmp_path / "prefix"))
+    assert find() == str(libdir / "libbrdffit.so.0")
 
 
-def test_pip_without_a_library_fails_saying_what_it_tried(tmp_path):
-    src = _copy_package(tmp_path)
-    run = _pip_install(src, tmp_path / "site", _env())
-    assert run.returncode != 0
-    out = run.stdout + run.stderr
-    assert "libbrdffit not found" in out and "BRDFFIT_PREFIX" in out
+def test_setup_without_a_library_fails_saying_what_it_tried(tmp_path,
+                                                            monkeypatch):
+    find = _find_library(monkeypatch, tmp_path / "src")
+    with pytest.raises(SystemExit) as e:
+        find()
+    text = str(e.value)
+    assert "libbrdffit not found" in text and "pkg-config" in text
+    assert str(tmp_path / "build") in text and "BRDFFIT_PREFIX" in text
