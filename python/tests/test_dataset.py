@@ -118,13 +118,14 @@ def test_lookups_fail_clearly(curet):
     assert curet[-1].number == 61
 
 
-def test_a_missing_path_is_a_load_error_naming_it(tmp_path):
-    path = tmp_path / "nothing"
+def test_a_missing_file_is_a_load_error_naming_it(tmp_path):
+    # A folder is read as CURET: its table.txt is missing here.
     with pytest.raises(brdffit.LoadError) as e:
-        brdffit.load(path)
+        brdffit.load(tmp_path)
     assert isinstance(e.value, OSError)
-    assert e.value.file == str(path)
-    assert str(e.value).startswith(str(path))
+    assert e.value.file == str(tmp_path / "table.txt")
+    assert str(e.value).startswith(e.value.file + ": ")
+    assert e.value.code_name == "BF_EIO"
 
 
 def test_a_malformed_curet_table_names_file_and_line(tmp_path):

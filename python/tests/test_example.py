@@ -12,10 +12,14 @@ EXAMPLE = os.path.join(os.path.dirname(os.path.dirname(
 
 
 def test_the_example_table_shows_each_fit(curet, curet_dir, tmp_path):
+    env = dict(os.environ,  # this package and library, from any folder
+               PYTHONPATH=os.path.dirname(os.path.dirname(brdffit.__file__)),
+               BRDFFIT_LIB=os.path.abspath(brdffit.library_path))
     out = subprocess.run([sys.executable, EXAMPLE, curet_dir, "--material",
                           "9", "--models", "VH-E,LFTG", "--plot",
                           str(tmp_path / "fig.png")],
-                         capture_output=True, text=True, cwd=str(tmp_path))
+                         capture_output=True, text=True, cwd=str(tmp_path),
+                         env=env)
     assert out.returncode == 0, out.stderr
     lines = out.stdout.splitlines()
     assert lines[0].endswith("material 9 (Frosted Glass), K = 198 "
