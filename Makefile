@@ -95,8 +95,10 @@ bench: build
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
 	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
 
+# make install [PREFIX=DIR] [DESTDIR=STAGE]: libraries, header, brdffit.pc,
+# the CMake package, the CLI and its man page (default prefix /usr/local).
 install: build
-	cmake --install $(BUILD)
+	cmake --install $(BUILD) $(if $(PREFIX),--prefix "$(PREFIX)")
 
 format:
 	clang-format -i include/*.h src/*.[ch] src/*/*.[ch] cli/*.[ch] \

@@ -10,8 +10,11 @@ set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
 # figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font).
+# python3-numpy, python3-cffi, python3-pytest: the Python package (python/)
+# and its tests; python3-pip: `pip install ./python`.
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
-plplot-driver-cairo fonts-dejavu-core"
+plplot-driver-cairo fonts-dejavu-core python3-numpy python3-cffi \
+python3-pytest python3-pip"
 for group in "$@"; do
     case $group in
     bench) PACKAGES="$PACKAGES python3-numpy" ;; # bench/numpy_baseline.py

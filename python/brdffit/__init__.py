@@ -1,0 +1,35 @@
+"""brdffit: fit rough-surface reflectance models to measured BRDF data.
+
+A thin numpy layer over the C library libbrdffit (through cffi, ABI mode):
+every number comes from the library. See python/README.md section
+"Python" of the repository's README.md.
+
+    import brdffit
+    brdffit.models()                       # the registry
+    brdffit.evaluate("FC-E", {"m": 0.3}, theta_i, phi_i, theta_o, phi_o)
+    ds = brdffit.load("../shared/data/curet")
+    r = brdffit.fit(ds, "FC-E", material=5)
+"""
+
+from ._version import VERSION as __version__
+from ._errors import (BrdffitError, ConvergenceError, DomainError,
+                      DomainWarning, InvalidArgumentError, LoadError,
+                      NotFoundError, OutOfMemoryError, ParseError)
+from ._lib import library_candidates
+from ._lib import path as library_path
+from .dataset import Dataset, Material, load
+from .fit import FitResult, fit
+from .models import Model, Parameter, evaluate, model, models
+
+__all__ = [
+    "BrdffitError", "ConvergenceError", "DomainError", "DomainWarning",
+    "InvalidArgumentError", "LoadError", "NotFoundError", "OutOfMemoryError",
+    "ParseError", "Dataset", "Material", "load", "FitResult", "fit", "Model", "Parameter", "evaluate", "model", "models",
+    "library_candidates", "library_path", "library_version",
+]
+
+
+def library_version():
+    """The version string of the loaded libbrdffit (bf_version)."""
+    from ._lib import lib, text
+    return text(lib.bf_version())

@@ -1,0 +1,357 @@
+"""_lib: the C declarations brdffit uses and the loaded libbrdffit.
+
+cffi in ABI mode: nothing is compiled when the package is installed; the
+shared library is opened with dlopen and called through the declarations in
+CDEF, which mirror include/brdffit.h (only what the package uses).  Struct
+layouts must match the header exactly; python/tests/test_layout.py compiles
+every struct's sizeof and offsetof (and the constants below) against the
+header and fails on any difference.
+
+cffi releases the GIL around every call into the library, so a long fit in
+one Python thread does not stop the others.
+
+Where the library is looked for, in order (library_candidates()):
+  1. the environment variable BRDFFIT_LIB: the file libbrdffit.so (any
+     name), or a folder holding it;
+  2. the location recorded by ``pip install`` (brdffit/_location.py);
+  3. the build folder of the source tree this package sits in
+     (python/../build/libbrdffit.so: the PYTHONPATH=python way);
+  4. the dynamic loader's own search ("libbrdffit.so.0": ld.so.conf,
+     LD_LIBRARY_PATH), which finds an install into /usr/local.
+"""
+
+import os
+
+from cffi import FFI
+
+CDEF = r"""
+typedef struct _IO_FILE FILE;
+
+/* --- version and errors --- */
+const char *bf_version(void);
+enum { BF_OK = 0, BF_EINVAL, BF_EDOM, BF_ENOMEM, BF_EIO, BF_EPARSE,
+       BF_ENOCONV, BF_ENOTFOUND };
+const char *bf_strerror(int code);
+#define BF_ERROR_FILE_MAX 512
+#define BF_ERROR_MSG_MAX 256
+typedef struct {
+    int code;
+    long line;
+    char file[512];
+    char msg[256];
+} bf_error;
+char *bf_error_format(const bf_error *err, char *buf, size_t len);
+
+/* --- geometry --- */
+typedef struct {
+    double theta_i;
+    double phi_i;
+    double theta_s;
+    double phi_s;
+} bf_geom;
+
+/* --- models --- */
+#define BF_MAX_PARAMS 4
+typedef struct {
+    const char *name;
+    const char *label;
+    const char *unit;
+    double min, max;
+    double value;
+    int fitted;
+    double grid_lo;
+    double grid_step;
+    size_t grid_n;
+} bf_param;
+typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
+                          double *out);
+typedef struct {
+    const char *name;
+    const char *title;
+    const char *reference;
+    size_t p;
+    const bf_param *param;
+    bf_eval_fn eval;
+} bf_model_type;
+size_t bf_model_count(void);
+const bf_model_type *bf_model_get(size_t i);
+const bf_model_type *bf_model_find(const char *name);
+int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
+                  const bf_geom *geom, double *out);
+
+/* --- per-sample tables (ON parameters, refractive index) --- */
+typedef struct bf_sample_table bf_sample_table;
+void bf_sample_table_free(bf_sample_table *st);
+int bf_on_params_load(const char *path, bf_sample_table **out, bf_error *err);
+int bf_on_params_read(FILE *fp, const char *name, bf_sample_table **out,
+                      bf_error *err);
+int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err);
+int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
+                   bf_error *err);
+
+/* --- datasets --- */
+typedef struct bf_dataset bf_dataset;
+typedef enum {
+    BF_FORMAT_AUTO = 0, BF_FORMAT_CURET, BF_FORMAT_PBRT, BF_FORMAT_ASTM,
+    BF_FORMAT_MERL, BF_FORMAT_CSV, BF_FORMAT_MEMORY
+} bf_format;
+const char *bf_format_name(bf_format f);
+int bf_format_find(const char *name, bf_format *f);
+bf_dataset *bf_dataset_alloc(void);
+void bf_dataset_free(bf_dataset *ds);
+int bf_dataset_add_configs(bf_dataset *ds, size_t n, const double *angles,
+                           size_t *set, size_t *bad);
+typedef struct {
+    const char *name;
+    int number;
+    bf_format format;
+    const char *source;
+    long line;
+    size_t set;
+    size_t n_channels;
+    const char *const *channel;
+    const double *wavelength;
+    const double *values;
+    const unsigned char *valid;
+} bf_material_desc;
+int bf_dataset_add_material(bf_dataset *ds, const bf_material_desc *desc,
+                            size_t *index);
+size_t bf_dataset_count(const bf_dataset *ds);
+const char *bf_dataset_name(const bf_dataset *ds, size_t m);
+int bf_dataset_number(const bf_dataset *ds, size_t m);
+long bf_dataset_find(const bf_dataset *ds, int number);
+bf_format bf_dataset_format(const bf_dataset *ds, size_t m);
+const char *bf_dataset_source(const bf_dataset *ds, size_t m);
+long bf_dataset_line(const bf_dataset *ds, size_t m);
+size_t bf_dataset_nconf(const bf_dataset *ds, size_t m);
+size_t bf_dataset_set(const bf_dataset *ds, size_t m);
+const bf_geom *bf_dataset_geom(const bf_dataset *ds, size_t m);
+const double *bf_dataset_angles(const bf_dataset *ds, size_t m);
+size_t bf_dataset_nchannels(const bf_dataset *ds, size_t m);
+const char *bf_dataset_channel(const bf_dataset *ds, size_t m, size_t c);
+double bf_dataset_wavelength(const bf_dataset *ds, size_t m, size_t c);
+const double *bf_dataset_values(const bf_dataset *ds, size_t m);
+const unsigned char *bf_dataset_valid(const bf_dataset *ds, size_t m);
+int bf_dataset_channel_find(const bf_dataset *ds, size_t m,
+                            const char *name, size_t *c);
+typedef struct {
+    double cone;
+    double max_theta;
+    const size_t *exclude;
+    size_t n_exclude;
+} bf_select;
+void bf_select_init(bf_select *s);
+int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
+                      const bf_select *s, size_t *sel, size_t *n,
+                      size_t *cone_out);
+int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
+                        const size_t *sel, double *out);
+typedef struct {
+    bf_format format;
+    size_t n_at;
+    const double *at;
+    int all_cells;
+} bf_load_opts;
+int bf_dataset_load(const char *path, const bf_load_opts *opts,
+                    bf_dataset **out, bf_error *err);
+
+/* --- fitting --- */
+int bf_normalise(size_t n, const double *in, double *out);
+typedef struct {
+    double param[4];
+    double lse;
+    unsigned bound_hit;
+    size_t n_eval;
+} bf_fit_result;
+typedef enum { BF_OBJ_MAX = 0, BF_OBJ_SCALE, BF_OBJ_COSW, BF_OBJ_LOG }
+    bf_objective;
+const char *bf_objective_name(bf_objective obj);
+int bf_objective_find(const char *name, bf_objective *obj);
+
+/* --- the study on a dataset --- */
+typedef struct {
+    size_t material;
+    size_t channel;
+} bf_target;
+int bf_study_targets(const bf_dataset *ds, const size_t *materials,
+                     size_t n_materials, const char *channel,
+                     bf_target **out, size_t *n_out, bf_error *err);
+typedef struct {
+    const bf_dataset *data;
+    const bf_target *targets;
+    size_t n_targets;
+    bf_select select;
+    const bf_model_type *const *models;
+    size_t n_models;
+    double n_default;
+    const bf_sample_table *n_file;
+    const bf_sample_table *on_params;
+    int n_threads;
+} bf_study_spec;
+int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
+                         size_t *k, double *data, bf_error *err);
+typedef struct {
+    size_t target;
+    size_t material;
+    int sample;
+    size_t channel;
+    size_t k;
+    const bf_model_type *type;
+    int status;
+    bf_fit_result fit;
+} bf_study_row;
+int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
+                 bf_error *err);
+#define BF_STUDY_NSAMPLES 24
+extern const int bf_study_samples[24];
+typedef struct {
+    bf_objective objective;
+    int exact;
+    double level;
+    size_t n_boot;
+    size_t folds;
+    unsigned long seed;
+} bf_analysis_opts;
+typedef struct {
+    int done;
+    bf_objective objective;
+    unsigned free_mask;
+    bf_fit_result grid;
+    bf_fit_result refined;
+    double ci_low[4];
+    double ci_high[4];
+    unsigned ci_open;
+    double boot_low[4];
+    double boot_high[4];
+    size_t n;
+    size_t k;
+    double aic, bic;
+    double cv;
+} bf_fit_stats;
+int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
+                     bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+
+/* --- GSL (a dependency of libbrdffit): its default handler aborts --- */
+typedef void gsl_error_handler_t(const char *reason, const char *file,
+                                 int line, int gsl_errno);
+gsl_error_handler_t *gsl_set_error_handler_off(void);
+"""
+
+# libc: in-memory streams for the readers and writers that take a FILE *.
+LIBC_CDEF = r"""
+FILE *fmemopen(void *buf, size_t size, const char *mode);
+FILE *open_memstream(char **ptr, size_t *sizeloc);
+int fclose(FILE *fp);
+void free(void *ptr);
+"""
+
+# Constants the header defines as expressions, which cffi cannot parse.
+# test_layout.py checks each against the compiled header.
+CHANNEL_MEAN = 2**64 - 1  # BF_CHANNEL_MEAN, ((size_t)-1)
+CONE_DEFAULT = -1.0  # BF_CONE_DEFAULT
+DEFAULT_N = 1.7  # BF_DEFAULT_N
+FREE_N_LO = 1.2  # BF_FREE_N_LO
+FREE_N_HI = 2.5  # BF_FREE_N_HI
+SONAME = "libbrdffit.so.0"  # SOVERSION = PROJECT_VERSION_MAJOR
+
+ffi = FFI()
+ffi.cdef(CDEF)
+ffi.cdef(LIBC_CDEF)
+
+
+def _source_build_folder():
+    """The build folder of the checkout holding this package, or None."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    build = os.path.join(os.path.dirname(os.path.dirname(here)), "build")
+    return build if os.path.isdir(build) else None
+
+
+def _recorded():
+    """The library path recorded by pip install (setup.py), or None."""
+    try:
+        from . import _location  # written by setup.py; absent in a checkout
+    except ImportError:
+        return None
+    return _location.LIBRARY
+
+
+def _in_folder(folder):
+    """The libbrdffit shared object in folder (the unversioned link, else
+    the soname), or the folder's libbrdffit.so path when neither exists."""
+    for name in ("libbrdffit.so", SONAME):
+        path = os.path.join(folder, name)
+        if os.path.exists(path):
+            return path
+    return os.path.join(folder, "libbrdffit.so")
+
+
+def library_candidates():
+    """The places the library is looked for, in order, as (how, path)
+    pairs; path is a file name for the dynamic loader in the last one."""
+    out = []
+    env = os.environ.get("BRDFFIT_LIB", "")
+    if env:
+        out.append(("BRDFFIT_LIB", _in_folder(env) if os.path.isdir(env)
+                    else env))
+    recorded = _recorded()
+    if recorded:
+        out.append(("recorded by pip install", recorded))
+    build = _source_build_folder()
+    if build:
+        out.append(("source tree's build folder", _in_folder(build)))
+    out.append(("dynamic loader", SONAME))
+    return out
+
+
+def _open():
+    """Opens the first candidate that loads; BRDFFIT_LIB, when set, must
+    load (no fallback hides a wrong setting). Raises ImportError listing
+    every attempt."""
+    tried = []
+    for how, path in library_candidates():
+        if how != "dynamic loader" and not os.path.exists(path):
+            tried.append("%s: %s (no such file)" % (how, path))
+            if how == "BRDFFIT_LIB":
+                break
+            continue
+        try:
+            handle = ffi.dlopen(path)
+            return handle, path
+        except OSError as exc:
+            tried.append("%s: %s (%s)" % (how, path, exc))
+            if how == "BRDFFIT_LIB":
+                break
+    raise ImportError(
+        "brdffit: cannot load libbrdffit; tried:\n  " + "\n  ".join(tried) +
+        "\nBuild it (make, in the repository) or install it (make install),"
+        " or set BRDFFIT_LIB to the path of libbrdffit.so.")
+
+
+def _check_symbols(handle, where):
+    """Resolves every declared name now, so that a library of another
+    version fails the import, naming what it lacks, rather than a later
+    call."""
+    missing = []
+    for name in dir(handle):
+        try:
+            getattr(handle, name)
+        except AttributeError:
+            missing.append(name)
+    if missing:
+        raise ImportError("brdffit: %s lacks %s: it is not the libbrdffit "
+                          "this package was written for (rebuild it, or point "
+                          "BRDFFIT_LIB at the matching build)"
+                          % (where, ", ".join(missing)))
+
+
+lib, path = _open()
+_check_symbols(lib, path)
+libc = ffi.dlopen(None)
+# Every GSL status is checked by the library; GSL's default handler would
+# abort the Python process instead (STYLE §4). Process-wide, as in the CLI.
+lib.gsl_set_error_handler_off()
+
+
+def text(ptr):
+    """A borrowed C string as str (None for NULL)."""
+    return None if ptr == ffi.NULL else ffi.string(ptr).decode("utf-8")

@@ -1,0 +1,67 @@
+"""records: the rows of a table the library writes (fits.csv,
+ranking.csv) as Python records.
+
+The library owns the tables' columns and formats: compare() and rank() ask
+its writer for the CSV text and this module only reads it back, column by
+column -- a column whose every value is an integer becomes int, one whose
+values are numbers becomes float, any other stays str; an empty field is
+None (NaN in a DataFrame).
+"""
+
+import csv
+import io
+
+
+def _convert(values):
+    """The column values converted as described in the module doc."""
+    present = [v for v in values if v != ""]
+    for kind in (int, float):
+        try:
+            converted = [kind(v) for v in present]
+        except ValueError:
+            continue
+        it = iter(converted)
+        return [None if v == "" else next(it) for v in values]
+    return [None if v == "" else v for v in values]
+
+
+class Records(list):
+    """A list of dicts, one per row, keyed by the table's column names
+    (in the table's order: see .columns), plus .to_dataframe()."""
+
+    def __init__(self, rows=(), columns=()):
+        super().__init__(rows)
+        self.columns = tuple(columns)
+
+    @classmethod
+    def from_csv(cls, text):
+        """Records of the CSV text (a header line, then rows)."""
+        reader = csv.reader(io.StringIO(text))
+        try:
+            header = next(reader)
+        except StopIteration:
+            return cls()
+        rows = [r for r in reader if r]
+        for r in rows:
+            if len(r) != len(header):
+                raise ValueError("records: a row has %d fields, the header "
+                                 "%d" % (len(r), len(header)))
+        cols = [_convert([r[j] for r in rows]) for j in range(len(header))]
+        return cls(({h: cols[j][i] for j, h in enumerate(header)}
+                    for i in range(len(rows))), header)
+
+    def column(self, name):
+        """The values of column name, as a list."""
+        return [r[name] for r in self]
+
+    def to_dataframe(self):
+        """The records as a pandas DataFrame (columns in table order).
+        Raises ImportError when pandas is not installed (it is optional)."""
+        try:
+            import pandas
+        except ImportError as exc:
+            raise ImportError("to_dataframe needs pandas (Debian: "
+                              "python3-pandas); the records themselves are "
+                              "plain dicts") from exc
+        return pandas.DataFrame.from_records(list(self),
+                                             columns=list(self.columns))
