@@ -147,6 +147,17 @@ double bf_fresnel_fc2(double theta_i, double theta_s, double n);
 
 #define BF_MAX_PARAMS 4
 
+/* Where a parameter that a fit holds fixed takes its value for one
+ * material of a study (bf_study_spec): the model type says it, so the
+ * study never guesses from parameter names. */
+typedef enum {
+    BF_INPUT_DEFAULT = 0, /* bf_param.value */
+    BF_INPUT_INDEX,       /* the material's refractive index: the study's
+                             n_file, else its n_default (SPEC §4.2) */
+    BF_INPUT_ON           /* column input_col of the study's on_params
+                             (SPEC §5: rho 0, sigma 1) */
+} bf_input;
+
 /* One parameter of a model. */
 typedef struct {
     const char *name;   /* short name: "m", "n", "n_d", "rho", "sigma" */
@@ -158,22 +169,50 @@ typedef struct {
     double grid_lo;     /* paper grid: grid_lo + grid_step * i, */
     double grid_step;   /*   i = 0 .. grid_n - 1 (SPEC §7.4) */
     size_t grid_n;      /* 0 when the parameter has no grid */
+    bf_input input;     /* where a fixed value comes from (not fitted) */
+    size_t input_col;   /* BF_INPUT_ON: the column of on_params */
+    double free_lo;     /* the exact fit (doc/methods.md §6) frees this */
+    double free_hi;     /*   input over the grid free_lo, free_lo + */
+    double free_step;   /*   free_step, ... <= free_hi; 0: never freed */
 } bf_param;
 
 /* Evaluates a model at n configurations. param holds type->p values, already
  * checked to lie in the domain. Writes n radiances (up to scale) to out.
+ * work is the caller's scratch memory of type->work_size bytes (NULL when
+ * that is 0), aligned for double; its content on entry does not matter,
+ * so one buffer serves any number of calls and no call allocates.
  * Returns BF_OK or BF_EDOM (out then holds NaN where undefined). */
 typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
-                          double *out);
+                          double *out, void *work);
 
-/* A model family: a constant type object (cf. gsl_rng_type). */
+/* The engine's evaluation of a registry model (library-internal, see
+ * src/fit/engine.h): geometry-only terms precomputed once per
+ * configuration set, values for any parameters from them through a
+ * vectorised loop, a caller workspace. Opaque here. */
+typedef struct bf_kernel bf_kernel;
+
+/* A model family: a constant type object (cf. gsl_rng_type). Adding a
+ * model to the library is one file defining its type object (with its
+ * kernel) and one line in the registry (src/models/registry.c). */
 typedef struct {
     const char *name;        /* registry name, e.g. "FC-E" */
     const char *title;       /* one-line description */
     const char *reference;   /* equations implemented, e.g. "paper (P2),(P6)" */
     size_t p;                /* number of parameters (<= BF_MAX_PARAMS) */
     const bf_param *param;   /* p parameter descriptions */
-    bf_eval_fn eval;         /* evaluation function */
+    bf_eval_fn eval;         /* evaluation function (the reference path) */
+    size_t work_size;        /* bytes of workspace eval needs (0: none) */
+    const bf_kernel *kernel; /* the engine's evaluation; NULL for a type
+                                made outside the library (eval is used) */
+    unsigned style;          /* plot style slot (colour and marker of the
+                                figures): distinct for every registry
+                                model, the paper's models the lowest */
+    const char *reduces_to;  /* the registry model this one is exactly when
+                                parameter reduces_param equals reduces_at
+                                (ON at sigma = 0 is LAMBERT, WNO-R at
+                                sigma = 0 is WNO), or NULL */
+    size_t reduces_param;
+    double reduces_at;
 } bf_model_type;
 
 extern const bf_model_type *const bf_model_bk_g;   /* BK-G  SPEC §3.1 */
@@ -204,7 +243,8 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
 /* Evaluates type at n configurations after checking every parameter against
  * its domain (BF_EINVAL when out of range or not finite) and every geometry
  * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
- * Returns BF_ENOMEM (all NaN) when WNO-R cannot allocate its quadrature.
+ * Returns BF_ENOMEM (all NaN) when the model's workspace cannot be
+ * allocated.
  * Returns BF_EDOM when the model is undefined at a configuration, with NaN
  * there and the other values filled: BK-G, BK-E at theta_i = pi/2 (F_BK
  * diverges, SPEC §3.3). Every other model is finite and >= 0 on the whole
@@ -216,6 +256,13 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
  * exactly grazing (cos = 0), so the grazing limits are taken exactly. */
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
                   const bf_geom *geom, double *out);
+
+/* The same with the caller's workspace of type->work_size bytes (NULL when
+ * that is 0): bf_model_eval allocates it for the call when the model needs
+ * one (WNO-R), this never allocates. Same checks and codes. */
+int bf_model_eval_work(const bf_model_type *type, const double *param,
+                       size_t n, const bf_geom *geom, double *out,
+                       void *work);
 
 /* ======================================================================
  * --- data: CURET configuration table and BRDF files (SPEC §2) ---
@@ -703,6 +750,10 @@ typedef struct {
     double lse;                  /* sum of squared residuals (SPEC §7.3) */
     unsigned bound_hit;          /* bit j set: fitted param j on a grid bound */
     size_t n_eval;               /* model evaluations used */
+    unsigned flat;               /* bit j set: the objective does not depend
+                                    on free parameter j at param (ON's rho
+                                    at sigma = 0), so the refinement held
+                                    it (bf_fit_refine) */
 } bf_fit_result;
 
 /* Reusable workspace for fits on up to n configurations. */
@@ -1026,6 +1077,12 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
  * --- the study beyond the paper (doc/methods.md) ---
  * ====================================================================== */
 
+/* Progress of a long computation: done of total units of work (one
+ * (target, model) pair each) are finished. Called from the thread that
+ * finished one, never from two threads at once; done grows by one per
+ * call, the last call has done == total. */
+typedef void (*bf_progress_fn)(void *ctx, size_t done, size_t total);
+
 /* What bf_study_analyse computes for each (target, model). */
 typedef struct {
     bf_objective objective; /* what is minimised */
@@ -1034,7 +1091,25 @@ typedef struct {
     size_t n_boot;          /* bootstrap replicates, 0 for none */
     size_t folds;           /* cross-validation folds, 0 for none */
     unsigned long seed;     /* of the bootstrap and the folds */
+    bf_progress_fn progress; /* NULL: none */
+    void *progress_ctx;
 } bf_analysis_opts;
+
+/* What the analysis of one pair says about its fit (bf_fit_stats.flags). */
+enum {
+    BF_STAT_NOCONV = 1u << 0,  /* the refinement stopped at its iteration
+                                  limit (BF_REFINE_MAXITER): the optimum is
+                                  the best point found, not converged */
+    BF_STAT_REDUCED = 1u << 1, /* the optimum is on the face where the model
+                                  is another one (type->reduces_to: ON at
+                                  sigma = 0 is LAMBERT) */
+    BF_STAT_CLAMPED = 1u << 2, /* the model's formula was clamped at the
+                                  optimum (ON at 0 on n_clamped
+                                  configurations, doc/methods.md §8) */
+    BF_STAT_CI_FAIL = 1u << 3, /* a profile interval could not be found
+                                  (its ends are NaN) */
+    BF_STAT_BOOT_FAIL = 1u << 4 /* the bootstrap could not be done */
+};
 
 /* The analysis of one (sample, model) pair. Fields of parameters that are
  * not free are NaN. */
@@ -1054,6 +1129,10 @@ typedef struct {
     size_t k;                       /* parameters counted by AIC/BIC */
     double aic, bic;                /* of the refined optimum */
     double cv;                      /* cross-validated error, NaN if none */
+    unsigned flags;                 /* BF_STAT_* */
+    size_t n_clamped;               /* BF_STAT_CLAMPED: configurations */
+    const char *reduces_to;         /* BF_STAT_REDUCED: the model it is
+                                       (static storage), else NULL */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under

@@ -45,7 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 
 
@@ -113,12 +113,199 @@ double bf__exp_nonpos(double x)
     return exp_nonpos(x);
 }
 
-/* ==== geometry terms, once per configuration ============================= */
+/* ==== geometry terms, once per configuration set ======================== */
 
-/* Structure of arrays of the per-configuration terms, 64-byte aligned.
- * Every factor that does not depend on the configuration (1/m^2 of (P1),
- * 2m of (P2), (n_d + 2)/(2 pi) of (P7)) is dropped: it cancels in the
- * normalisation (SPEC §2). */
+/* The BK family's terms (src/fit/engine.h, BF__BK_NTERMS rows of n, then
+ * one extra: 1 when some slope gives a curve). Every factor that does not
+ * depend on the configuration (1/m^2 of (P1), 2m of (P2)) is dropped: it
+ * cancels in the normalisation (SPEC §2). */
+enum {
+    T_SI = 0, T_CI, T_SS, T_CS, /* sines and cosines, for FC's F^2 */
+    T_VZ2,                      /* vz^2 (SPEC §3) */
+    T_VXY2,                     /* vxy^2 */
+    T_AVZ,                      /* |vz| */
+    T_A,                        /* G: F^2/vz^2   E: F^2 |vz| (not FC) */
+    T_B,                        /* G: -vxy^2/(4 vz^2)   E: vz^2 */
+    T_C,                        /* E: vxy^2 */
+    T_F2                        /* F^2 of BK, VH (not FC) */
+};
+
+/* The slope-independent parts of (P1)/(P2) from F^2 = f2 at one
+ * configuration, exactly as the grid has always formed them. Where vz = 0
+ * (theta_i = theta_s = pi/2) the model's limit is 0 (SPEC §3.3): a = 0 and
+ * a harmless denominator. Returns 0 when a term is not finite. */
+static inline int bk_abc(int corr, double f2, double vz2, double vxy2,
+                         double abs_vz, double *a, double *b, double *c)
+{
+    if (vz2 == 0.0) {
+        *a = 0.0; /* the limit 0, SPEC §3.3 */
+        *b = 0.0;
+        *c = 1.0;
+    } else if (corr == BF__BK_CORR_GAUSS) {
+        /* (P1): L m^2 = F^2/vz^2 exp(-vxy^2/(4 vz^2) / m^2) */
+        *a = f2 / vz2;
+        *b = -vxy2 / (4.0 * vz2);
+        *c = 0.0;
+    } else {
+        /* (P2) as in bk.c: L / (2m) = F^2 |vz| / (m^2 vz^2 + vxy^2)^1.5 */
+        *a = f2 * abs_vz;
+        *b = vz2;
+        *c = vxy2;
+    }
+    return isfinite(*a) && isfinite(*b);
+}
+
+void bf__bk_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
+{
+    size_t n = cs->n;
+    size_t k;
+    int ok = 1;
+    for (k = 0; k < n; k++) {
+        bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
+        const bf__trig_t *tr = &cs->trig[k];
+        double a;
+        double b;
+        double c;
+        /* FC's F^2 depends on n: formed per n in the workspace */
+        int fc = kr->factor == BF__BK_FACTOR_FC;
+        if (bf__bk_terms_trig(fc ? BF__BK_FACTOR_VH : kr->factor, 1.0, tr,
+                              &bt) != BF_OK) {
+            ok = 0; /* BK at theta_i = pi/2: no slope works (SPEC §3.3) */
+        }
+        terms[T_SI * n + k] = tr->si;
+        terms[T_CI * n + k] = tr->ci;
+        terms[T_SS * n + k] = tr->ss;
+        terms[T_CS * n + k] = tr->cs;
+        terms[T_VZ2 * n + k] = bt.vz2;
+        terms[T_VXY2 * n + k] = bt.vxy2;
+        terms[T_AVZ * n + k] = bt.abs_vz;
+        terms[T_F2 * n + k] = bt.f2;
+        ok &= bk_abc(kr->corr, bt.f2, bt.vz2, bt.vxy2, bt.abs_vz, &a, &b, &c);
+        terms[T_A * n + k] = a;
+        terms[T_B * n + k] = b;
+        terms[T_C * n + k] = c;
+    }
+    terms[BF__BK_NTERMS * n] = ok;
+}
+
+/* FC's workspace: the index n its a-terms were formed for. */
+typedef struct {
+    double valid; /* 1 once a[] holds the terms of n */
+    double n;
+    int ok;       /* every a finite */
+    double a[];   /* n values */
+} fc_work;
+
+size_t bf__bk_kwork(const bf_kernel *kr, size_t n)
+{
+    return kr->factor == BF__BK_FACTOR_FC ? sizeof(fc_work) + n * sizeof(double)
+                                          : 0;
+}
+
+/* The a-terms of FC at index n_index (F_FC^2 of (P6), SPEC §4.2), as
+ * bf__bk_terms_trig and the grid form them; cached in w. Returns 0 when a
+ * term is not finite. */
+static int fc_terms(const bf__prep *pm, double n_index, fc_work *w)
+{
+    size_t n = pm->n;
+    const double *t = pm->terms;
+    size_t k;
+    if (w->valid == 1.0 && w->n == n_index) {
+        return w->ok;
+    }
+    bf__fc2_values(n, t + T_SI * n, t + T_CI * n, t + T_SS * n, t + T_CS * n,
+                   n_index, w->a);
+    w->ok = 1;
+    for (k = 0; k < n; k++) {
+        double b;
+        double c;
+        w->ok &= bk_abc(pm->kr->corr, w->a[k], t[T_VZ2 * n + k],
+                        t[T_VXY2 * n + k], t[T_AVZ * n + k], &w->a[k], &b,
+                        &c);
+    }
+    w->valid = 1.0;
+    w->n = n_index;
+    return w->ok;
+}
+
+/* The BK family at one slope m (and FC's n): the grid kernels' operations
+ * for one lane, vectorised across the configurations instead, so a value
+ * has the bits of the same grid value's (before normalisation). */
+BF__CLONES
+int bf__bk_kvalues(const bf__prep *pm, const double *param, void *work,
+                   double *out)
+{
+    size_t n = pm->n;
+    const double *t = pm->terms;
+    const double *restrict a = t + T_A * n;
+    const double *restrict b = t + T_B * n;
+    const double *restrict c = t + T_C * n;
+    double m = param[0];
+    size_t k;
+    int ok = t[BF__BK_NTERMS * n] != 0.0;
+    if (pm->kr->factor == BF__BK_FACTOR_FC) {
+        fc_work *w = work;
+        ok &= fc_terms(pm, param[1], w);
+        a = w->a;
+    }
+    if (!ok) {
+        for (k = 0; k < n; k++) {
+            out[k] = NAN; /* BK at theta_i = pi/2 (SPEC §3.3) */
+        }
+        return BF_EDOM;
+    }
+    if (pm->kr->corr == BF__BK_CORR_GAUSS) {
+        double inv_m2 = 1.0 / (m * m);
+#pragma omp simd
+        for (k = 0; k < n; k++) {
+            out[k] = a[k] * exp_nonpos(b[k] * inv_m2); /* (P1), SPEC §3.1 */
+        }
+    } else {
+        double m2 = m * m;
+#pragma omp simd
+        for (k = 0; k < n; k++) {
+            double d = fma(m2, b[k], c[k]); /* (P2), SPEC §3.2 */
+            out[k] = a[k] / (d * sqrt(d));
+        }
+    }
+    return BF_OK;
+}
+
+/* LFTG (P7), SPEC §6, at one n_d: (cos ti cos ts)^n_d = exp(n_d ln(cos ti
+ * cos ts)) with the kernels' exp; the constant (n_d + 2)/(2 pi) cancels
+ * (SPEC §2). At grazing the base is 0: the value 0 for n_d > 0, 1 for
+ * n_d = 0 (pow(0, 0) = 1, as eval_lftg). */
+BF__CLONES
+int bf__lftg_kvalues(const bf__prep *pm, const double *param, void *work,
+                     double *out)
+{
+    const double *restrict lnb = pm->terms;
+    double n_d = param[0];
+    size_t k;
+    (void)work;
+#pragma omp simd
+    for (k = 0; k < pm->n; k++) {
+        double x = lnb[k];
+        double e = exp_nonpos(n_d * x); /* (P7), SPEC §6 */
+        out[k] = (n_d == 0.0) ? 1.0 : e;
+    }
+    return BF_OK;
+}
+
+BF__CLONES
+void bf__fc2_values(size_t n, const double *si, const double *ci,
+                    const double *ss, const double *cs, double n_index,
+                    double *out)
+{
+    size_t k;
+#pragma omp simd
+    for (k = 0; k < n; k++) {
+        out[k] = bf__fc2_inline(si[k], ci[k], ss[k], cs[k], n_index);
+    }
+}
+
+/* The block kernels' terms (structure of arrays, 64-byte aligned), copied
+ * from a prepared model's terms for one grid. */
 typedef struct {
     double *a;   /* G: F^2/vz^2   E: F^2 |vz|   LFTG: ln(cos ti cos ts) */
     double *b;   /* G: -vxy^2/(4 vz^2)   E: vz^2   LFTG: scratch */
@@ -139,50 +326,6 @@ static int terms_alloc(terms_t *t, size_t n)
     t->c = t->b + n;
     t->p = t->c + n;
     return BF_OK;
-}
-
-/* Fills t for the BK family member (factor, corr) with FC's index n_index
- * (SPEC §3): per configuration the slope-independent parts of (P1)/(P2).
- * Where vz = 0 (theta_i = theta_s = pi/2) the model's limit is 0 (SPEC
- * §3.3): a = 0 and a harmless denominator. Returns 0 when some
- * configuration is outside the model's domain (BK at theta_i = pi/2) or a
- * term is not finite: then no slope gives a curve. */
-static int terms_bk(int factor, int corr, double n_index, size_t n,
-                    const bf_geom *geom, const bf__trig_t *trig, terms_t *t)
-{
-    size_t k;
-    int ok = 1;
-    for (k = 0; k < n; k++) {
-        bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
-        bf__trig_t tr;
-        if (trig == NULL) {
-            bf__geom_trig(&geom[k], &tr);
-        } else {
-            tr = trig[k];
-        }
-        if (bf__bk_terms_trig(factor, n_index, &tr, &bt) != BF_OK) {
-            ok = 0; /* BK at theta_i = pi/2: no slope works */
-        }
-        if (bt.vz2 == 0.0) {
-            t->a[k] = 0.0; /* the limit 0, SPEC §3.3 */
-            t->b[k] = 0.0;
-            t->c[k] = 1.0;
-        } else if (corr == BF__BK_CORR_GAUSS) {
-            /* (P1): L m^2 = F^2/vz^2 exp(-vxy^2/(4 vz^2) / m^2) */
-            t->a[k] = bt.f2 / bt.vz2;
-            t->b[k] = -bt.vxy2 / (4.0 * bt.vz2);
-            t->c[k] = 0.0;
-        } else {
-            /* (P2) as in bk.c: L / (2m) = F^2 |vz| / (m^2 vz^2 + vxy^2)^1.5 */
-            t->a[k] = bt.f2 * bt.abs_vz;
-            t->b[k] = bt.vz2;
-            t->c[k] = bt.vxy2;
-        }
-        if (!isfinite(t->a[k]) || !isfinite(t->b[k])) {
-            ok = 0;
-        }
-    }
-    return ok;
 }
 
 /* ==== curve kernels ====================================================== */
@@ -335,51 +478,66 @@ static void lftg_factors(size_t n, double step, const double *ln_base,
     }
 }
 
-/* A curve generator: the kernel and geometry terms of one model on one
- * grid (BK family with the slope m free, or LFTG with n_d free on a grid
- * of positive values: a single free parameter, the paper's protocol). */
+/* A curve generator: the block kernel and terms of one model on one grid
+ * (BK family with the slope m free, or LFTG with n_d free on a grid of
+ * positive values: a single free parameter, the paper's protocol). The
+ * terms come from the model's prepared terms (bf__bk_kterms; LFTG's
+ * ln(cos ti cos ts)); FC's a-terms are formed here for the grid's n. */
 typedef struct {
     int is_lftg;
     int corr;
-    int defined; /* 0: no grid point gives a curve (domain, see terms_bk) */
-    const bf_param *pf;
+    int defined; /* 0: no grid point gives a curve (domain, see bk_abc) */
+    double lo;   /* the grid: lo + step i, i < points */
+    double step;
     size_t points;
     terms_t t;
 } gen_t;
 
-/* Sets up g for type on lay; returns 1, 0 when type has no kernel, or
+/* Sets up g for pm on lay; returns 1, 0 when no block kernel applies, or
  * -BF_ENOMEM. */
-static int gen_init(gen_t *g, const bf_model_type *type,
-                    const bf__grid_layout_t *lay, size_t n,
-                    const bf_geom *geom, const bf__trig_t *trig)
+static int gen_init(gen_t *g, const bf__prep *pm, const bf__grid_layout_t *lay)
 {
-    int factor = 0;
-    int is_bk = bf__bk_kind(type, &factor, &g->corr);
+    const bf_kernel *kr = pm->kr;
+    size_t n = pm->n;
     size_t k;
 
-    g->is_lftg = bf__is_lftg(type);
+    memset(g, 0, sizeof *g);
+    g->is_lftg = kr->block == BF__BLOCK_LFTG;
+    g->corr = kr->corr;
     g->defined = 1;
-    if ((!is_bk && !g->is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
-        (g->is_lftg && !(type->param[0].grid_lo > 0.0))) {
+    if (kr->block == BF__BLOCK_NONE || lay->n_free != 1 ||
+        lay->free[0] != 0 || (g->is_lftg && !(lay->lo[0] > 0.0))) {
         return 0;
     }
-    g->pf = &type->param[0];
+    g->lo = lay->lo[0];
+    g->step = lay->step[0];
     g->points = lay->points;
     if (terms_alloc(&g->t, n) != BF_OK) {
         return -BF_ENOMEM;
     }
     if (g->is_lftg) {
-        for (k = 0; k < n; k++) {
-            /* bf__lftg_base: cos ti cos ts, -inf at grazing */
-            g->t.a[k] = log(trig != NULL ? trig[k].ci * trig[k].cs
-                                         : bf__lftg_base(&geom[k]));
-        }
-        lftg_factors(n, g->pf->grid_step, g->t.a, g->t.p);
+        /* ln(cos ti cos ts), -inf at grazing (the LFTG kernel's terms) */
+        memcpy(g->t.a, pm->terms, n * sizeof *g->t.a);
+        lftg_factors(n, g->step, g->t.a, g->t.p);
     } else {
-        /* FC's refractive index is parameter 1, fixed here */
-        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
-        g->defined = terms_bk(factor, g->corr, n_index, n, geom, trig,
-                              &g->t);
+        const double *tm = pm->terms;
+        memcpy(g->t.b, tm + T_B * n, n * sizeof *g->t.b);
+        memcpy(g->t.c, tm + T_C * n, n * sizeof *g->t.c);
+        g->defined = tm[BF__BK_NTERMS * n] != 0.0;
+        if (kr->factor != BF__BK_FACTOR_FC) {
+            memcpy(g->t.a, tm + T_A * n, n * sizeof *g->t.a);
+        } else {
+            /* FC's refractive index is parameter 1, fixed here (P6) */
+            bf__fc2_values(n, tm + T_SI * n, tm + T_CI * n, tm + T_SS * n,
+                           tm + T_CS * n, lay->base[1], g->t.a);
+            for (k = 0; k < n; k++) {
+                double b;
+                double c;
+                g->defined &= bk_abc(g->corr, g->t.a[k], tm[T_VZ2 * n + k],
+                                     tm[T_VXY2 * n + k], tm[T_AVZ * n + k],
+                                     &g->t.a[k], &b, &c);
+            }
+        }
     }
     return 1;
 }
@@ -393,7 +551,7 @@ static void gen_x(const gen_t *g, size_t g0, double *x)
     size_t j;
     for (j = 0; j < CURVE_LANES; j++) {
         size_t i = g0 + j < g->points ? g0 + j : g->points - 1;
-        x[j] = g->pf->grid_lo + g->pf->grid_step * (double)i; /* §7.4 */
+        x[j] = g->lo + g->step * (double)i; /* SPEC §7.4 */
     }
 }
 
@@ -427,9 +585,9 @@ static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
  * vectorised kernel when one exists for type (see gen_t). Returns 1 when
  * done, 0 when type has no kernel (the caller uses the plain evaluation),
  * or -BF_ENOMEM. */
-int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, size_t cols,
-                    size_t stride, double *curves, unsigned char *ok)
+int bf__curves_fast(const bf__prep *pm, const bf__grid_layout_t *lay,
+                    size_t cols, size_t stride, double *curves,
+                    unsigned char *ok)
 {
     gen_t g;
     size_t g0;
@@ -438,12 +596,12 @@ int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     if (cols % CURVE_LANES != 0 || lay->points > cols) {
         return 0;
     }
-    rc = gen_init(&g, type, lay, n, geom, NULL);
+    rc = gen_init(&g, pm, lay);
     if (rc <= 0) {
         return rc;
     }
     for (g0 = 0; g0 < cols; g0 += CURVE_LANES) {
-        gen_block(&g, n, g0, stride, curves + g0, ok + g0);
+        gen_block(&g, pm->n, g0, stride, curves + g0, ok + g0);
     }
     free(g.t.mem);
     return 1;
@@ -561,6 +719,133 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
     }
 }
 
+/* ==== many weight vectors against stored curves (bootstrap, CV) ========= */
+
+/* Grid columns whose squared residuals are formed at once (in L2), lanes of
+ * one accumulator block, weight vectors per tile. */
+#define WSUPER 256
+#define WLANES 16
+#define WTILE 4
+
+/* acc[q][j] = sum_k w[q][k] rho[k * WSUPER + j] for WTILE weight rows,
+ * one fma per term in index order. */
+BF__CLONES
+static void weights_tile(size_t n, const double *restrict rho,
+                         const double *const *w, double *restrict out,
+                         size_t out_stride)
+{
+    double acc[WTILE][WLANES];
+    size_t j;
+    size_t k;
+    size_t q;
+    for (q = 0; q < WTILE; q++) {
+        for (j = 0; j < WLANES; j++) {
+            acc[q][j] = 0.0;
+        }
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict rk = rho + (k * WSUPER);
+        double w0 = w[0][k];
+        double w1 = w[1][k];
+        double w2 = w[2][k];
+        double w3 = w[3][k];
+#pragma omp simd
+        for (j = 0; j < WLANES; j++) {
+            double r = rk[j];
+            acc[0][j] = fma(w0, r, acc[0][j]);
+            acc[1][j] = fma(w1, r, acc[1][j]);
+            acc[2][j] = fma(w2, r, acc[2][j]);
+            acc[3][j] = fma(w3, r, acc[3][j]);
+        }
+    }
+    for (q = 0; q < WTILE; q++) {
+        for (j = 0; j < WLANES; j++) {
+            out[(q * out_stride) + j] = acc[q][j];
+        }
+    }
+}
+
+/* rho[k * WSUPER + j] = cw_k (c[k][g0 + j] - d_k)^2, j < WSUPER. */
+BF__CLONES
+static void squared_residuals(size_t n, size_t stride,
+                              const double *restrict c,
+                              const double *restrict d,
+                              const double *restrict cw,
+                              double *restrict rho)
+{
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        double dk = d[k];
+        double f = cw != NULL ? cw[k] : 1.0;
+#pragma omp simd
+        for (j = 0; j < WSUPER; j++) {
+            double r = ck[j] - dk;
+            rho[(k * WSUPER) + j] = f * (r * r);
+        }
+    }
+}
+
+void bf__score_weights(size_t n, size_t cols, size_t stride,
+                       const double *curves, const double *data,
+                       const double *cw, size_t n_w, const double *const *w,
+                       double *lse)
+{
+    double *rho = aligned_alloc(64, n * WSUPER * sizeof *rho);
+    double *ones = malloc(n * sizeof *ones);
+    double tmp[WTILE * WLANES];
+    size_t g0;
+    size_t k;
+    if (rho == NULL || ones == NULL) {
+        free(rho);
+        free(ones);
+        for (g0 = 0; g0 < n_w * cols; g0++) {
+            lse[g0] = NAN; /* never a grid optimum */
+        }
+        return;
+    }
+    for (k = 0; k < n; k++) {
+        ones[k] = 1.0;
+    }
+    for (g0 = 0; g0 < cols; g0 += WSUPER) {
+        size_t width = cols - g0 < WSUPER ? cols - g0 : WSUPER;
+        size_t b;
+        if (width < WSUPER) { /* the last super-block: a padded copy */
+            size_t j;
+            for (k = 0; k < n; k++) {
+                for (j = 0; j < WSUPER; j++) {
+                    double r = (j < width ? curves[k * stride + g0 + j]
+                                          : 0.0) -
+                               data[k];
+                    rho[k * WSUPER + j] = (cw != NULL ? cw[k] : 1.0) * (r * r);
+                }
+            }
+        } else {
+            squared_residuals(n, stride, curves + g0, data, cw, rho);
+        }
+        for (b = 0; b < n_w; b += WTILE) {
+            const double *wt[WTILE];
+            size_t q;
+            size_t j0;
+            size_t left = n_w - b < WTILE ? n_w - b : WTILE;
+            for (q = 0; q < WTILE; q++) {
+                const double *row = w[b + (q < left ? q : left - 1)];
+                wt[q] = row != NULL ? row : ones;
+            }
+            for (j0 = 0; j0 < width; j0 += WLANES) {
+                weights_tile(n, rho + j0, wt, tmp, WLANES);
+                for (q = 0; q < left; q++) {
+                    memcpy(lse + ((b + q) * cols) + g0 + j0,
+                           tmp + (q * WLANES), WLANES * sizeof *tmp);
+                }
+            }
+        }
+    }
+    free(rho);
+    free(ones);
+}
+
 /* ==== streaming: curves of one block, scored at once (the study) ======== */
 
 /* Samples scored together against one block of streamed curves. */
@@ -668,8 +953,7 @@ static inline int block_beats(const double *restrict v,
 
 BF__CLONES
 int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
-                    size_t n_samples,
+                    const bf__cset *cs, size_t n_samples,
                     const double *const *data, double *best_lse,
                     size_t *best)
 {
@@ -680,12 +964,24 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     double *c;
     double *nxt;
     gen_t g;
+    bf__prep pm;
+    size_t n = cs->n;
     size_t n_tiles = (n_samples + STREAM_SAMPLES - 1) / STREAM_SAMPLES;
     size_t g0;
     size_t s;
     int pipe; /* E models: the next block's curves during the scoring */
-    int rc = gen_init(&g, type, lay, n, geom, trig);
+    int rc;
 
+    if (type->kernel == NULL || type->kernel->block == BF__BLOCK_NONE) {
+        return 0; /* no block kernel: nothing to prepare */
+    }
+    rc = bf__prep_init(&pm, type, cs);
+    if (rc != BF_OK) {
+        bf__prep_free(&pm);
+        return -rc;
+    }
+    rc = gen_init(&g, &pm, lay);
+    bf__prep_free(&pm); /* gen copied what it needs */
     if (rc <= 0) {
         return rc;
     }

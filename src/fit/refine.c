@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 /* Objective value given to GSL where the model is undefined: such points
  * are never minima (GSL rejects non-finite function values). */
@@ -31,16 +31,21 @@
 #define EDGE_TOL (10.0 * BF_REFINE_TOL)
 /* Initial simplex step in the mapped coordinates u (radians). */
 #define SIMPLEX_STEP 0.5
+/* A parameter is flat where moving it across its whole box changes S by
+ * less than this, relative: rounding of S is near 1e-16 relative, while
+ * the weakest dependence a fit resolves (ON's rho at sigma = 1e-3: 1e-6
+ * relative) is far above. */
+#define FLAT_REL 1e-13
 
 /* The state shared with the GSL callbacks. */
 typedef struct {
     const bf_problem *pb;
+    bf__fitctx *fc;              /* the engine, pointed at pb */
     double param[BF_MAX_PARAMS]; /* current full parameter vector */
     size_t free[BF_MAX_PARAMS];  /* indices of the moving parameters */
     size_t n_free;
     double a[BF_MAX_PARAMS];     /* box of each moving parameter */
     double b[BF_MAX_PARAMS];
-    double *work;                /* 2 n doubles for bf_problem_value */
     size_t n_eval;
 } ctx_t;
 
@@ -49,8 +54,7 @@ static double value_at(ctx_t *c)
 {
     double v;
     c->n_eval++;
-    if (bf_problem_value(c->pb, c->param, c->work, &v) != BF_OK ||
-        !isfinite(v)) {
+    if (bf__fit_value(c->fc, c->param, &v) != BF_OK || !isfinite(v)) {
         return UNDEFINED_VALUE;
     }
     return v;
@@ -219,28 +223,95 @@ done:
     return rc;
 }
 
+/* ==== flat directions ===================================================== */
+
+/* Drops from the moving set every parameter on which the objective does
+ * not depend at the start: S at both ends of its box equals S at the start
+ * to FLAT_REL (ON's rho at sigma = 0, where the model is LAMBERT whatever
+ * rho is; the simplex cannot converge along such a line). The parameter
+ * keeps its start value. Two evaluations per moving parameter; returns the
+ * bits (parameter indices) of the ones dropped. */
+static unsigned hold_flat(ctx_t *c, double f0)
+{
+    unsigned flat = 0;
+    size_t i;
+    size_t kept = 0;
+    if (!(f0 < UNDEFINED_VALUE)) {
+        return 0;
+    }
+    for (i = 0; i < c->n_free; i++) {
+        size_t j = c->free[i];
+        double x = c->param[j];
+        double fa;
+        double fb;
+        c->param[j] = c->a[i];
+        fa = value_at(c);
+        c->param[j] = c->b[i];
+        fb = value_at(c);
+        c->param[j] = x;
+        if (fabs(fa - f0) <= FLAT_REL * f0 && fabs(fb - f0) <= FLAT_REL * f0) {
+            flat |= 1u << j;
+            continue;
+        }
+        c->free[kept] = j;
+        c->a[kept] = c->a[i];
+        c->b[kept] = c->b[i];
+        kept++;
+    }
+    c->n_free = kept;
+    return flat;
+}
+
 /* ==== drivers ============================================================= */
+
+/* Minimises over c's moving parameters from x0 (in the box): Brent for
+ * one (after SCAN_POINTS samples of the box when scan, else its ends and
+ * x0), the mapped simplex for more, nothing for none. Leaves the minimiser
+ * in c->param. */
+static int search(ctx_t *c, const double *x0, int scan)
+{
+    double xs[SCAN_POINTS + 2];
+    int rc = BF_OK;
+    if (c->n_free == 1) {
+        size_t m = 0;
+        size_t i;
+        double x;
+        double lo = c->a[0];
+        double hi = c->b[0];
+        double xstart = x0[c->free[0]];
+        size_t pts = scan ? SCAN_POINTS : 2;
+        for (i = 0; i < pts; i++) {
+            double xi = lo + (hi - lo) * (double)i / (double)(pts - 1);
+            if (m > 0 && xs[m - 1] < xstart && xstart < xi) {
+                xs[m++] = xstart;
+            }
+            xs[m++] = i + 1 == pts ? hi : xi;
+        }
+        rc = minimise_1d(c, xs, m, &x);
+        c->param[c->free[0]] = x;
+    } else if (c->n_free > 1) {
+        rc = minimise_nd(c, x0);
+    }
+    return rc;
+}
 
 /* Minimises pb from x0 over the box [a, b] of its free parameters. scan:
  * sample the 1-D box at SCAN_POINTS points first (else only a, x0, b). */
-static int minimise_box(const bf_problem *pb, const double *x0,
-                        const double *a, const double *b, int scan,
-                        bf_fit_result *result)
+static int minimise_box(bf__fitctx *fc, const double *x0, const double *a,
+                        const double *b, int scan, bf_fit_result *result)
 {
+    const bf_problem *pb = fc->pb;
     ctx_t c;
+    ctx_t whole; /* the moving set before hold_flat */
     double f0;
     double f1;
-    double xs[SCAN_POINTS + 2];
     int rc = BF_OK;
     size_t j;
 
     memset(&c, 0, sizeof c);
     memset(result, 0, sizeof *result);
     c.pb = pb;
-    c.work = malloc(2 * pb->n * sizeof *c.work);
-    if (c.work == NULL) {
-        return BF_ENOMEM;
-    }
+    c.fc = fc;
     memcpy(c.param, pb->fixed, sizeof c.param);
     for (j = 0; j < pb->type->p; j++) {
         if ((pb->free_mask >> j) & 1u) {
@@ -258,27 +329,28 @@ static int minimise_box(const bf_problem *pb, const double *x0,
     }
     f0 = value_at(&c);
     memcpy(result->param, c.param, sizeof c.param);
-    if (c.n_free == 1) {
-        size_t m = 0;
-        size_t i;
-        double x;
-        double lo = c.a[0];
-        double hi = c.b[0];
-        double xstart = x0[c.free[0]];
-        size_t pts = scan ? SCAN_POINTS : 2;
-        for (i = 0; i < pts; i++) {
-            double xi = lo + (hi - lo) * (double)i / (double)(pts - 1);
-            if (m > 0 && xs[m - 1] < xstart && xstart < xi) {
-                xs[m++] = xstart;
-            }
-            xs[m++] = i + 1 == pts ? hi : xi;
-        }
-        rc = minimise_1d(&c, xs, m, &x);
-        c.param[c.free[0]] = x;
-    } else if (c.n_free > 1) {
-        rc = minimise_nd(&c, x0);
+    whole = c;
+    if (c.n_free > 1) {
+        result->flat = hold_flat(&c, f0);
     }
+    rc = search(&c, x0, scan);
     f1 = value_at(&c);
+    if (result->flat != 0 && f1 < f0) {
+        /* moved off the start: a held parameter may matter here */
+        double x1[BF_MAX_PARAMS];
+        unsigned flat;
+        memcpy(x1, c.param, sizeof x1);
+        memcpy(c.free, whole.free, sizeof c.free);
+        memcpy(c.a, whole.a, sizeof c.a);
+        memcpy(c.b, whole.b, sizeof c.b);
+        c.n_free = whole.n_free;
+        flat = hold_flat(&c, f1);
+        if (flat != result->flat) {
+            result->flat = flat;
+            rc = search(&c, x1, 0);
+            f1 = value_at(&c);
+        }
+    }
     if (f1 <= f0) { /* keep the better of start and minimiser */
         memcpy(result->param, c.param, sizeof c.param);
         result->lse = f1;
@@ -297,7 +369,6 @@ static int minimise_box(const bf_problem *pb, const double *x0,
     }
     result->n_eval = c.n_eval;
 done:
-    free(c.work);
     return rc;
 }
 
@@ -338,19 +409,17 @@ static int on_inner_edge(const bf_problem *pb, const bf_fit_result *r,
     return 0;
 }
 
-int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
-                  bf_fit_result *result)
+int bf__refine(bf__fitctx *fc, const bf_fit_result *start,
+               bf_fit_result *result)
 {
+    const bf_problem *pb = fc->pb;
     double a[BF_MAX_PARAMS] = {0};
     double b[BF_MAX_PARAMS] = {0};
     bf_fit_result from;
     size_t n_eval = 0;
     size_t walk;
     size_t j;
-    int rc = check_problem(pb);
-    if (rc != BF_OK || start == NULL || result == NULL) {
-        return BF_EINVAL;
-    }
+    int rc = BF_OK;
     from = *start;
     for (walk = 0; walk <= BF_REFINE_WALKS; walk++) {
         for (j = 0; j < pb->type->p; j++) {
@@ -361,7 +430,7 @@ int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
             a[j] = x - step > pb->lo[j] ? x - step : pb->lo[j];
             b[j] = x + step < pb->hi[j] ? x + step : pb->hi[j];
         }
-        rc = minimise_box(pb, from.param, a, b, 0, result);
+        rc = minimise_box(fc, from.param, a, b, 0, result);
         n_eval += result->n_eval;
         if ((rc != BF_OK && rc != BF_ENOCONV) || !on_inner_edge(pb, result, a, b)
             || !(result->lse < from.lse)) {
@@ -373,12 +442,39 @@ int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
     return rc;
 }
 
+int bf__minimise(bf__fitctx *fc, const double *start, bf_fit_result *result)
+{
+    return minimise_box(fc, start, fc->pb->lo, fc->pb->hi, 1, result);
+}
+
+/* The public entry points: pb checked, then its own engine for the call.
+ * start: the start as a fit result (refine) or NULL (minimise from x0). */
+static int solo_fit(const bf_problem *pb, const bf_fit_result *start,
+                    const double *x0, bf_fit_result *result)
+{
+    bf__solo so;
+    int rc = check_problem(pb);
+    if (rc != BF_OK || (start == NULL && x0 == NULL) || result == NULL) {
+        return BF_EINVAL;
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = start != NULL ? bf__refine(&so.fc, start, result)
+                       : bf__minimise(&so.fc, x0, result);
+    bf__solo_free(&so);
+    return rc;
+}
+
+int bf_fit_refine(const bf_problem *pb, const bf_fit_result *start,
+                  bf_fit_result *result)
+{
+    return start != NULL ? solo_fit(pb, start, NULL, result) : BF_EINVAL;
+}
+
 int bf_fit_minimise(const bf_problem *pb, const double *start,
                     bf_fit_result *result)
 {
-    int rc = check_problem(pb);
-    if (rc != BF_OK || start == NULL || result == NULL) {
-        return BF_EINVAL;
-    }
-    return minimise_box(pb, start, pb->lo, pb->hi, 1, result);
+    return start != NULL ? solo_fit(pb, NULL, start, result) : BF_EINVAL;
 }

@@ -134,18 +134,16 @@ int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
         if (pj->fitted) {
             continue;
         }
-        if (strcmp(pj->name, "n") == 0) {
+        if (pj->input == BF_INPUT_INDEX) { /* SPEC §4.2 */
             fixed[j] = spec->n_default;
             if (spec->n_file != NULL &&
                 bf_sample_table_get(spec->n_file, sample, 0, &fixed[j]) !=
                     BF_OK) {
                 return BF_ENOTFOUND;
             }
-        } else if (strcmp(pj->name, "rho") == 0 ||
-                   strcmp(pj->name, "sigma") == 0) {
-            size_t col = strcmp(pj->name, "rho") == 0 ? 0 : 1;
+        } else if (pj->input == BF_INPUT_ON) { /* SPEC §5 */
             if (spec->on_params == NULL ||
-                bf_sample_table_get(spec->on_params, sample, col,
+                bf_sample_table_get(spec->on_params, sample, pj->input_col,
                                     &fixed[j]) != BF_OK) {
                 return BF_ENOTFOUND;
             }
