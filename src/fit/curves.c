@@ -97,6 +97,55 @@ int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
     return rc;
 }
 
+int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+                          const double *cti, const size_t *fold,
+                          size_t folds, bf_fit_result *results)
+{
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    size_t cols = bf__grid_cols(gr);
+    double *lse;
+    size_t b;
+    if (pb->objective != BF_OBJ_MAX && pb->objective != BF_OBJ_COSW) {
+        /* the slow way: explicit 0/1 weights */
+        double *w = malloc((folds + 1) * pb->n * sizeof *w);
+        const double **wp = malloc((folds + 1) * sizeof *wp);
+        size_t k;
+        int rc = BF_ENOMEM;
+        if (w != NULL && wp != NULL) {
+            wp[0] = NULL;
+            for (b = 0; b < folds; b++) {
+                for (k = 0; k < pb->n; k++) {
+                    w[b * pb->n + k] = fold[k] == b ? 0.0 : 1.0;
+                }
+                wp[b + 1] = w + b * pb->n;
+            }
+            rc = bf__grid_optima(gr, pb, cti, folds + 1, wp, results);
+        }
+        free(w);
+        free(wp);
+        return rc;
+    }
+    if (cols > SIZE_MAX / sizeof(double) / (folds + 1)) {
+        return BF_ENOMEM;
+    }
+    lse = malloc((folds + 1) * cols * sizeof *lse);
+    if (lse == NULL) {
+        return BF_ENOMEM;
+    }
+    bf__grid_score_folds(gr, pb->data,
+                         pb->objective == BF_OBJ_COSW ? cti : NULL, fold,
+                         folds, lse);
+    for (b = 0; b <= folds; b++) {
+        if (bf__grid_best(gr, lse + b * cols, &results[b]) != BF_OK) {
+            memset(&results[b], 0, sizeof results[b]);
+            results[b].lse = NAN;
+            results[b].n_eval = lay->points;
+        }
+    }
+    free(lse);
+    return BF_OK;
+}
+
 /* ==== the public bf_curves =============================================== */
 
 bf_curves *bf_curves_alloc(const bf_problem *pb, int *status)

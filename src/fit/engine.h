@@ -215,6 +215,37 @@ int bf__refine(bf__fitctx *fc, const bf_fit_result *start,
 int bf__minimise(bf__fitctx *fc, const double *start, bf_fit_result *result);
 
 /* ======================================================================
+ * --- the analysis of many pairs (analysis.c) ---
+ * ====================================================================== */
+
+/* What bf_study_analyse (or any driver) hands the engine: targets on
+ * configuration sets, models, the inputs of every pair. Borrowed. */
+typedef struct {
+    size_t n_sets;
+    const bf__cset *sets;
+    size_t n_targets;
+    const size_t *set_of;        /* per target: its configuration set */
+    const double *const *data;   /* per target: normalised data (SPEC §2) */
+    size_t n_models;
+    const bf_model_type *const *models;
+    const double *fixed;         /* per unit u = t * n_models + m:
+                                    BF_MAX_PARAMS inputs (fixed values,
+                                    starting values of the free ones) */
+    const int *status;           /* per unit: BF_OK, or why it has no
+                                    inputs (BF_ENOTFOUND) */
+    const bf_fit_result *grid;   /* per unit, the study's grid optima to
+                                    reuse where they are the analysis's
+                                    (n_eval 0: none), or NULL */
+    const bf_analysis_opts *opts;
+    int n_threads;               /* 0 or 1: one */
+} bf__job;
+
+/* Analyses every unit of job into stats (cleared first; done = 1 where
+ * analysed) and unit_status (BF_OK, the unit's input status, or why the
+ * model cannot fit: BF_EDOM). Returns BF_OK or BF_ENOMEM. */
+int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status);
+
+/* ======================================================================
  * --- grids: one layout, one enumerator ---
  * ====================================================================== */
 
@@ -259,9 +290,11 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
 int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high);
-/* bf_fit_cv on fc with the grid gr. */
-int bf__cv(bf__fitctx *fc, const bf_grid *gr, size_t folds,
-           unsigned long seed, double *cv);
+/* bf_fit_cv on fc with the grid gr and the folds fold (bf_cv_folds);
+ * fold_grid: the folds' grid optima (results 1.. of
+ * bf__grid_optima_folds), or NULL to compute them. */
+int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+           size_t folds, const bf_fit_result *fold_grid, double *cv);
 
 /* ======================================================================
  * --- scoring many weight vectors against stored curves (kernels.c) ---
@@ -342,5 +375,40 @@ bf__fixed_model *bf__fixed_alloc(const bf_model_type *type,
 int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
                   const double *data, bf_fit_result *result);
 void bf__fixed_free(bf__fixed_model *fm);
+
+/* The full-data scores (lse[g], as bf__score_weights with weights 1, the
+ * same bits) and the training scores of every cross-validation fold
+ * (lse[(f + 1) * cols + g]: all configurations but those with fold[k] ==
+ * f, formed as the full sum minus the fold's) in one pass. */
+void bf__score_folds(size_t n, size_t cols, size_t stride,
+                     const double *curves, const double *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *lse);
+/* The grid optima (values and first indices, SIZE_MAX: none) of n_data
+ * data vectors and of their folds' training sets, best[q * (folds + 1) +
+ * b] (b = 0 the full data, 1 + f fold f), from one pass over the curves
+ * for all of them: bf__score_folds's sums, bf__argmin's choice. Points
+ * with ok 0 never win. */
+void bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                      const double *curves, const unsigned char *ok,
+                      size_t points, size_t n_data, const double *const *data,
+                      const double *cw, const size_t *fold, size_t folds,
+                      double *best_lse, size_t *best);
+/* The same on a grid (folds may be 0: only the full data). BF_OK or
+ * BF_ENOMEM. */
+int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+                          const double *const *data, const double *cw,
+                          const size_t *fold, size_t folds,
+                          bf_fit_result *results);
+/* bf__score_folds on a grid's curves: lse holds (folds + 1) * cols. */
+void bf__grid_score_folds(const bf_grid *gr, const double *data,
+                          const double *cw, const size_t *fold, size_t folds,
+                          double *lse);
+/* The grid optima of pb (no weights) and of each fold's training set
+ * (results[0], results[1 + f]) from one pass (max and cosw objectives;
+ * the others through bf__grid_optima). BF_OK or BF_ENOMEM. */
+int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+                          const double *cti, const size_t *fold,
+                          size_t folds, bf_fit_result *results);
 
 #endif

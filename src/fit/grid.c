@@ -458,6 +458,43 @@ void bf__grid_score_weights(const bf_grid *gr, const double *data,
                       n_w, w, lse);
 }
 
+void bf__grid_score_folds(const bf_grid *gr, const double *data,
+                          const double *cw, const size_t *fold, size_t folds,
+                          double *lse)
+{
+    bf__score_folds(gr->n, gr->cols, gr->stride, gr->curves, data, cw, fold,
+                    folds, lse);
+}
+
+int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+                          const double *const *data, const double *cw,
+                          const size_t *fold, size_t folds,
+                          bf_fit_result *results)
+{
+    size_t total = n_data * (folds + 1);
+    double *lse = malloc((total + 1) * sizeof *lse);
+    size_t *best = malloc((total + 1) * sizeof *best);
+    size_t q;
+    int rc = BF_OK;
+    if (lse == NULL || best == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    bf__folds_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
+                     gr->layout.points, n_data, data, cw, fold, folds, lse,
+                     best);
+    for (q = 0; q < total; q++) {
+        if (bf__grid_result(&gr->layout, best[q], lse[q], &results[q]) !=
+            BF_OK) {
+            results[q].lse = NAN; /* no defined point */
+        }
+    }
+done:
+    free(lse);
+    free(best);
+    return rc;
+}
+
 const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
                                  size_t *stride)
 {

@@ -188,44 +188,60 @@ void bf__bk_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
     terms[BF__BK_NTERMS * n] = ok;
 }
 
-/* FC's workspace: the index n its a-terms were formed for. */
+/* FC's workspace: the a-terms of the last FC_SLOTS indices n (the grid of
+ * n is 27 values: a fit, a grid of n or a profile over it finds them
+ * here after their first use), replaced round-robin. A slot's content is
+ * a function of its n alone, so hits and misses give the same bits. */
+#define FC_SLOTS 32
 typedef struct {
-    double valid; /* 1 once a[] holds the terms of n */
-    double n;
-    int ok;       /* every a finite */
-    double a[];   /* n values */
+    double n[FC_SLOTS];
+    int used[FC_SLOTS]; /* 1 once the slot holds n[slot]'s terms */
+    int ok[FC_SLOTS];   /* every a finite */
+    size_t next;        /* the slot to replace */
+    double a[];         /* FC_SLOTS x n values */
 } fc_work;
 
 size_t bf__bk_kwork(const bf_kernel *kr, size_t n)
 {
-    return kr->factor == BF__BK_FACTOR_FC ? sizeof(fc_work) + n * sizeof(double)
-                                          : 0;
+    return kr->factor == BF__BK_FACTOR_FC
+               ? sizeof(fc_work) + FC_SLOTS * n * sizeof(double)
+               : 0;
 }
 
 /* The a-terms of FC at index n_index (F_FC^2 of (P6), SPEC §4.2), as
- * bf__bk_terms_trig and the grid form them; cached in w. Returns 0 when a
- * term is not finite. */
-static int fc_terms(const bf__prep *pm, double n_index, fc_work *w)
+ * bf__bk_terms_trig and the grid form them, from w's slots or into one;
+ * *a points at them. Returns 0 when a term is not finite. */
+static int fc_terms(const bf__prep *pm, double n_index, fc_work *w,
+                    const double **a)
 {
     size_t n = pm->n;
     const double *t = pm->terms;
+    size_t slot;
     size_t k;
-    if (w->valid == 1.0 && w->n == n_index) {
-        return w->ok;
+    double *as;
+    for (slot = 0; slot < FC_SLOTS; slot++) {
+        if (w->used[slot] && w->n[slot] == n_index) {
+            *a = w->a + slot * n;
+            return w->ok[slot];
+        }
     }
+    slot = w->next;
+    w->next = (w->next + 1) % FC_SLOTS;
+    as = w->a + slot * n;
     bf__fc2_values(n, t + T_SI * n, t + T_CI * n, t + T_SS * n, t + T_CS * n,
-                   n_index, w->a);
-    w->ok = 1;
+                   n_index, as);
+    w->ok[slot] = 1;
     for (k = 0; k < n; k++) {
         double b;
         double c;
-        w->ok &= bk_abc(pm->kr->corr, w->a[k], t[T_VZ2 * n + k],
-                        t[T_VXY2 * n + k], t[T_AVZ * n + k], &w->a[k], &b,
-                        &c);
+        w->ok[slot] &= bk_abc(pm->kr->corr, as[k], t[T_VZ2 * n + k],
+                              t[T_VXY2 * n + k], t[T_AVZ * n + k], &as[k],
+                              &b, &c);
     }
-    w->valid = 1.0;
-    w->n = n_index;
-    return w->ok;
+    w->used[slot] = 1;
+    w->n[slot] = n_index;
+    *a = as;
+    return w->ok[slot];
 }
 
 /* The BK family at one slope m (and FC's n): the grid kernels' operations
@@ -237,17 +253,17 @@ int bf__bk_kvalues(const bf__prep *pm, const double *param, void *work,
 {
     size_t n = pm->n;
     const double *t = pm->terms;
-    const double *restrict a = t + T_A * n;
+    const double *fa = t + T_A * n;
+    const double *restrict a;
     const double *restrict b = t + T_B * n;
     const double *restrict c = t + T_C * n;
     double m = param[0];
     size_t k;
     int ok = t[BF__BK_NTERMS * n] != 0.0;
     if (pm->kr->factor == BF__BK_FACTOR_FC) {
-        fc_work *w = work;
-        ok &= fc_terms(pm, param[1], w);
-        a = w->a;
+        ok &= fc_terms(pm, param[1], work, &fa);
     }
+    a = fa;
     if (!ok) {
         for (k = 0; k < n; k++) {
             out[k] = NAN; /* BK at theta_i = pi/2 (SPEC §3.3) */
@@ -844,6 +860,126 @@ void bf__score_weights(size_t n, size_t cols, size_t stride,
     }
     free(rho);
     free(ones);
+}
+
+/* The full-data LSE and every fold's training LSE of one 16-lane block:
+ * full[j] = sum_k rho_kj in index order (the weights kernel's sum for
+ * weights 1, the same bits), held[f][j] = sum over the configurations of
+ * fold f, so that fold f's training sum is full - held[f]. */
+BF__CLONES
+static void folds_block(size_t n, size_t stride, const double *restrict c,
+                        const double *restrict d, const double *restrict cw,
+                        const size_t *restrict fold, size_t folds,
+                        double *restrict full, double *restrict held)
+{
+    double acc[WLANES];
+    size_t f;
+    size_t j;
+    size_t k;
+    for (j = 0; j < WLANES; j++) {
+        acc[j] = 0.0;
+    }
+    for (f = 0; f < (folds > 0 ? folds : 1) * WLANES; f++) {
+        held[f] = 0.0;
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        /* without folds the sums go to a scratch row nobody reads */
+        double *restrict hk = held + ((folds > 0 ? fold[k] : 0) * WLANES);
+        double dk = d[k];
+        double fk = cw != NULL ? cw[k] : 1.0;
+#pragma omp simd
+        for (j = 0; j < WLANES; j++) {
+            double r = ck[j] - dk;
+            double rho = fk * (r * r);
+            acc[j] = acc[j] + rho;
+            hk[j] = hk[j] + rho;
+        }
+    }
+    for (j = 0; j < WLANES; j++) {
+        full[j] = acc[j];
+    }
+}
+
+void bf__score_folds(size_t n, size_t cols, size_t stride,
+                     const double *curves, const double *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *lse)
+{
+    double *held = malloc((folds + 1) * WLANES * sizeof *held);
+    size_t g0;
+    size_t f;
+    size_t j;
+    if (held == NULL) {
+        for (g0 = 0; g0 < (folds + 1) * cols; g0++) {
+            lse[g0] = NAN; /* never a grid optimum */
+        }
+        return;
+    }
+    for (g0 = 0; g0 < cols; g0 += WLANES) {
+        folds_block(n, stride, curves + g0, data, cw, fold, folds,
+                    lse + g0, held);
+        for (f = 0; f < folds; f++) { /* training: all but the fold */
+            for (j = 0; j < WLANES; j++) {
+                lse[(f + 1) * cols + g0 + j] =
+                    lse[g0 + j] - held[f * WLANES + j];
+            }
+        }
+    }
+    free(held);
+}
+
+/* Running grid optima of many data vectors and their folds: for each
+ * 16-lane block of stored curves (in L1) every data vector's full and
+ * training sums (folds_block), the smallest defined value of each and its
+ * first index (strict <, in index order: bf__argmin's result). */
+void bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                      const double *curves, const unsigned char *ok,
+                      size_t points, size_t n_data, const double *const *data,
+                      const double *cw, const size_t *fold, size_t folds,
+                      double *best_lse, size_t *best)
+{
+    double *held = malloc((folds + 1) * WLANES * sizeof *held);
+    double full[WLANES];
+    size_t per = folds + 1;
+    size_t g0;
+    size_t q;
+    size_t f;
+    size_t j;
+    (void)cols; /* >= points rounded up to WLANES: blocks read padding */
+    for (q = 0; q < n_data * per; q++) {
+        best_lse[q] = INFINITY;
+        best[q] = SIZE_MAX;
+    }
+    if (held == NULL) {
+        return; /* no optimum: the callers report BF_ENOMEM */
+    }
+    for (g0 = 0; g0 < points; g0 += WLANES) {
+        size_t width = points - g0 < WLANES ? points - g0 : WLANES;
+        for (q = 0; q < n_data; q++) {
+            double *bl = best_lse + q * per;
+            size_t *bi = best + q * per;
+            folds_block(n, stride, curves + g0, data[q], cw, fold, folds,
+                        full, held);
+            for (j = 0; j < width; j++) {
+                if (!ok[g0 + j]) {
+                    continue;
+                }
+                if (full[j] < bl[0]) {
+                    bl[0] = full[j];
+                    bi[0] = g0 + j;
+                }
+                for (f = 0; f < folds; f++) {
+                    double v = full[j] - held[f * WLANES + j];
+                    if (v < bl[1 + f]) {
+                        bl[1 + f] = v;
+                        bi[1 + f] = g0 + j;
+                    }
+                }
+            }
+        }
+    }
+    free(held);
 }
 
 /* ==== streaming: curves of one block, scored at once (the study) ======== */

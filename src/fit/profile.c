@@ -57,8 +57,10 @@ typedef struct {
 } profile_t;
 
 /* The grid fit of the nuisance parameters at sub's fixed values: their
- * whole grid, then the refinement (as the fit itself). */
-static int grid_fit(profile_t *p, bf_fit_result *r)
+ * whole grid, then the refinement (as the fit itself) -- unless the grid's
+ * best point is no better than below (the warm optimum), when nothing
+ * better can come of it (r->lse is then the grid's). */
+static int grid_fit(profile_t *p, double below, bf_fit_result *r)
 {
     bf__grid_layout_t lay;
     bf_fit_result g;
@@ -82,6 +84,10 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     }
     if (!isfinite(g.lse)) {
         return BF_EDOM;
+    }
+    if (!(g.lse < below)) {
+        *r = g;
+        return BF_OK;
     }
     rc = bf__refine(p->fc, &g, r);
     return rc == BF_ENOCONV ? BF_OK : rc;
@@ -116,7 +122,7 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     }
     if (thorough) {
         bf_fit_result g;
-        rc = grid_fit(p, &g);
+        rc = grid_fit(p, warm.lse, &g);
         if (rc == BF_ENOMEM) {
             return rc;
         }

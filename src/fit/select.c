@@ -62,42 +62,38 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
     return BF_OK;
 }
 
-int bf__cv(bf__fitctx *fc, const bf_grid *gr, size_t folds,
-           unsigned long seed, double *cv)
+int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+           size_t folds, const bf_fit_result *fold_grid, double *cv)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
-    size_t *fold = malloc(n * sizeof *fold);
-    double *w = malloc(folds * n * sizeof *w);
-    const double **wp = malloc(folds * sizeof *wp);
-    bf_fit_result *g = malloc(folds * sizeof *g);
+    double *w = malloc(n * sizeof *w);
+    bf_fit_result *g = fold_grid == NULL ? malloc((folds + 1) * sizeof *g)
+                                         : NULL;
     double *resid = malloc(n * sizeof *resid);
     double sum = 0.0;
     size_t f;
     size_t k;
-    int rc;
+    int rc = BF_OK;
 
-    if (fold == NULL || w == NULL || wp == NULL || g == NULL ||
-        resid == NULL) {
+    if (w == NULL || resid == NULL || (fold_grid == NULL && g == NULL)) {
         rc = BF_ENOMEM;
         goto done;
     }
-    rc = bf_cv_folds(n, folds, seed, fold);
-    for (f = 0; rc == BF_OK && f < folds; f++) {
-        for (k = 0; k < n; k++) {
-            w[f * n + k] = fold[k] == f ? 0.0 : 1.0; /* the other folds */
-        }
-        wp[f] = w + f * n;
-    }
-    if (rc == BF_OK) { /* every fold's grid optimum from the same curves */
-        rc = bf__grid_optima(gr, pb, fc->pm->cs->cti, folds, wp, g);
+    if (fold_grid == NULL) { /* every fold's grid optimum, one pass */
+        rc = bf__grid_optima_folds(gr, pb, fc->pm->cs->cti, fold, folds, g);
+        fold_grid = g + 1;
     }
     for (f = 0; rc == BF_OK && f < folds; f++) {
         bf_problem train = *pb;
         bf_fit_result r;
-        train.weight = wp[f];
+        for (k = 0; k < n; k++) {
+            w[k] = fold[k] == f ? 0.0 : 1.0; /* fit to the other folds */
+        }
+        train.weight = w;
         bf__fitctx_use(fc, &train);
-        rc = isfinite(g[f].lse) ? bf__refine(fc, &g[f], &r) : BF_EDOM;
+        rc = isfinite(fold_grid[f].lse) ? bf__refine(fc, &fold_grid[f], &r)
+                                        : BF_EDOM;
         rc = rc == BF_ENOCONV ? BF_OK : rc;
         if (rc == BF_OK) {
             /* residuals under the training fit (its scale, for scale) */
@@ -112,9 +108,7 @@ int bf__cv(bf__fitctx *fc, const bf_grid *gr, size_t folds,
     bf__fitctx_use(fc, pb);
     *cv = rc == BF_OK ? sum : NAN;
 done:
-    free(fold);
     free(w);
-    free(wp);
     free(g);
     free(resid);
     return rc;
@@ -124,16 +118,25 @@ int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
               unsigned long seed, double *cv)
 {
     bf__solo so;
+    size_t *fold;
     int rc;
     if (bf__curves_check(curves, pb) != BF_OK || cv == NULL ||
         pb->weight != NULL || folds < 2 || folds > pb->n) {
         return BF_EINVAL;
     }
-    rc = bf__solo_init(&so, pb);
-    if (rc != BF_OK) {
-        return rc;
+    fold = malloc(pb->n * sizeof *fold);
+    if (fold == NULL) {
+        return BF_ENOMEM;
     }
-    rc = bf__cv(&so.fc, bf__curves_grid(curves), folds, seed, cv);
-    bf__solo_free(&so);
+    rc = bf_cv_folds(pb->n, folds, seed, fold);
+    if (rc == BF_OK) {
+        rc = bf__solo_init(&so, pb);
+        if (rc == BF_OK) {
+            rc = bf__cv(&so.fc, bf__curves_grid(curves), fold, folds, NULL,
+                        cv);
+            bf__solo_free(&so);
+        }
+    }
+    free(fold);
     return rc;
 }
