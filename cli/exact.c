@@ -139,7 +139,9 @@ int bf_cli_exact_run(bf_cli_study *st)
 {
     const bf_cli_opts *o = &st->opts;
     bf_analysis_opts a;
+    bf_cli_progress progress;
     bf_error err;
+    int rc;
     st->stats = calloc(st->n_samples * st->n_models + 1, sizeof *st->stats);
     if (st->stats == NULL) {
         bf_cli_err("out of memory");
@@ -152,7 +154,13 @@ int bf_cli_exact_run(bf_cli_study *st)
     a.n_boot = o->n_boot;
     a.folds = o->folds;
     a.seed = o->seed;
-    if (bf_study_analyse(&st->spec, &a, st->rows, st->stats, &err) != BF_OK) {
+    bf_cli_progress_init(&progress, "analysing (material, model) pairs",
+                         o->quiet);
+    a.progress = bf_cli_progress_cb;
+    a.progress_ctx = &progress;
+    rc = bf_study_analyse(&st->spec, &a, st->rows, st->stats, &err);
+    bf_cli_progress_end(&progress);
+    if (rc != BF_OK) {
         bf_cli_err("%s", err.msg);
         return err.code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
     }
@@ -201,8 +209,42 @@ void bf_cli_exact_csv_header(FILE *fp)
 {
     fputs(",objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
           "ci_low,ci_high,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
-          "bic,cv",
+          "bic,cv,flags",
           fp);
+}
+
+/* What the fit says about itself: space-separated words (empty: none). */
+static void flags_field(FILE *fp, const bf_model_type *type,
+                        const bf_fit_stats *s)
+{
+    const char *sep = "";
+    size_t j;
+    fputc(',', fp);
+    if (s->flags & BF_STAT_REDUCED) {
+        fprintf(fp, "%sreduces_to=%s", sep, s->reduces_to);
+        sep = " ";
+    }
+    for (j = 0; j < type->p; j++) {
+        if ((s->refined.flat >> j) & 1u) {
+            fprintf(fp, "%snot_identified=%s", sep, type->param[j].name);
+            sep = " ";
+        }
+    }
+    if (s->flags & BF_STAT_CLAMPED) {
+        fprintf(fp, "%sclamped=%zu", sep, s->n_clamped);
+        sep = " ";
+    }
+    if (s->flags & BF_STAT_NOCONV) {
+        fprintf(fp, "%snot_converged", sep);
+        sep = " ";
+    }
+    if (s->flags & BF_STAT_CI_FAIL) {
+        fprintf(fp, "%sinterval_failed", sep);
+        sep = " ";
+    }
+    if (s->flags & BF_STAT_BOOT_FAIL) {
+        fprintf(fp, "%sbootstrap_failed", sep);
+    }
 }
 
 /* A number, or an empty field for NaN. */
@@ -223,7 +265,7 @@ void bf_cli_exact_csv_cols(const bf_cli_study *st, size_t i, size_t j,
     fprintf(fp, ",%s,%s", bf_objective_name(st->opts.objective),
             st->opts.exact ? "exact" : "paper");
     if (s == NULL || !s->done) {
-        fputs(",,,,,,,,,,,,,,", fp);
+        fputs(",,,,,,,,,,,,,,,", fp);
         return;
     }
     num(fp, has ? s->grid.param[j] : NAN);
@@ -244,6 +286,7 @@ void bf_cli_exact_csv_cols(const bf_cli_study *st, size_t i, size_t j,
     num(fp, s->aic);
     num(fp, s->bic);
     num(fp, s->cv);
+    flags_field(fp, st->rows[i].type, s);
 }
 
 void bf_cli_exact_on_compare(const bf_cli_study *st, FILE *fp)

@@ -13,45 +13,35 @@ const char *const bf_cli_crit_names[BF_CLI_NCRIT] = {"AIC", "BIC", "CV"};
 
 double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c)
 {
-    const bf_fit_stats *s = &st->stats[i];
-    if (st->rows[i].status != BF_OK || !s->done) {
+    if (st->rows[i].status != BF_OK) {
         return NAN;
     }
-    return c == BF_CLI_AIC ? s->aic : (c == BF_CLI_BIC ? s->bic : s->cv);
+    return bf_criterion_value(&st->stats[i], (bf_criterion)c);
 }
 
 /* Rank (1 = best) of model m of sample s by criterion c; 0 when it has no
- * value. Ties share the better rank. */
+ * value. Ties (BF_TIE_REL) share the better rank (bf_rank). */
 size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
 {
-    size_t base = s * st->n_models;
-    double v = bf_cli_rank_value(st, base + m, c);
-    size_t rank = 1;
-    size_t q;
-    if (!isfinite(v)) {
+    size_t rank[64];
+    size_t best;
+    if (st->n_models > 64 || !isfinite(bf_cli_rank_value(st, s * st->n_models + m, c))) {
         return 0;
     }
-    for (q = 0; q < st->n_models; q++) {
-        double w = bf_cli_rank_value(st, base + q, c);
-        rank += isfinite(w) && w < v;
-    }
-    return rank;
+    bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c, rank,
+            &best);
+    return rank[m];
 }
 
-/* Index of the best model of sample s by c, or SIZE_MAX. Among models
- * tied for rank 1 (ON at sigma = 0 is LAMBERT exactly) the one with fewer
- * parameters wins, then the first listed. */
+/* Index of the best model of sample s by c, or SIZE_MAX (bf_rank: fewer
+ * parameters among ties, then the first listed). */
 size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c)
 {
+    size_t rank[64];
     size_t best = (size_t)-1;
-    size_t m;
-    for (m = 0; m < st->n_models; m++) {
-        if (bf_cli_rank_of(st, s, m, c) == 1 &&
-            (best == (size_t)-1 ||
-             st->stats[s * st->n_models + m].k <
-                 st->stats[s * st->n_models + best].k)) {
-            best = m;
-        }
+    if (st->n_models <= 64) {
+        bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c,
+                rank, &best);
     }
     return best;
 }
@@ -104,43 +94,59 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
     return t;
 }
 
-/* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first). */
+/* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first).
+ * A best fit that reduces to another model (ON at sigma = 0) counts for
+ * that model (bf_rank_winner), never for the larger one. */
 void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
 {
-    size_t *wins = calloc(st->n_models + 1, sizeof *wins);
+    const char **names = calloc(st->n_samples + 1, sizeof *names);
+    size_t *wins = calloc(st->n_samples + 1, sizeof *wins);
+    size_t n_names = 0;
     size_t s;
-    size_t m;
+    size_t i;
     size_t printed = 0;
-    if (wins == NULL) {
+    if (wins == NULL || names == NULL) {
+        free(wins);
+        free(names);
         return;
     }
     for (s = 0; s < st->n_samples; s++) {
         size_t b = bf_cli_rank_best(st, s, c);
-        if (b != (size_t)-1) {
-            wins[b]++;
+        const char *w = b == (size_t)-1
+                            ? NULL
+                            : bf_rank_winner(st->models,
+                                             &st->stats[s * st->n_models], b);
+        if (w == NULL) {
+            continue;
         }
+        for (i = 0; i < n_names && strcmp(names[i], w) != 0; i++) {
+        }
+        if (i == n_names) {
+            names[n_names++] = w;
+        }
+        wins[i]++;
     }
     fprintf(fp, "%s:", bf_cli_crit_names[c]);
-    while (printed < st->n_models) {
+    while (printed < n_names) {
         size_t best = 0;
-        for (m = 1; m < st->n_models; m++) {
-            if (wins[m] > wins[best]) {
-                best = m;
+        for (i = 1; i < n_names; i++) {
+            if (wins[i] > wins[best]) {
+                best = i;
             }
         }
         if (wins[best] == 0) {
             break;
         }
         if (printed == 0) {
-            fprintf(fp, " %s best for %zu of %zu samples", st->models[best]->name,
+            fprintf(fp, " %s best for %zu of %zu samples", names[best],
                     wins[best], st->n_samples);
         } else {
-            fprintf(fp, ", %s %zu", st->models[best]->name, wins[best]);
+            fprintf(fp, ", %s %zu", names[best], wins[best]);
         }
         wins[best] = 0;
         printed++;
     }
     fputs(printed == 0 ? " no model could be ranked\n" : "\n", fp);
     free(wins);
+    free(names);
 }
-

@@ -78,9 +78,10 @@ void bf_cli_opts_usage(FILE *fp)
 "\n"
 "Output:\n"
 "  --out DIR         output folder (default out; created if missing)\n"
-"  --threads N       fit on N threads (default 1; 0: one per core); the\n"
-"                    results do not depend on N\n"
-"  -q, --quiet       do not print the tables\n"
+"  --threads N       fit on at most N threads (default 0: one per core);\n"
+"                    the results do not depend on N\n"
+"  -q, --quiet       do not print the tables, nor the progress line (on\n"
+"                    stderr when it is a terminal and the run is long)\n"
 "  -h, --help        show this help\n",
             BF_DEFAULT_DATA_DIR, BF_CLI_MAX_INPUTS, BF_DEFAULT_N);
 }
@@ -144,7 +145,7 @@ int bf_cli_opts_parse(const char *cmd, int argc, char **argv,
     o->max_theta = 90.0;
     o->folds = 10;
     o->seed = 1;
-    o->threads = 1;
+    o->threads = 0; /* one per core */
 
     opterr = 0;
     optind = 1;

@@ -1146,6 +1146,48 @@ typedef struct {
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
+/* ======================================================================
+ * --- model selection: ranks, ties, the best model (doc/methods.md §5) ---
+ * ====================================================================== */
+
+/* The criteria a ranking can use. */
+typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
+#define BF_NCRIT 3
+
+/* "AIC", "BIC", "CV" (static storage), NULL for an unknown value. */
+const char *bf_criterion_name(bf_criterion c);
+/* Finds a criterion by name, case-insensitive ("bic"); BF_ENOTFOUND. */
+int bf_criterion_find(const char *name, bf_criterion *c);
+
+/* The value of criterion c in st (NaN when st was not analysed or the
+ * value was not computed: no folds). */
+double bf_criterion_value(const bf_fit_stats *st, bf_criterion c);
+
+/* Relative tolerance of a tie between two criterion values. */
+#define BF_TIE_REL 1e-9
+
+/* 1 when a and b are tied for criterion c on n configurations: |a - b| <=
+ * BF_TIE_REL * scale, scale max(|a|, |b|) for CV and n for AIC and BIC
+ * (n ln(RSS/n) moves by n e for a relative change e of RSS), so a tie is
+ * the same relative difference of the residual sums for every criterion.
+ * ON at sigma = 0 and LAMBERT differ only by rounding: they tie. */
+int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
+
+/* Ranks the n_models analyses of one target by c: rank[m] = 1 + the
+ * number of models with a lower value not tied with m's (ties share the
+ * rank), 0 when m has no value; *best = the model of rank 1 with the
+ * fewest parameters (k), the first listed among equals, or SIZE_MAX when
+ * none has a value. */
+void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
+             size_t *rank, size_t *best);
+
+/* The name a win of model best counts for (static storage): the model's,
+ * or the model it reduces to when its fit is on that face
+ * (BF_STAT_REDUCED: ON at sigma = 0 wins for LAMBERT); NULL when best is
+ * SIZE_MAX. models and stats: the target's n_models entries. */
+const char *bf_rank_winner(const bf_model_type *const *models,
+                           const bf_fit_stats *stats, size_t best);
+
 #ifdef __cplusplus
 }
 #endif

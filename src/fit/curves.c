@@ -146,6 +146,85 @@ int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
     return BF_OK;
 }
 
+/* 1 when point idx of lay is a local minimum of lse: no lower value at any
+ * neighbour along a free parameter (lattice neighbours), and no equal one
+ * before it (a plateau counts once, at its first point). */
+static int local_min(const bf__grid_layout_t *lay, const double *lse,
+                     const unsigned char *ok, size_t idx)
+{
+    size_t stride = 1;
+    size_t f = lay->n_free;
+    if (!ok[idx] || !isfinite(lse[idx])) {
+        return 0;
+    }
+    while (f-- > 0) { /* the last free parameter varies fastest */
+        size_t i = (idx / stride) % lay->count[f];
+        if (i > 0 && ok[idx - stride] && !(lse[idx] < lse[idx - stride])) {
+            return 0;
+        }
+        if (i + 1 < lay->count[f] && ok[idx + stride] &&
+            lse[idx + stride] < lse[idx]) {
+            return 0;
+        }
+        stride *= lay->count[f];
+    }
+    return 1;
+}
+
+int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t max, bf_fit_result *results,
+                    size_t *count)
+{
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    const unsigned char *ok = bf__grid_ok(gr);
+    size_t cols = bf__grid_cols(gr);
+    const double *w[1];
+    double *lse = malloc(cols * sizeof *lse);
+    size_t *idx = malloc((max + 1) * sizeof *idx);
+    size_t g;
+    size_t i;
+    int rc = BF_OK;
+    *count = 0;
+    if (lse == NULL || idx == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    w[0] = pb->weight;
+    switch (pb->objective) {
+    case BF_OBJ_MAX:
+        bf__grid_score_weights(gr, pb->data, NULL, 1, w, lse);
+        break;
+    case BF_OBJ_COSW:
+        bf__grid_score_weights(gr, pb->data, cti, 1, w, lse);
+        break;
+    default:
+        rc = optima_by_point(gr, pb, cti, 1, w, lse);
+        break;
+    }
+    for (g = 0; rc == BF_OK && g < lay->points; g++) {
+        if (!local_min(lay, lse, ok, g)) {
+            continue;
+        }
+        /* keep the max lowest, in increasing value (ties: grid order) */
+        for (i = *count; i > 0 && lse[g] < lse[idx[i - 1]]; i--) {
+            if (i < max) {
+                idx[i] = idx[i - 1];
+            }
+        }
+        if (i < max) {
+            idx[i] = g;
+            *count += *count < max;
+        }
+    }
+    for (i = 0; rc == BF_OK && i < *count; i++) {
+        bf__grid_result(lay, idx[i], lse[idx[i]], &results[i]);
+    }
+done:
+    free(lse);
+    free(idx);
+    return rc;
+}
+
 /* ==== the public bf_curves =============================================== */
 
 bf_curves *bf_curves_alloc(const bf_problem *pb, int *status)

@@ -272,6 +272,12 @@ int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
 int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
                     const double *cti, size_t n_w, const double *const *w,
                     bf_fit_result *results);
+/* The local minima of pb's objective (weights pb->weight) over gr's
+ * points -- no lattice neighbour lower, a plateau once -- the max lowest
+ * in increasing order into results (*count of them). BF_OK, BF_ENOMEM. */
+int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t max, bf_fit_result *results,
+                    size_t *count);
 /* The grid of a bf_curves, and BF_OK when c was made for pb's model,
  * configurations and free parameters (else BF_EINVAL). */
 const bf_grid *bf__curves_grid(const bf_curves *c);
@@ -342,8 +348,9 @@ bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
                         unsigned free_mask, const bf__cset *cs, int *status);
 /* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
 size_t bf__grid_cols(const bf_grid *gr);
-/* The grid's layout. */
+/* The grid's layout, and its flags (1 where a point's curve is defined). */
 const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr);
+const unsigned char *bf__grid_ok(const bf_grid *gr);
 /* Scores n_samples samples at once: lse must hold n_samples * cols. */
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
                     const double *const *data, double *lse);

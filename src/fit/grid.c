@@ -443,6 +443,11 @@ const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr)
     return &gr->layout;
 }
 
+const unsigned char *bf__grid_ok(const bf_grid *gr)
+{
+    return gr->ok;
+}
+
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
                     const double *const *data, double *lse)
 {

@@ -12,9 +12,10 @@
  *   95%), S_p(theta_j) = min over the other free parameters of S.
  *
  * The inner fit S_p(theta): with theta held, the nuisance parameters get
- * what the fit itself does -- the grid optimum over their whole grid, then
- * the exact refinement -- and, besides, the refinement from the last
- * point's nuisance optimum; the lower of the two counts. Because that
+ * at least what the fit itself does -- their whole grid, then the exact
+ * refinement, here from each of the grid's lowest local minima -- and,
+ * besides, the refinement from the last point's nuisance optimum; the
+ * lowest counts. Because that
  * grid fit costs a grid of model curves per point, it is done where the
  * interval's end is bracketed (the outward steps) and at the end found;
  * the root finder in between uses the warm-started refinement alone. If
@@ -43,6 +44,8 @@
 /* The grid fit is better than the warm one when lower by this relative
  * amount (rounding of S is far below it). */
 #define CI_BETTER 1e-12
+/* The local minima of the nuisance grid refined at a grid fit. */
+#define CI_STARTS 4
 
 /* The profile of parameter j: the problem with j held at theta. */
 typedef struct {
@@ -57,15 +60,19 @@ typedef struct {
 } profile_t;
 
 /* The grid fit of the nuisance parameters at sub's fixed values: their
- * whole grid, then the refinement (as the fit itself) -- unless the grid's
- * best point is no better than below (the warm optimum), when nothing
- * better can come of it (r->lse is then the grid's). */
-static int grid_fit(profile_t *p, double below, bf_fit_result *r)
+ * whole grid, then the refinement from each of its CI_STARTS lowest local
+ * minima (the fit itself refines its grid optimum only; a profile's inner
+ * minimum can lie in a basin whose grid points are not the lowest --
+ * between two grid points a deeper minimum than the best grid point's).
+ * The lowest refined result goes to r. */
+static int grid_fit(profile_t *p, bf_fit_result *r)
 {
     bf__grid_layout_t lay;
-    bf_fit_result g;
-    const double *w[1];
+    bf_fit_result g[CI_STARTS];
+    size_t n_min = 0;
+    size_t i;
     bf_grid *gr;
+    int found = 0;
     int rc = bf__grid_layout_range(p->sub.type, p->sub.fixed,
                                    p->sub.free_mask, p->sub.lo, p->sub.hi,
                                    &lay);
@@ -76,21 +83,24 @@ static int grid_fit(profile_t *p, double below, bf_fit_result *r)
     if (gr == NULL) {
         return rc;
     }
-    w[0] = p->sub.weight;
-    rc = bf__grid_optima(gr, &p->sub, p->fc->pm->cs->cti, 1, w, &g);
+    rc = bf__grid_minima(gr, &p->sub, p->fc->pm->cs->cti, CI_STARTS, g,
+                         &n_min);
     bf_grid_free(gr);
+    for (i = 0; rc == BF_OK && i < n_min; i++) {
+        bf_fit_result ri;
+        int st = bf__refine(p->fc, &g[i], &ri);
+        if (st == BF_ENOMEM) {
+            return st;
+        }
+        if ((st == BF_OK || st == BF_ENOCONV) && (!found || ri.lse < r->lse)) {
+            *r = ri;
+            found = 1;
+        }
+    }
     if (rc != BF_OK) {
         return rc;
     }
-    if (!isfinite(g.lse)) {
-        return BF_EDOM;
-    }
-    if (!(g.lse < below)) {
-        *r = g;
-        return BF_OK;
-    }
-    rc = bf__refine(p->fc, &g, r);
-    return rc == BF_ENOCONV ? BF_OK : rc;
+    return found ? BF_OK : BF_EDOM;
 }
 
 /* S_p(theta): the warm-started refinement, and with thorough also the
@@ -122,7 +132,7 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     }
     if (thorough) {
         bf_fit_result g;
-        rc = grid_fit(p, warm.lse, &g);
+        rc = grid_fit(p, &g);
         if (rc == BF_ENOMEM) {
             return rc;
         }
