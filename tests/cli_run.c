@@ -1,5 +1,6 @@
 /* cli_run.c: runs the brdffit binary from tests (see cli_run.h). */
 #include "cli_run.h"
+#include "support.h"
 
 #include <criterion/criterion.h>
 #include <fcntl.h>
@@ -190,4 +191,17 @@ size_t bf_test_csv_find(const char *sample, const char *model,
     cr_assert_fail("no row for sample %s, %s %s", sample ? sample : "*",
                    model, param ? param : "");
     return 0;
+}
+
+int bf_test_run_curet(const char **argv)
+{
+    static char data[4096];
+    size_t i;
+    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
+    for (i = 0; argv[i] != NULL; i++) {
+        if (strcmp(argv[i], "DATA") == 0) {
+            argv[i] = data;
+        }
+    }
+    return bf_test_run_cli(argv, NULL, NULL);
 }

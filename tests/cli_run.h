@@ -11,6 +11,10 @@
 int bf_test_run_cli(const char *const *argv, const char **out,
                     const char **err);
 
+/* bf_test_run_cli with every argument "DATA" replaced by the CURET
+ * folder (bf_test_curet_path): argv is changed in place. */
+int bf_test_run_curet(const char **argv);
+
 /* Creates a fresh temporary folder (static buffer). */
 const char *bf_test_tmpdir(void);
 

@@ -18,18 +18,7 @@
  * 1e-7; both inner fits converge to 1e-6 in the nuisance). */
 #define END_TOL 1e-5
 
-static int run(const char **argv)
-{
-    static char data[4096];
-    size_t i;
-    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
-    for (i = 0; argv[i] != NULL; i++) {
-        if (strcmp(argv[i], "DATA") == 0) {
-            argv[i] = data;
-        }
-    }
-    return bf_test_run_cli(argv, NULL, NULL);
-}
+#define run(argv) bf_test_run_curet(argv)
 
 /* ==== defect 1: ON's clamp where ON is fitted ============================= */
 

@@ -22,18 +22,7 @@ static size_t n_lines;
 #define num(row, name) bf_test_csv_num((row), (name))
 #define row_of(model, param) bf_test_csv_find(NULL, (model), (param))
 
-static int run(const char **argv)
-{
-    static char data[4096];
-    size_t i;
-    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
-    for (i = 0; argv[i] != NULL; i++) {
-        if (strcmp(argv[i], "DATA") == 0) {
-            argv[i] = data;
-        }
-    }
-    return bf_test_run_cli(argv, NULL, NULL);
-}
+#define run(argv) bf_test_run_curet(argv)
 
 Test(cli_exact, exact_fit_reports_grid_and_refined_optima_side_by_side)
 {
