@@ -283,10 +283,10 @@ void bf__on_terms(const bf_geom *g, bf__on_terms_t *t);
 void bf__on_coef(double rho, double sigma, bf__on_coef_t *c);
 double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c);
 
-/* The 24-point Gauss-Legendre abscissae and weights WNO-R's quadrature
- * uses (src/models/wolff_nayar_oren.c; 12 positive abscissae, GSL's
- * layout); exposed for the test that they are GSL's. */
-void bf__wnor_gl24(const double **x, const double **w);
+/* The 4-point Gauss-Legendre abscissae and weights WNO-R's rule uses on
+ * each panel (src/models/wno_r.c; 2 positive abscissae, GSL's layout);
+ * exposed for the test that they are GSL's. */
+void bf__wnor_gl4(const double **x, const double **w);
 
 /* ======================================================================
  * --- fitting (src/fit) ---
