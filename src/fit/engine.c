@@ -58,7 +58,8 @@ static int plain_values(const bf__prep *pm, const double *param, void *work,
 }
 
 const bf_kernel bf__plain_kernel = {0,    0, NULL, NULL, plain_values,
-                                    NULL, BF__BLOCK_NONE, 0, 0};
+                                    NULL, BF__BLOCK_NONE, 0, 0, -1, NULL,
+                                    NULL};
 
 /* ==== prepared models ==================================================== */
 
@@ -87,7 +88,7 @@ int bf__prep_init(bf__prep *pm, const bf_model_type *type,
     pm->work_bytes = pm->kr->work_bytes != NULL
                          ? pm->kr->work_bytes(pm->kr, cs->n)
                          : 0;
-    return BF_OK;
+    return pm->kr->prepare != NULL ? pm->kr->prepare(pm) : BF_OK;
 }
 
 int bf__prep_plain(bf__prep *pm, const bf_model_type *type, size_t n,
@@ -111,6 +112,10 @@ void bf__prep_free(bf__prep *pm)
     if (pm == NULL) {
         return;
     }
+    if (pm->kr != NULL && pm->kr->release != NULL && pm->cache != NULL) {
+        pm->kr->release(pm);
+    }
+    pm->cache = NULL;
     free(pm->terms);
     pm->terms = NULL;
 }

@@ -78,6 +78,20 @@ struct bf_kernel {
     int block;  /* BF__BLOCK_*: the grid kernel that applies */
     int factor; /* block == BF__BLOCK_BK: BF__BK_FACTOR_* */
     int corr;   /*   and BF__BK_CORR_* */
+    /* The parameter that is cheap to vary while the others stay (its
+     * values need none of the cached terms recomputed: WNO-R's sigma
+     * given its ring sums at n), or -1: the refinement of two parameters
+     * then nests its searches, this one inside. */
+    int cheap;
+    /* Tables a kernel builds for a configuration set on demand (WNO-R's
+     * ring sums in Chebyshev form, one panel of n at a time): prepare
+     * makes pm->cache (BF_OK or BF_ENOMEM), release frees it. The cache is
+     * shared by the threads: values() builds an entry under a lock and
+     * publishes it atomically; an entry is a function of the
+     * configurations alone, so who builds it does not change any bit.
+     * NULL: none. */
+    int (*prepare)(bf__prep *pm);
+    void (*release)(bf__prep *pm);
 };
 
 /* The plain kernel: values() is type->eval on the configurations (no
@@ -96,6 +110,7 @@ struct bf__prep {
     const bf_geom *geom;  /* borrowed: the n configurations */
     double *terms;        /* kr->n_terms * n + kr->n_extra, owned */
     size_t work_bytes;    /* of a workspace */
+    void *cache;          /* the kernel's tables (prepare/release) */
 };
 
 /* Prepares type on cs (borrowed): its kernel's terms, or the plain kernel
@@ -185,6 +200,12 @@ int bf__fit_residuals(bf__fitctx *fc, const double *param, double *resid);
 double bf__objective(const bf_problem *pb, const double *cti,
                      const double *log_d, const double *curve,
                      double *scratch);
+
+/* sum_k w_k f_k (c_k - d_k)^2 in index order, the rounded squares added
+ * by one fma each (w NULL: an add; f NULL: 1): the max and cosw
+ * objectives (src/fit/kernels.c). */
+double bf__sum_weighted(size_t n, const double *c, const double *d,
+                        const double *w, const double *f);
 
 /* Residuals of pb on a normalised curve (see bf_objective). */
 void bf__residuals(const bf_problem *pb, const double *cti,

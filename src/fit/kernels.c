@@ -735,13 +735,34 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
     }
 }
 
+/* ==== the objective's sum (src/fit/objective.c) ========================= */
+
+/* sum_k w_k f_k (c_k - d_k)^2 in index order, each rounded square added by
+ * one fma (w NULL: one add; f NULL: 1) -- the weights kernel's sum, so a
+ * grid point's S is the same number either way. Here, not in objective.c,
+ * so that fma is one instruction in the ISA clones. */
+BF__CLONES
+double bf__sum_weighted(size_t n, const double *c, const double *d,
+                        const double *w, const double *f)
+{
+    double sum = 0.0;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        double r = c[k] - d[k]; /* SPEC §7.3 */
+        double rho = (f != NULL ? f[k] : 1.0) * (r * r);
+        sum = w != NULL ? fma(w[k], rho, sum) : sum + rho;
+    }
+    return sum;
+}
+
 /* ==== many weight vectors against stored curves (bootstrap, CV) ========= */
 
 /* Grid columns whose squared residuals are formed at once (in L2), lanes of
- * one accumulator block, weight vectors per tile. */
+ * one accumulator block, weight vectors per tile: WTILE x WLANES
+ * accumulators stay in registers (12 of AVX2's 16). */
 #define WSUPER 256
-#define WLANES 16
-#define WTILE 4
+#define WLANES 4
+#define WTILE 8
 
 /* acc[q][j] = sum_k w[q][k] rho[k * WSUPER + j] for WTILE weight rows,
  * one fma per term in index order. */
@@ -751,6 +772,14 @@ static void weights_tile(size_t n, const double *restrict rho,
                          size_t out_stride)
 {
     double acc[WTILE][WLANES];
+    const double *restrict w0 = w[0];
+    const double *restrict w1 = w[1];
+    const double *restrict w2 = w[2];
+    const double *restrict w3 = w[3];
+    const double *restrict w4 = w[4];
+    const double *restrict w5 = w[5];
+    const double *restrict w6 = w[6];
+    const double *restrict w7 = w[7];
     size_t j;
     size_t k;
     size_t q;
@@ -761,17 +790,17 @@ static void weights_tile(size_t n, const double *restrict rho,
     }
     for (k = 0; k < n; k++) {
         const double *restrict rk = rho + (k * WSUPER);
-        double w0 = w[0][k];
-        double w1 = w[1][k];
-        double w2 = w[2][k];
-        double w3 = w[3][k];
 #pragma omp simd
         for (j = 0; j < WLANES; j++) {
             double r = rk[j];
-            acc[0][j] = fma(w0, r, acc[0][j]);
-            acc[1][j] = fma(w1, r, acc[1][j]);
-            acc[2][j] = fma(w2, r, acc[2][j]);
-            acc[3][j] = fma(w3, r, acc[3][j]);
+            acc[0][j] = fma(w0[k], r, acc[0][j]);
+            acc[1][j] = fma(w1[k], r, acc[1][j]);
+            acc[2][j] = fma(w2[k], r, acc[2][j]);
+            acc[3][j] = fma(w3[k], r, acc[3][j]);
+            acc[4][j] = fma(w4[k], r, acc[4][j]);
+            acc[5][j] = fma(w5[k], r, acc[5][j]);
+            acc[6][j] = fma(w6[k], r, acc[6][j]);
+            acc[7][j] = fma(w7[k], r, acc[7][j]);
         }
     }
     for (q = 0; q < WTILE; q++) {

@@ -147,14 +147,8 @@ double bf__objective(const bf_problem *pb, const double *cti,
      * as the grid's scoring (bf__score_weights) adds them, so a grid
      * point's S is the same number either way. */
     if (pb->objective == BF_OBJ_MAX || pb->objective == BF_OBJ_COSW) {
-        for (k = 0; k < pb->n; k++) {
-            double r = curve[k] - pb->data[k]; /* SPEC §7.3 */
-            double rho = (pb->objective == BF_OBJ_COSW ? cti[k] : 1.0) *
-                         (r * r);
-            sum = pb->weight != NULL ? fma(pb->weight[k], rho, sum)
-                                     : sum + rho;
-        }
-        return sum;
+        return bf__sum_weighted(pb->n, curve, pb->data, pb->weight,
+                                pb->objective == BF_OBJ_COSW ? cti : NULL);
     }
     bf__residuals(pb, cti, log_d, curve, scratch);
     for (k = 0; k < pb->n; k++) {

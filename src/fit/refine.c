@@ -27,6 +27,12 @@
 #define UNDEFINED_VALUE 1e300
 /* Points sampled over the whole range before Brent (bf_fit_minimise). */
 #define SCAN_POINTS 17
+/* Points sampled over the inner box of a nested search: the objective's
+ * max-normalisation (SPEC §2) puts kinks in it, where the brightest
+ * configuration changes, and so local minima a grid step apart; these
+ * samples pick the lowest basin before Brent, at the cost of cheap
+ * evaluations. */
+#define NEST_SAMPLES 9
 /* A refined parameter this close to an inner edge of its box is on it. */
 #define EDGE_TOL (10.0 * BF_REFINE_TOL)
 /* Initial simplex step in the mapped coordinates u (radians). */
@@ -62,28 +68,31 @@ static double value_at(ctx_t *c)
 
 /* ==== one free parameter: Brent ========================================== */
 
-static double f_1d(double x, void *arg)
+/* One parameter of the context moving: the function Brent minimises. */
+typedef struct {
+    ctx_t *c;
+    size_t j; /* the parameter's index */
+} axis_t;
+
+static double f_axis(double x, void *arg)
 {
-    ctx_t *c = arg;
-    c->param[c->free[0]] = x;
-    return value_at(c);
+    axis_t *ax = arg;
+    ax->c->param[ax->j] = x;
+    return value_at(ax->c);
 }
 
-/* Brent on [lo, hi] from mid (f(mid) < f(lo), f(hi)). Sets *x to the
- * minimiser. */
-static int brent(ctx_t *c, double lo, double mid, double hi, double f_lo,
-                 double f_mid, double f_hi, double *x)
+/* Brent on [lo, hi] from mid (f(mid) < f(lo), f(hi)) for fn. Sets *x to
+ * the minimiser. */
+static int brent(gsl_function *fn, double lo, double mid, double hi,
+                 double f_lo, double f_mid, double f_hi, double *x)
 {
     gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-    gsl_function fn;
     int status;
     size_t iter = 0;
     if (s == NULL) {
         return BF_ENOMEM;
     }
-    fn.function = f_1d;
-    fn.params = c;
-    status = gsl_min_fminimizer_set_with_values(s, &fn, mid, f_mid, lo, f_lo,
+    status = gsl_min_fminimizer_set_with_values(s, fn, mid, f_mid, lo, f_lo,
                                                 hi, f_hi);
     while (status == GSL_SUCCESS && iter++ < BF_REFINE_MAXITER) {
         status = gsl_min_fminimizer_iterate(s);
@@ -106,22 +115,23 @@ static int brent(ctx_t *c, double lo, double mid, double hi, double f_lo,
     return BF_OK;
 }
 
-/* Minimises over the single moving parameter from the sorted samples
- * xs[0..m) (which include the box ends). */
-static int minimise_1d(ctx_t *c, const double *xs, size_t m, double *x)
+/* Minimises fn from the sorted samples xs[0..m) (which include the box
+ * ends). */
+static int minimise_1d(gsl_function *fn, const double *xs, size_t m,
+                       double *x)
 {
     double fs[SCAN_POINTS + 2];
     size_t i;
     size_t best = 0;
     for (i = 0; i < m; i++) {
-        fs[i] = f_1d(xs[i], c);
+        fs[i] = fn->function(xs[i], fn->params);
         if (fs[i] < fs[best]) {
             best = i;
         }
     }
     if (best > 0 && best + 1 < m) {
         if (fs[best] < fs[best - 1] && fs[best] < fs[best + 1]) {
-            return brent(c, xs[best - 1], xs[best], xs[best + 1],
+            return brent(fn, xs[best - 1], xs[best], xs[best + 1],
                          fs[best - 1], fs[best], fs[best + 1], x);
         }
         *x = xs[best]; /* flat: ties with a neighbour */
@@ -134,16 +144,83 @@ static int minimise_1d(ctx_t *c, const double *xs, size_t m, double *x)
         double end = xs[best];
         double delta = (xs[nb] - end) * 1e-3;
         double probe = end + delta;
-        double f_probe = f_1d(probe, c);
+        double f_probe = fn->function(probe, fn->params);
         if (!(f_probe < fs[best]) || !(f_probe < fs[nb])) {
             *x = end; /* minimum on the bound of the box */
             return BF_OK;
         }
         if (best == 0) {
-            return brent(c, end, probe, xs[nb], fs[best], f_probe, fs[nb], x);
+            return brent(fn, end, probe, xs[nb], fs[best], f_probe, fs[nb], x);
         }
-        return brent(c, xs[nb], probe, end, fs[nb], f_probe, fs[best], x);
+        return brent(fn, xs[nb], probe, end, fs[nb], f_probe, fs[best], x);
     }
+}
+
+/* The samples of a box [lo, hi] for minimise_1d: scan points, or its ends
+ * with the start between them. Returns their number. */
+static size_t box_samples(double lo, double hi, double start, size_t pts,
+                          double *xs)
+{
+    size_t m = 0;
+    size_t i;
+    for (i = 0; i < pts; i++) {
+        double xi = lo + (hi - lo) * (double)i / (double)(pts - 1);
+        if (m > 0 && xs[m - 1] < start && start < xi) {
+            xs[m++] = start;
+        }
+        xs[m++] = i + 1 == pts ? hi : xi;
+    }
+    return m;
+}
+
+/* ==== two, one cheap given the other: nested Brent ======================== */
+
+/* The outer function of the nested search: at outer value x, the minimum
+ * over the inner parameter (Brent from the last inner minimiser). */
+typedef struct {
+    ctx_t *c;
+    size_t o, i;   /* parameter indices: outer, inner */
+    double ai, bi; /* the inner box */
+    double xi;     /* the last inner minimiser */
+    int status;
+} nest_t;
+
+static double f_outer(double x, void *arg)
+{
+    nest_t *t = arg;
+    axis_t inner = {t->c, t->i};
+    gsl_function fn = {f_axis, &inner};
+    double xs[NEST_SAMPLES + 2];
+    double xin;
+    size_t m;
+    int rc;
+    t->c->param[t->o] = x;
+    m = box_samples(t->ai, t->bi, t->xi, NEST_SAMPLES, xs);
+    rc = minimise_1d(&fn, xs, m, &xin);
+    if (rc != BF_OK && t->status == BF_OK) {
+        t->status = rc;
+    }
+    t->xi = xin;
+    return f_axis(xin, &inner);
+}
+
+/* Minimises over the two moving parameters, the cheap one (kernel's
+ * cheap) inside: the outer Brent calls the expensive model terms once per
+ * value (FC's Fresnel factor, WNO-R's ring sums), every inner step only the
+ * cheap rest. Same box, same tolerances as the simplex. */
+static int minimise_nested(ctx_t *c, const double *x0, size_t cheap)
+{
+    size_t slot_i = c->free[0] == cheap ? 0 : 1;
+    size_t slot_o = 1 - slot_i;
+    nest_t t = {c, c->free[slot_o], c->free[slot_i], c->a[slot_i],
+                c->b[slot_i], x0[cheap], BF_OK};
+    gsl_function fn = {f_outer, &t};
+    double xs[3];
+    double xo;
+    size_t m = box_samples(c->a[slot_o], c->b[slot_o], x0[t.o], 2, xs);
+    int rc = minimise_1d(&fn, xs, m, &xo);
+    (void)f_outer(xo, &t); /* the minimiser's inner parameter */
+    return rc != BF_OK ? rc : t.status;
 }
 
 /* ==== two or more: Nelder-Mead on the sine-mapped box ===================== */
@@ -270,25 +347,20 @@ static unsigned hold_flat(ctx_t *c, double f0)
  * in c->param. */
 static int search(ctx_t *c, const double *x0, int scan)
 {
-    double xs[SCAN_POINTS + 2];
     int rc = BF_OK;
+    int cheap = c->fc->pm->kr->cheap;
     if (c->n_free == 1) {
-        size_t m = 0;
-        size_t i;
+        axis_t ax = {c, c->free[0]};
+        gsl_function fn = {f_axis, &ax};
+        double xs[SCAN_POINTS + 2];
         double x;
-        double lo = c->a[0];
-        double hi = c->b[0];
-        double xstart = x0[c->free[0]];
-        size_t pts = scan ? SCAN_POINTS : 2;
-        for (i = 0; i < pts; i++) {
-            double xi = lo + (hi - lo) * (double)i / (double)(pts - 1);
-            if (m > 0 && xs[m - 1] < xstart && xstart < xi) {
-                xs[m++] = xstart;
-            }
-            xs[m++] = i + 1 == pts ? hi : xi;
-        }
-        rc = minimise_1d(c, xs, m, &x);
+        size_t m = box_samples(c->a[0], c->b[0], x0[c->free[0]],
+                               scan ? SCAN_POINTS : 2, xs);
+        rc = minimise_1d(&fn, xs, m, &x);
         c->param[c->free[0]] = x;
+    } else if (c->n_free == 2 && cheap >= 0 && !scan &&
+               (c->free[0] == (size_t)cheap || c->free[1] == (size_t)cheap)) {
+        rc = minimise_nested(c, x0, (size_t)cheap);
     } else if (c->n_free > 1) {
         rc = minimise_nd(c, x0);
     }

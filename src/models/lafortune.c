@@ -67,7 +67,7 @@ static void lftg_terms(const bf_kernel *kr, const bf__cset *cs, double *terms)
 
 static const bf_kernel lftg_kernel = {1,    0, lftg_terms, NULL,
                                       bf__lftg_kvalues, NULL,
-                                      BF__BLOCK_LFTG, 0, 0};
+                                      BF__BLOCK_LFTG, 0, 0, -1, NULL, NULL};
 
 static const bf_model_type lftg_type = {
     "LFTG", "Lafortune diffuse lobe",

@@ -46,7 +46,8 @@ static int lambert_values(const bf__prep *pm, const double *param,
 
 static const bf_kernel lambert_kernel = {1,    0, lambert_terms, NULL,
                                          lambert_values, NULL,
-                                         BF__BLOCK_NONE, 0, 0};
+                                         BF__BLOCK_NONE, 0, 0, -1, NULL,
+                                         NULL};
 
 static const bf_model_type lambert_type = {
     "LAMBERT", "Lambertian baseline (cos theta_i)", "SPEC §6a", 0, NULL,

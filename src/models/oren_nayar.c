@@ -212,7 +212,8 @@ static size_t on_kclamped(const bf__prep *pm, const double *param)
 }
 
 static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
-                                    on_kclamped, BF__BLOCK_NONE, 0, 0};
+                                    on_kclamped, BF__BLOCK_NONE, 0, 0, -1,
+                                    NULL, NULL};
 
 /* rho and sigma are fixed inputs of the study (CURET's op.dat, the paper's
  * Table 2), not fitted: no grid. Defaults give Lambert (sigma = 0). The

@@ -59,6 +59,7 @@
  */
 #include <gsl/gsl_integration.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fit/engine.h"
@@ -155,22 +156,31 @@ static void wnor_weights(const wnor_rule *r, double sigma, double *c)
 
 /* ==== the ring sums ====================================================== */
 
-/* 1 - f(x, n) for a facet with cos x = c in (0, 1] and n >= 1 (SPEC §4.1;
- * from air, so no total internal reflection). */
-static inline double wnor_trans(double c, double n)
+/* 1 - f(x, n) for a facet with cos x = c in (0, 1] and n >= 1, inv_n2 =
+ * 1/n^2 (SPEC §4.1, from air, so no total internal reflection): f = 1/2
+ * a^2 (1 + b^2) with a = (n ct - c)/(n ct + c), b = (n c ct - s^2)/(n c ct
+ * + s^2) (bf__fresnel_s2ct), over one common denominator: one division
+ * instead of two. */
+static inline double wnor_trans(double c, double n, double inv_n2)
 {
-    double s2 = (1.0 - c) * (1.0 + c);           /* sin^2 x */
-    double ct = sqrt(1.0 - (s2 / (n * n)));      /* cos of the refracted */
-    return 1.0 - bf__fresnel_s2ct(s2, c, ct, n); /* SPEC §4.1 */
+    double s2 = (1.0 - c) * (1.0 + c);     /* sin^2 x */
+    double ct = sqrt(1.0 - (s2 * inv_n2)); /* cos of the refracted */
+    double an = (n * ct) - c;              /* (P4), SPEC §4.1 */
+    double ad = (n * ct) + c;
+    double bn = (n * c * ct) - s2;
+    double bd = (n * c * ct) + s2;
+    double a2 = an * an;
+    double bd2 = bd * bd;
+    return 1.0 - (0.5 * a2 * (bd2 + (bn * bn)) / ((ad * ad) * bd2));
 }
 
 /* The ring sums of one configuration: b[i * stride] = sum over ring i's
  * facets of L_f <a,v> G / <v,n> ([1]-[4]; before the weights), l, v unit
  * vectors in the frame of the rule's azimuths, l[2] = <l,n> > 0. The facet
- * loop is branch-free so that it vectorises (the file is built like
- * src/fit/kernels.c: -O3, one clone per ISA); each ring is summed in a
- * fixed order (8 interleaved partial sums), so the value has the same bits
- * on every ISA and thread count. */
+ * loop is branch-free and division-light so that it vectorises (the file
+ * is built like src/fit/kernels.c: -O3, one clone per ISA); each ring is
+ * summed in a fixed order (8 interleaved partial sums), so the value has
+ * the same bits on every ISA and thread count. */
 BF__CLONES
 static void wnor_rings(const wnor_rule *r, const double l[3],
                        const double v[3], double n, double *b, size_t stride)
@@ -178,11 +188,13 @@ static void wnor_rings(const wnor_rule *r, const double l[3],
     double term[WNOR_NP];
     double cl = l[2];
     double cv = v[2];
-    /* <a,v> G / <v,n> is min(<a,v>, 2 <a,n> <v,n>, 2 <a,n> <l,n> <a,v> /
-     * <a,l>) / <v,n>; at grazing view (<v,n> = 0) its limit is 2 <a,n> (0
-     * when the light is grazing too, never here: cl > 0). The arguments
-     * are scaled by ms = 1/<v,n> up front (+inf at grazing view) so that
-     * one loop serves both cases. */
+    double inv_n2 = 1.0 / (n * n);
+    /* <a,l> <a,v> G / <v,n> [3], [4] is min(<a,l> <a,v>, 2 <a,n> <v,n>
+     * <a,l>, 2 <a,n> <l,n> <a,v>) / <v,n> (G's min multiplied by <a,l> >
+     * 0, no division); at grazing view (<v,n> = 0) its limit is 2 <a,n>
+     * <a,l> (the light is never grazing here: cl > 0). The arguments are
+     * scaled by ms = 1/<v,n> up front (+inf at grazing view) so that one
+     * loop serves both cases. */
     double ms = (cv > 0.0) ? 1.0 / cv : HUGE_VAL;
     size_t i;
     size_t j;
@@ -202,14 +214,15 @@ static void wnor_rings(const wnor_rule *r, const double l[3],
             int vis = (al > 0.0) & (av > 0.0);
             double als = vis ? al : 1.0;
             double avs = vis ? av : 1.0;
-            double mv = avs * ms;                      /* <a,v> / <v,n> */
-            double m2 = 2.0 * az[j];                   /* 2 <a,n> */
-            double m3 = m2 * cl * (avs / als) * ms;    /* shadowing */
-            double gav = (mv < m2) ? mv : m2;
+            double m2 = 2.0 * az[j];                /* 2 <a,n> */
+            double g1 = (als * avs) * ms;           /* no masking */
+            double g2 = (m2 * als);                 /* masking, x <a,l> */
+            double g3 = (m2 * cl * avs) * ms;       /* shadowing */
+            double gal = (g1 < g2) ? g1 : g2;
             double t;
-            gav = (m3 < gav) ? m3 : gav;
+            gal = (g3 < gal) ? g3 : gal;
             /* L_f <a,v> G / <v,n>, [1]-[4] */
-            t = als * wnor_trans(als, n) * wnor_trans(avs, n) * gav;
+            t = wnor_trans(als, n, inv_n2) * wnor_trans(avs, n, inv_n2) * gal;
             term[j] = vis ? t : 0.0;
         }
         for (j = 0; j < WNOR_NP; j += 8) {
@@ -328,6 +341,191 @@ static void wnor_terms(const bf_kernel *kr, const bf__cset *cs, double *terms)
     wnor_rule_init((wnor_rule *)(void *)(terms + R_NT * n));
 }
 
+/* ==== the ring sums as Chebyshev series in n ============================ */
+
+/* The ring sums B_i(n) of every configuration are analytic in n on n > 1
+ * (their singularities lie at n = sqrt(1 - c^2) <= 1 for facet cosines
+ * c): on each panel of n they are their Chebyshev series, to the last
+ * bits. Panels: 0.1 wide from 1.1 to 2.6, 0.5 wide to 10.1; their degree
+ * is where the coefficients fall to 1e-16 of the leading one for CURET's
+ * geometry (tested against the exact sums at random n: within 2e-15 of
+ * the curve's maximum). Below 1.1 the sums are taken exactly. A panel's
+ * table is built the first time an n in it is needed: its Chebyshev nodes'
+ * exact sums (the degree + 1 of them), then the coefficients. */
+#define WNOR_N_LO 1.1
+#define WNOR_N_MID 2.6
+#define WNOR_N_HI 10.1
+#define WNOR_NARROW 15  /* panels of 0.1 in [1.1, 2.6] */
+#define WNOR_WIDE 15    /* panels of 0.5 in [2.6, 10.1] */
+#define WNOR_NPANEL (WNOR_NARROW + WNOR_WIDE)
+#define WNOR_DEG_MAX 19
+
+/* The lower edge of panel p (p = WNOR_NPANEL: the upper end). */
+static double panel_edge(int p)
+{
+    return p <= WNOR_NARROW ? WNOR_N_LO + 0.1 * p
+                            : WNOR_N_MID + 0.5 * (p - WNOR_NARROW);
+}
+
+/* The panel of n, or -1 outside [1.1, 10.1); its ends and degree. The
+ * edges are the doubles panel_edge gives, whatever the rounding of the
+ * first guess. */
+static int n_panel(double n, double *lo, double *hi, size_t *deg)
+{
+    int p;
+    if (!(n >= WNOR_N_LO) || !(n < WNOR_N_HI)) {
+        return -1;
+    }
+    p = n < WNOR_N_MID ? (int)floor((n - WNOR_N_LO) / 0.1)
+                       : WNOR_NARROW + (int)floor((n - WNOR_N_MID) / 0.5);
+    p = p < 0 ? 0 : (p >= WNOR_NPANEL ? WNOR_NPANEL - 1 : p);
+    while (p > 0 && n < panel_edge(p)) {
+        p--;
+    }
+    while (p + 1 < WNOR_NPANEL && n >= panel_edge(p + 1)) {
+        p++;
+    }
+    *lo = panel_edge(p);
+    *hi = panel_edge(p + 1);
+    *deg = p == 0 ? WNOR_DEG_MAX : 15; /* [1.1, 1.2] nearest to 1 */
+    return n >= *lo && n < *hi ? p : -1;
+}
+
+typedef struct {
+    int built[WNOR_NPANEL];   /* published with an atomic write */
+    double *coef[WNOR_NPANEL]; /* (deg + 1) x WNOR_NT x K, degree-major */
+} wnor_tables;
+
+static int wnor_prepare(bf__prep *pm)
+{
+    pm->cache = calloc(1, sizeof(wnor_tables));
+    return pm->cache != NULL ? BF_OK : BF_ENOMEM;
+}
+
+static void wnor_release(bf__prep *pm)
+{
+    wnor_tables *tb = pm->cache;
+    size_t p;
+    for (p = 0; p < WNOR_NPANEL; p++) {
+        free(tb->coef[p]);
+    }
+    free(tb);
+}
+
+/* The exact ring sums of every configuration at n into b (WNOR_NT x K,
+ * ring-major). */
+static void exact_sums(const bf__prep *pm, double n_index, double *b)
+{
+    const double *t = pm->terms;
+    const wnor_rule *r = (const wnor_rule *)(const void *)(t + R_NT * pm->n);
+    size_t n = pm->n;
+    size_t k;
+    size_t i;
+    for (k = 0; k < n; k++) {
+        double l[3] = {t[R_L0 * n + k], t[R_L1 * n + k], t[R_L2 * n + k]};
+        double v[3] = {t[R_V0 * n + k], t[R_V1 * n + k], t[R_V2 * n + k]};
+        if (l[2] > 0.0) {
+            wnor_rings(r, l, v, n_index, b + k, n);
+        } else {
+            for (i = 0; i < WNOR_NT; i++) {
+                b[i * n + k] = 0.0; /* theta_i = pi/2: L = 0 */
+            }
+        }
+    }
+}
+
+/* Builds panel p's table: the exact sums at its deg + 1 Chebyshev nodes,
+ * then c_d = (2 - [d = 0]) / (deg + 1) sum_j B(n_j) cos(pi d (j + 1/2) /
+ * (deg + 1)). NULL when out of memory. */
+static double *build_panel(const bf__prep *pm, double lo, double hi,
+                           size_t deg)
+{
+    size_t m = WNOR_NT * pm->n;
+    size_t nodes = deg + 1;
+    double *vals = malloc(nodes * m * sizeof *vals);
+    double *coef = calloc(nodes * m, sizeof *coef);
+    size_t j;
+    size_t d;
+    size_t e;
+    if (vals == NULL || coef == NULL) {
+        free(vals);
+        free(coef);
+        return NULL;
+    }
+    for (j = 0; j < nodes; j++) {
+        double x = cos(BF__PI * ((double)j + 0.5) / (double)nodes);
+        exact_sums(pm, 0.5 * (lo + hi) + 0.5 * (hi - lo) * x, vals + j * m);
+    }
+    for (d = 0; d < nodes; d++) {
+        double f = (d == 0 ? 1.0 : 2.0) / (double)nodes;
+        double *cd = coef + d * m;
+        for (j = 0; j < nodes; j++) {
+            double w = f * cos(BF__PI * (double)d * ((double)j + 0.5) /
+                               (double)nodes);
+            const double *vj = vals + j * m;
+            for (e = 0; e < m; e++) {
+                cd[e] += w * vj[e];
+            }
+        }
+    }
+    free(vals);
+    return coef;
+}
+
+/* The table of panel p, built on first use (under a lock; every thread
+ * then reads it). NULL when out of memory. */
+static const double *panel_table(const bf__prep *pm, int p, double lo,
+                                 double hi, size_t deg)
+{
+    wnor_tables *tb = pm->cache;
+    int built;
+#pragma omp atomic read
+    built = tb->built[p];
+    if (!built) {
+#pragma omp critical(bf_wnor_tables)
+        {
+            if (!tb->built[p]) {
+                tb->coef[p] = build_panel(pm, lo, hi, deg);
+                if (tb->coef[p] != NULL) {
+#pragma omp atomic write
+                    tb->built[p] = 1;
+                }
+            }
+        }
+#pragma omp atomic read
+        built = tb->built[p];
+    }
+    return built ? tb->coef[p] : NULL;
+}
+
+/* The ring sums at n from panel table c (degree deg, on [lo, hi]): the
+ * Chebyshev series sum_d c_d T_d(y), y the position in the panel, added
+ * from the highest degree down. */
+BF__CLONES
+static void series_sums(const double *restrict c, size_t m, size_t deg,
+                        double y, double *restrict b)
+{
+    double tdeg[WNOR_DEG_MAX + 1];
+    size_t d;
+    size_t e;
+    tdeg[0] = 1.0;
+    tdeg[1] = y;
+    for (d = 2; d <= deg; d++) {
+        tdeg[d] = 2.0 * y * tdeg[d - 1] - tdeg[d - 2]; /* T_d(y) */
+    }
+    for (e = 0; e < m; e++) {
+        b[e] = 0.0;
+    }
+    for (d = deg + 1; d-- > 0;) {
+        const double *restrict cd = c + d * m;
+        double td = tdeg[d];
+#pragma omp simd
+        for (e = 0; e < m; e++) {
+            b[e] += cd[e] * td;
+        }
+    }
+}
+
 /* The workspace: the ring sums of the last WNOR_SLOTS indices n (ring-
  * major rows of the configurations, b[i * K + k]) and the weights of the
  * last sigma. A slot's content is a function of its n alone, so hits and
@@ -348,15 +546,17 @@ static size_t wnor_work_bytes(const bf_kernel *kr, size_t n)
     return sizeof(wnor_work) + WNOR_SLOTS * WNOR_NT * n * sizeof(double);
 }
 
-/* The ring sums of every configuration at index n_index. */
+/* The ring sums of every configuration at index n_index: from its panel's
+ * series (the exact sums outside the panels). NULL when out of memory. */
 static const double *wnor_sums(const bf__prep *pm, double n_index,
                                wnor_work *w)
 {
-    const double *t = pm->terms;
-    const wnor_rule *r = (const wnor_rule *)(const void *)(t + R_NT * pm->n);
     size_t n = pm->n;
     size_t slot;
-    size_t k;
+    double lo;
+    double hi;
+    size_t deg;
+    int p;
     double *b;
     for (slot = 0; slot < WNOR_SLOTS; slot++) {
         if (w->used[slot] && w->n[slot] == n_index) {
@@ -364,20 +564,19 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
         }
     }
     slot = w->next;
-    w->next = (w->next + 1) % WNOR_SLOTS;
     b = w->b + slot * WNOR_NT * n;
-    for (k = 0; k < n; k++) {
-        double l[3] = {t[R_L0 * n + k], t[R_L1 * n + k], t[R_L2 * n + k]};
-        double v[3] = {t[R_V0 * n + k], t[R_V1 * n + k], t[R_V2 * n + k]};
-        if (l[2] > 0.0) {
-            wnor_rings(r, l, v, n_index, b + k, n);
-        } else {
-            size_t i;
-            for (i = 0; i < WNOR_NT; i++) {
-                b[i * n + k] = 0.0; /* theta_i = pi/2: L = 0 */
-            }
+    p = n_panel(n_index, &lo, &hi, &deg);
+    if (p < 0) {
+        exact_sums(pm, n_index, b);
+    } else {
+        const double *c = panel_table(pm, p, lo, hi, deg);
+        if (c == NULL) {
+            return NULL;
         }
+        series_sums(c, WNOR_NT * n, deg, (2.0 * n_index - lo - hi) / (hi - lo),
+                    b);
     }
+    w->next = (w->next + 1) % WNOR_SLOTS;
     w->used[slot] = 1;
     w->n[slot] = n_index;
     return b;
@@ -402,6 +601,12 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
         return BF_OK;
     }
     b = wnor_sums(pm, param[1], w);
+    if (b == NULL) {
+        for (k = 0; k < n; k++) {
+            out[k] = NAN; /* out of memory for a table */
+        }
+        return BF_EDOM;
+    }
     if (w->sigma != param[0]) {
         wnor_weights(r, param[0], w->c);
         w->sigma = param[0];
@@ -420,11 +625,10 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
     return BF_OK;
 }
 
-static const bf_kernel wnor_kernel = {R_NT,          R_EXTRA,
-                                      wnor_terms,    wnor_work_bytes,
-                                      wnor_values,   NULL,
-                                      BF__BLOCK_NONE, 0,
-                                      0};
+static const bf_kernel wnor_kernel = {
+    R_NT,        R_EXTRA,        wnor_terms, wnor_work_bytes,
+    wnor_values, NULL,           BF__BLOCK_NONE, 0,
+    0,           0,              wnor_prepare, wnor_release};
 
 /* ==== the type ============================================================ */
 

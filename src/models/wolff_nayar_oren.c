@@ -84,8 +84,10 @@ static int wno_values(const bf__prep *pm, const double *param, void *work,
     return BF_OK;
 }
 
-static const bf_kernel wno_kernel = {F_NT, 0, wno_terms, NULL, wno_values,
-                                     NULL, BF__BLOCK_NONE, 0, 0};
+static const bf_kernel wno_kernel = {F_NT,       0, wno_terms, NULL,
+                                     wno_values, NULL, BF__BLOCK_NONE,
+                                     0,          0, -1,        NULL,
+                                     NULL};
 
 /* n is fitted over [1.2, 2.5] (typical dielectrics, SPEC §4.2), step 0.01;
  * the domain is that of FC's n. */
