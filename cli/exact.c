@@ -244,6 +244,13 @@ static void flags_field(FILE *fp, const bf_model_type *type,
     }
     if (s->flags & BF_STAT_BOOT_FAIL) {
         fprintf(fp, "%sbootstrap_failed", sep);
+        sep = " ";
+    }
+    for (j = 0; j < type->p; j++) {
+        if ((s->boot_split >> j) & 1u) {
+            fprintf(fp, "%sbootstrap_split=%s", sep, type->param[j].name);
+            sep = " ";
+        }
     }
 }
 

@@ -1108,7 +1108,11 @@ enum {
                                   configurations, doc/methods.md §8) */
     BF_STAT_CI_FAIL = 1u << 3, /* a profile interval could not be found
                                   (its ends are NaN) */
-    BF_STAT_BOOT_FAIL = 1u << 4 /* the bootstrap could not be done */
+    BF_STAT_BOOT_FAIL = 1u << 4, /* the bootstrap could not be done */
+    BF_STAT_BOOT_SPLIT = 1u << 5 /* a parameter's replicate estimates fall
+                                   into separate groups (optima in
+                                   different basins): its percentile
+                                   interval spans them (boot_split) */
 };
 
 /* The analysis of one (sample, model) pair. Fields of parameters that are
@@ -1133,6 +1137,8 @@ typedef struct {
     size_t n_clamped;               /* BF_STAT_CLAMPED: configurations */
     const char *reduces_to;         /* BF_STAT_REDUCED: the model it is
                                        (static storage), else NULL */
+    unsigned boot_split;            /* bit j: parameter j's replicates
+                                       split (BF_STAT_BOOT_SPLIT) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under

@@ -251,10 +251,16 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         st->ci_open |= open << (2 * j);
     }
     if (opts->n_boot >= 2 && pb.free_mask != 0) {
+        unsigned split = 0;
         rc = gp->gr == NULL ? gp->status
                             : bf__bootstrap(fc, gp->gr, opts->n_boot,
                                             opts->seed, opts->level, NULL,
-                                            NULL, st->boot_low, st->boot_high);
+                                            NULL, st->boot_low, st->boot_high,
+                                            &split);
+        st->boot_split = split;
+        if (split != 0) {
+            st->flags |= BF_STAT_BOOT_SPLIT;
+        }
         if (rc == BF_ENOMEM) {
             return rc;
         }

@@ -28,10 +28,32 @@
 /* Replicates whose grid optima are scored together (their weights, the
  * scores: BATCH x grid columns doubles). */
 #define BATCH 64
+/* A gap between replicate estimates wider than this share of the interval
+ * splits it (is_split). */
+#define SPLIT_GAP 0.25
+
+/* 1 when the sorted estimates e[0..m) fall into separate groups inside
+ * the interval [low, high]: a gap wider than SPLIT_GAP of it with at least
+ * the interval's tail share (1 - level)/2 of the replicates on either
+ * side -- replicates whose optima lie in different basins of the
+ * objective, so the percentile interval spans both (doc/methods.md §3). */
+static int is_split(const double *e, size_t m, double low, double high,
+                    double level)
+{
+    size_t tail = (size_t)ceil(0.5 * (1.0 - level) * (double)m);
+    size_t i;
+    for (i = 1; i < m; i++) {
+        if (e[i - 1] >= low && e[i] <= high && i >= tail && m - i >= tail &&
+            e[i] - e[i - 1] > SPLIT_GAP * (high - low)) {
+            return 1;
+        }
+    }
+    return 0;
+}
 
 int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
                   unsigned long seed, double level, double *est,
-                  size_t *n_est, double *low, double *high)
+                  size_t *n_est, double *low, double *high, unsigned *split)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
@@ -46,6 +68,9 @@ int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
     size_t j;
     int rc = BF_OK;
 
+    if (split != NULL) {
+        *split = 0;
+    }
     if (rng == NULL || w == NULL || g == NULL || e == NULL) {
         rc = BF_ENOMEM;
         goto done;
@@ -101,6 +126,9 @@ int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
                                                      0.5 * (1.0 - level));
         high[j] = gsl_stats_quantile_from_sorted_data(ej, 1, used,
                                                       0.5 * (1.0 + level));
+        if (split != NULL && is_split(ej, used, low[j], high[j], level)) {
+            *split |= 1u << j;
+        }
     }
     if (rc == BF_OK && used < 2) {
         rc = BF_EDOM;
@@ -132,7 +160,7 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_curves *curves,
         return rc;
     }
     rc = bf__bootstrap(&so.fc, bf__curves_grid(curves), n_boot, seed, level,
-                       NULL, NULL, low, high);
+                       NULL, NULL, low, high, NULL);
     bf__solo_free(&so);
     return rc;
 }

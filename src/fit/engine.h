@@ -313,10 +313,12 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                    double level, double *low, double *high, unsigned *open);
 /* bf_fit_bootstrap on fc with the grid gr of fc->pb's free parameters;
  * est (n_boot x BF_MAX_PARAMS, parameter-major, sorted per parameter on
- * return, NULL: not kept) and *n_est (may be NULL) get the estimates. */
+ * return, NULL: not kept) and *n_est (may be NULL) get the estimates;
+ * *split (may be NULL) bit j when parameter j's estimates fall into
+ * separate groups (replicates in different basins). */
 int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
                   unsigned long seed, double level, double *est,
-                  size_t *n_est, double *low, double *high);
+                  size_t *n_est, double *low, double *high, unsigned *split);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
  * bf__grid_optima_folds), or NULL to compute them. */

@@ -52,6 +52,8 @@ typedef struct {
     bf__fitctx *fc;
     bf_problem sub;              /* the problem with j fixed */
     double start[BF_MAX_PARAMS]; /* nuisance optimum of the last point */
+    double anchor[BF_MAX_PARAMS]; /* the root finder's start: the nuisance
+                                    optimum at the bracket's inside end */
     size_t j;
     double s_min;                /* objective at the optimum */
     double n_w;                  /* sum of the weights */
@@ -164,10 +166,17 @@ static double crit_at(profile_t *p, double theta, int thorough,
     return p->n_w * log(s / p->s_min) - p->chi2;
 }
 
+/* The root finder's criterion: every point refined from the same start,
+ * the bracket's inside end's nuisance optimum, so that the function it
+ * sees is one basin's, continuous, whatever order it evaluates in (a start
+ * carried from point to point can hop to another basin between the two
+ * ends of the bracket). */
 static double crit_warm(double theta, void *arg)
 {
+    profile_t *p = arg;
     int improved;
-    return crit_at(arg, theta, 0, &improved);
+    memcpy(p->start, p->anchor, sizeof p->start);
+    return crit_at(p, theta, 0, &improved);
 }
 
 /* Root of the warm criterion in [in, out] (crit(in) <= 0 < crit(out)). */
@@ -258,7 +267,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     for (verify = 0; verify < CI_VERIFY; verify++) {
         double c;
         /* the warm starts begin at the bracket's inside point */
-        memcpy(p->start, inside, sizeof inside);
+        memcpy(p->anchor, inside, sizeof inside);
         rc = root(p, x, out, end);
         if (rc != BF_OK || p->status != BF_OK) {
             break;

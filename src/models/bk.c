@@ -248,8 +248,7 @@ static const bf_param param_fc_e[2] = {
 /* The engine's kernels (src/fit/kernels.c): one per member. */
 #define BK_KERNEL(factor, corr)                                              \
     {BF__BK_NTERMS, BF__BK_NEXTRA, bf__bk_kterms, bf__bk_kwork,             \
-     bf__bk_kvalues, NULL, BF__BLOCK_BK, (factor), (corr),                  \
-     (factor) == BF__BK_FACTOR_FC ? 0 : -1, NULL, NULL}
+     bf__bk_kvalues, NULL, BF__BLOCK_BK, (factor), (corr), -1, NULL, NULL}
 static const bf_kernel kr_bk_g = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS);
 static const bf_kernel kr_bk_e = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_EXP);
 static const bf_kernel kr_vh_g = BK_KERNEL(BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS);
