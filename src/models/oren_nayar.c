@@ -34,10 +34,13 @@
  * 0.05, sigma 1, theta_i 1.43117, theta_s pi/2, phi_s 0 gives -1.7e-4). A
  * radiance cannot be negative; the term is Oren & Nayar's fit to their
  * numerical model, not physics, and their exact model is non-negative, so
- * 0 is the physically meaningful value there. The clamp never acts on the
- * study: CURET's zeniths stop at 1.464 and its samples' sigma at 0.978,
- * where the formula is positive, so Tables 2 and 3 are unchanged (checked
- * by test_oren_nayar and test_reproduction).
+ * 0 is the physically meaningful value there. The clamp never acts at the
+ * study's tabulated values: CURET's zeniths stop at 1.464 and its samples'
+ * sigma at 0.978, where the formula is positive, so Tables 2 and 3 are
+ * unchanged (checked by test_oren_nayar and test_reproduction). Where ON
+ * is fitted it can (sigma = 1.57 on samples 7, 19, 61: three
+ * configurations); the kernel counts where (on_kclamped) and the analysis
+ * flags those fits (doc/methods.md §8).
  */
 #include <math.h>
 
