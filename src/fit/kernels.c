@@ -760,7 +760,7 @@ double bf__sum_weighted(size_t n, const double *c, const double *d,
 /* Grid columns whose squared residuals are formed at once (in L2), lanes of
  * one accumulator block, weight vectors per tile: WTILE x WLANES
  * accumulators stay in registers (12 of AVX2's 16). */
-#define WSUPER 256
+#define WSUPER 128
 #define WLANES 4
 #define WTILE 8
 
