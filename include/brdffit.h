@@ -989,6 +989,22 @@ void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
 int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
                          double hi, double step);
 
+/* Makes parameter name fitted over [lo, hi] with its own grid step (its
+ * paper grid's, or (hi - lo) / 100 for a parameter without a grid): the
+ * policy of a user's search range (--range NAME=LO:HI). BF_ENOTFOUND when
+ * v has no such parameter; BF_EINVAL as bf_model_variant_fit (outside
+ * [min, max], lo >= hi, more than BF_VARIANT_MAX_GRID points). */
+int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
+                           double hi);
+
+/* The exact fit's policy (doc/methods.md §6): frees every input parameter
+ * of v that has an exact-fit range (bf_param.free_lo < free_hi: FC's n
+ * over [BF_FREE_N_LO, BF_FREE_N_HI], ON's rho over [0.05, 1] and sigma over
+ * [0, 1.57]), fitted over the grid free_lo, free_lo + free_step, ...,
+ * except inputs of the kinds in keep (bit 1u << BF_INPUT_INDEX: the user
+ * gave n, so n stays the input). Returns the number of parameters freed. */
+size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+
 /* Ranges that --fit exact frees by default (doc/methods.md §6). */
 #define BF_FREE_N_LO 1.2
 #define BF_FREE_N_HI 2.5
@@ -1095,6 +1111,11 @@ typedef struct {
     void *progress_ctx;
 } bf_analysis_opts;
 
+/* Fills o with the defaults of the analysis (the CLI's): objective max
+ * (the paper's), exact 0, level 0.95, no bootstrap, 10 folds, seed 1, no
+ * progress callback. */
+void bf_analysis_opts_init(bf_analysis_opts *o);
+
 /* What the analysis of one pair says about its fit (bf_fit_stats.flags). */
 enum {
     BF_STAT_NOCONV = 1u << 0,  /* the refinement stopped at its iteration
@@ -1193,6 +1214,72 @@ void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
  * SIZE_MAX. models and stats: the target's n_models entries. */
 const char *bf_rank_winner(const bf_model_type *const *models,
                            const bf_fit_stats *stats, size_t best);
+
+/* bf_rank for every target of a study analysed with bf_study_analyse
+ * (stats: n_targets x n_models, target-major): rank (n_targets x
+ * n_models) and best (n_targets; SIZE_MAX for a target no model could be
+ * ranked on), either may be NULL. BF_EINVAL for a NULL spec or stats,
+ * BF_ENOMEM. */
+int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, size_t *rank, size_t *best);
+
+/* The wins of each model over the study's targets by criterion c (the
+ * best model of each target, bf_study_rank; a win counts for the model
+ * bf_rank_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
+ * entries of names (static storage) and wins, most wins first, equal
+ * counts in the order of the first win. names and wins need room for
+ * 2 * spec->n_models entries. Targets without a best model are not
+ * counted. BF_EINVAL for NULL arguments, BF_ENOMEM. */
+int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, const char **names, size_t *wins,
+                  size_t *n_names);
+
+/* ======================================================================
+ * --- output files: fits.csv and ranking.csv (README "Output files") ---
+ * ====================================================================== */
+
+/* What the analysis says about a fit, as words separated by spaces into
+ * buf (len bytes, always terminated; "" for none): reduces_to=MODEL,
+ * not_identified=PARAM (a flat direction of the refinement),
+ * clamped=COUNT (ON clamped at 0 on COUNT configurations), not_converged,
+ * interval_failed, bootstrap_failed, bootstrap_split=PARAM (doc/methods.md
+ * §2, §3, §8). type: the row's model. Returns the length of the full text
+ * (as snprintf). */
+size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
+                           char *buf, size_t len);
+
+/* Writes fits.csv for a study: a header line, then one line per (target,
+ * model, fitted parameter) in target-major order, a model without fitted
+ * parameters on one line with parameter, unit and value empty; rows whose
+ * status is not BF_OK are left out. Columns: sample, name, channel,
+ * model, parameter, unit, value, lse, bound_hit, k (configurations used),
+ * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
+ * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
+ * n_params, aic, bic, cv, flags (bf_fit_flags_format). rows: from
+ * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
+ * (the analysis columns empty); opts: the analysis's, or NULL (objective
+ * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields
+ * quoted as RFC 4180 when needed. BF_EINVAL for NULL fp, spec or rows;
+ * BF_EIO when the stream reports a write error. */
+int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      const bf_analysis_opts *opts);
+
+/* Writes ranking.csv for an analysed study: a header line, then one line
+ * per (target, model) that was analysed. Columns: sample, name, channel,
+ * model, objective, fit, k (parameters counted), n (configurations),
+ * objective_value (the fit's objective), aic, bic, cv, rank_aic, rank_bic,
+ * rank_cv (bf_study_rank), best_aic, best_bic, best_cv (1 on the target's
+ * best model after the tie-break), counts_as (the model its wins count for,
+ * bf_rank_winner), flags (bf_fit_flags_format), then for each of the
+ * study's P fitted-parameter slots (P = the most fitted parameters of any
+ * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_boot_low,
+ * pJ_boot_high (J = 1..P: the model's J-th fitted parameter, its value,
+ * profile and bootstrap interval; empty beyond the model's own). Formats
+ * and errors as bf_fits_csv_write; stats is required. */
+int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
+                         const bf_study_row *rows, const bf_fit_stats *stats,
+                         const bf_analysis_opts *opts);
 
 #ifdef __cplusplus
 }

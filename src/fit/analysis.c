@@ -500,3 +500,12 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
     free(r.have);
     return rc;
 }
+
+void bf_analysis_opts_init(bf_analysis_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->objective = BF_OBJ_MAX; /* the paper's (SPEC §2) */
+    o->level = 0.95;
+    o->folds = 10;
+    o->seed = 1;
+}

@@ -15,6 +15,7 @@
 #include <ctype.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
@@ -107,4 +108,80 @@ const char *bf_rank_winner(const bf_model_type *const *models,
         return stats[best].reduces_to; /* [1]: a win of the reduced model */
     }
     return models[best]->name;
+}
+
+int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, size_t *rank, size_t *best)
+{
+    size_t nm;
+    size_t t;
+    size_t *scratch;
+    if (spec == NULL || stats == NULL) {
+        return BF_EINVAL;
+    }
+    nm = spec->n_models;
+    scratch = malloc((nm + 1) * sizeof *scratch);
+    if (scratch == NULL) {
+        return BF_ENOMEM;
+    }
+    for (t = 0; t < spec->n_targets; t++) {
+        size_t b;
+        bf_rank(stats + t * nm, nm, c, rank != NULL ? rank + t * nm : scratch,
+                &b);
+        if (best != NULL) {
+            best[t] = b;
+        }
+    }
+    free(scratch);
+    return BF_OK;
+}
+
+int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, const char **names, size_t *wins,
+                  size_t *n_names)
+{
+    size_t *best;
+    size_t n = 0;
+    size_t t;
+    size_t i;
+    int rc;
+    if (spec == NULL || stats == NULL || names == NULL || wins == NULL ||
+        n_names == NULL) {
+        return BF_EINVAL;
+    }
+    *n_names = 0;
+    best = malloc((spec->n_targets + 1) * sizeof *best);
+    if (best == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = bf_study_rank(spec, stats, c, NULL, best);
+    for (t = 0; rc == BF_OK && t < spec->n_targets; t++) {
+        const char *w = bf_rank_winner(spec->models,
+                                       stats + t * spec->n_models, best[t]);
+        if (w == NULL) {
+            continue;
+        }
+        for (i = 0; i < n && strcmp(names[i], w) != 0; i++) {
+        }
+        if (i == n) { /* a new name: n <= 2 n_models (models, reductions) */
+            names[n] = w;
+            wins[n++] = 0;
+        }
+        wins[i]++;
+    }
+    free(best);
+    /* most wins first; a stable insertion sort keeps first-win order */
+    for (i = 1; i < n; i++) {
+        const char *nm = names[i];
+        size_t w = wins[i];
+        size_t q = i;
+        for (; q > 0 && wins[q - 1] < w; q--) {
+            names[q] = names[q - 1];
+            wins[q] = wins[q - 1];
+        }
+        names[q] = nm;
+        wins[q] = w;
+    }
+    *n_names = n;
+    return rc;
 }

@@ -231,3 +231,96 @@ Test(cli_analysis, no_progress_line_when_stderr_is_not_a_terminal)
     cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0);
     cr_assert_null(strstr(err, "analysing"), "%s", err);
 }
+
+/* ==== rank's output and help (item 6) ===================================== */
+
+Test(cli_analysis, rank_writes_every_model_s_parameters_and_intervals)
+{
+    /* ranking.csv carries each model's fitted parameters with their
+     * profile intervals, the same numbers fits.csv has for the same fit;
+     * ranking.md and standard output show them per model and for the
+     * best model of each sample. */
+    const char *rdir = bf_test_tmpdir();
+    char fdir[1024];
+    const char *a1[] = {"rank", "--data", "DATA", "--samples", "1,26",
+                        "--models", "FC-E,ON,LAMBERT", "--folds", "0",
+                        "--out", rdir, NULL};
+    const char *a2[] = {"compare", "--data", "DATA", "--samples", "1,26",
+                        "--models", "FC-E,ON,LAMBERT", "--fit", "exact",
+                        "--folds", "0", "--out", NULL, "-q", NULL};
+    static const char *const pars[2][2] = {{"m", "n"}, {"rho", "sigma"}};
+    static const char *const models[2] = {"FC-E", "ON"};
+    double want[2][2][3][2]; /* sample, model, value/low/high, param */
+    char path[1024];
+    const char *md;
+    size_t s;
+    size_t m;
+    size_t j;
+    snprintf(fdir, sizeof fdir, "%s", bf_test_tmpdir());
+    a2[12] = fdir;
+    cr_assert_eq(run(a2), 0);
+    bf_test_csv_load(fdir, "fits.csv");
+    for (s = 0; s < 2; s++) {
+        for (m = 0; m < 2; m++) {
+            for (j = 0; j < 2; j++) {
+                size_t r = bf_test_csv_find(s == 0 ? "1" : "26", models[m],
+                                            pars[m][j]);
+                want[s][m][0][j] = bf_test_csv_num(r, "value");
+                want[s][m][1][j] = bf_test_csv_num(r, "ci_low");
+                want[s][m][2][j] = bf_test_csv_num(r, "ci_high");
+            }
+        }
+    }
+    cr_assert_eq(bf_test_run_curet(a1), 0);
+    bf_test_csv_load(rdir, "ranking.csv");
+    for (s = 0; s < 2; s++) {
+        for (m = 0; m < 2; m++) {
+            size_t r = bf_test_csv_find(s == 0 ? "1" : "26", models[m], NULL);
+            for (j = 0; j < 2; j++) {
+                char col[32];
+                snprintf(col, sizeof col, "p%zu", j + 1);
+                cr_assert_str_eq(bf_test_csv_cell(r, col), pars[m][j]);
+                snprintf(col, sizeof col, "p%zu_value", j + 1);
+                cr_assert_float_eq(bf_test_csv_num(r, col),
+                                   want[s][m][0][j], 0.0);
+                snprintf(col, sizeof col, "p%zu_ci_low", j + 1);
+                cr_assert_float_eq(bf_test_csv_num(r, col),
+                                   want[s][m][1][j], 0.0);
+                snprintf(col, sizeof col, "p%zu_ci_high", j + 1);
+                cr_assert_float_eq(bf_test_csv_num(r, col),
+                                   want[s][m][2][j], 0.0);
+            }
+        }
+    }
+    snprintf(path, sizeof path, "%s/ranking.md", rdir);
+    md = bf_test_slurp(path, NULL);
+    cr_assert_not_null(md);
+    cr_assert_not_null(strstr(md, "## Fitted parameters of every model"));
+    cr_assert_not_null(strstr(md, "### FC-E"));
+    cr_assert_not_null(strstr(md, "### ON"));
+    cr_assert_null(strstr(md, "### LAMBERT"), "LAMBERT fits nothing");
+    cr_assert_not_null(strstr(md, "Best model by BIC"));
+    /* Loofa (26): ON's sigma is 0, LAMBERT is best (the tie-break) */
+    cr_assert_not_null(strstr(md, "|  26 | Loofa  | LAMBERT | (none)"), "%s",
+                       md);
+}
+
+Test(cli_analysis, rank_help_shows_rank_s_own_defaults)
+{
+    const char *argv[] = {"rank", "--help", NULL};
+    const char *cargv[] = {"compare", "--help", NULL};
+    const char *out = NULL;
+    cr_assert_eq(bf_test_run_cli(argv, &out, NULL), 0);
+    cr_assert_not_null(strstr(out, "(default all)"), "%s", out);
+    cr_assert_not_null(strstr(out, "(default exact)"), "%s", out);
+    cr_assert_not_null(strstr(out, "LAMBERT,\n                    WNO,WNO-R)"),
+                       "%s", out);
+    cr_assert_not_null(strstr(out, "always on here"), "%s", out);
+    cr_assert_not_null(strstr(out, "default bic"), "%s", out);
+    cr_assert_null(strstr(out, "default of compare"), "%s", out);
+    cr_assert_eq(bf_test_run_cli(cargv, &out, NULL), 0);
+    cr_assert_not_null(strstr(out, "(default paper)"), "%s", out);
+    cr_assert_not_null(strstr(out, "(default VH-G,VH-E,FC-G,FC-E,ON,LFTG)"),
+                       "%s", out);
+    cr_assert_null(strstr(out, "always on here"), "%s", out);
+}
