@@ -6,7 +6,8 @@
 #   make report-all  the report for all 61 samples and every model
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the speed benchmark (never part of the tests; the numpy
-#               baseline runs when /usr/bin/python3 has numpy)
+#               baseline runs when /usr/bin/python3 has numpy, the
+#               numpy/scipy peer of the analysis when it has scipy too)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
@@ -93,7 +94,8 @@ valgrind: build
 bench: build
 	@scripts/install-deps.sh bench
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
-	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
+	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py \
+	    --peer ../shared/peers/rank_baseline.py
 
 # make install [PREFIX=DIR] [DESTDIR=STAGE]: libraries, header, brdffit.pc,
 # the CMake package, the CLI and its man page (default prefix /usr/local).

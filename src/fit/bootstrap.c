@@ -25,9 +25,13 @@
 
 #include "fit/engine.h"
 
-/* Replicates whose grid optima are scored together (their weights, the
- * scores: BATCH x grid columns doubles). */
-#define BATCH 64
+/* Replicates whose grid optima are found together: for the objectives
+ * whose optima need no stored scores (max, cosw: bf__grid_weights_argmin)
+ * BATCH, so each super-block's squared residuals serve them all; for the
+ * others BATCH_STORED (their scores: BATCH_STORED x grid columns
+ * doubles). */
+#define BATCH 1024
+#define BATCH_STORED 64
 /* A gap between replicate estimates wider than this share of the interval
  * splits it (is_split). */
 #define SPLIT_GAP 0.25
@@ -58,8 +62,13 @@ int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    double *w = malloc(BATCH * n * sizeof *w);
-    bf_fit_result *g = malloc(BATCH * sizeof *g);
+    size_t batch = (pb->objective == BF_OBJ_MAX ||
+                    pb->objective == BF_OBJ_COSW)
+                       ? BATCH
+                       : BATCH_STORED;
+    double *w = malloc(batch * n * sizeof *w);
+    const double **wp = malloc(batch * sizeof *wp);
+    bf_fit_result *g = malloc(batch * sizeof *g);
     double *own = est == NULL ? malloc(n_boot * BF_MAX_PARAMS * sizeof *own)
                               : NULL;
     double *e = est != NULL ? est : own;
@@ -71,14 +80,13 @@ int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
     if (split != NULL) {
         *split = 0;
     }
-    if (rng == NULL || w == NULL || g == NULL || e == NULL) {
+    if (rng == NULL || w == NULL || wp == NULL || g == NULL || e == NULL) {
         rc = BF_ENOMEM;
         goto done;
     }
     gsl_rng_set(rng, seed);
-    for (b0 = 0; b0 < n_boot && rc == BF_OK; b0 += BATCH) {
-        size_t nb = n_boot - b0 < BATCH ? n_boot - b0 : BATCH;
-        const double *wp[BATCH];
+    for (b0 = 0; b0 < n_boot && rc == BF_OK; b0 += batch) {
+        size_t nb = n_boot - b0 < batch ? n_boot - b0 : batch;
         size_t b;
         size_t k;
         for (b = 0; b < nb; b++) { /* resample configurations [1] */
@@ -139,6 +147,7 @@ int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
 done:
     gsl_rng_free(rng);
     free(w);
+    free(wp);
     free(g);
     free(own);
     return rc;

@@ -67,6 +67,12 @@ int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
     if (n_w == 0) {
         return BF_OK;
     }
+    if (pb->objective == BF_OBJ_MAX || pb->objective == BF_OBJ_COSW) {
+        /* the sums' optima without storing them: one pass for all */
+        return bf__grid_weights_argmin(
+            gr, pb->data, pb->objective == BF_OBJ_COSW ? cti : NULL, n_w, w,
+            results);
+    }
     if (cols > SIZE_MAX / sizeof(double) / n_w) {
         return BF_ENOMEM;
     }
@@ -74,17 +80,7 @@ int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
     if (lse == NULL) {
         return BF_ENOMEM;
     }
-    switch (pb->objective) {
-    case BF_OBJ_MAX:
-        bf__grid_score_weights(gr, pb->data, NULL, n_w, w, lse);
-        break;
-    case BF_OBJ_COSW:
-        bf__grid_score_weights(gr, pb->data, cti, n_w, w, lse);
-        break;
-    default:
-        rc = optima_by_point(gr, pb, cti, n_w, w, lse);
-        break;
-    }
+    rc = optima_by_point(gr, pb, cti, n_w, w, lse); /* scale, log */
     for (b = 0; rc == BF_OK && b < n_w; b++) {
         int r = bf__grid_best(gr, lse + b * cols, &results[b]);
         if (r != BF_OK) {

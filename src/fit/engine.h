@@ -338,6 +338,15 @@ void bf__score_weights(size_t n, size_t cols, size_t stride,
                        const double *curves, const double *data,
                        const double *cw, size_t n_w, const double *const *w,
                        double *lse);
+/* The grid optima of the same sums without storing them: for each weight
+ * vector the smallest S over the points g < points with ok[g] and its
+ * first index (bf__argmin's choice; SIZE_MAX when none), from one pass
+ * over the curves for all n_w vectors. BF_OK or BF_ENOMEM. */
+int bf__weights_argmin(size_t n, size_t cols, size_t stride,
+                       const double *curves, const unsigned char *ok,
+                       size_t points, const double *data, const double *cw,
+                       size_t n_w, const double *const *w, double *best_lse,
+                       size_t *best);
 
 /* ======================================================================
  * --- grids and the study path (grid.c, kernels.c) ---
@@ -381,6 +390,12 @@ void bf__grid_score(const bf_grid *gr, size_t n_samples,
 void bf__grid_score_weights(const bf_grid *gr, const double *data,
                             const double *cw, size_t n_w,
                             const double *const *w, double *lse);
+/* bf__weights_argmin on the grid's curves: each weight vector's grid
+ * optimum as bf__grid_best reports it (no defined point: lse NaN, n_eval
+ * the points, as bf__grid_optima). BF_OK or BF_ENOMEM. */
+int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, bf_fit_result *results);
 /* Row k of the transposed curves and their row pitch. */
 const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
                                  size_t *stride);

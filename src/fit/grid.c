@@ -463,6 +463,34 @@ void bf__grid_score_weights(const bf_grid *gr, const double *data,
                       n_w, w, lse);
 }
 
+int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, bf_fit_result *results)
+{
+    double *lse = malloc((n_w + 1) * sizeof *lse);
+    size_t *best = malloc((n_w + 1) * sizeof *best);
+    size_t b;
+    int rc = BF_OK;
+    if (lse == NULL || best == NULL) {
+        free(lse);
+        free(best);
+        return BF_ENOMEM;
+    }
+    rc = bf__weights_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
+                            gr->layout.points, data, cw, n_w, w, lse, best);
+    for (b = 0; rc == BF_OK && b < n_w; b++) {
+        if (bf__grid_result(&gr->layout, best[b], lse[b], &results[b]) !=
+            BF_OK) {
+            memset(&results[b], 0, sizeof results[b]);
+            results[b].lse = NAN; /* no defined point: BF_EDOM's result */
+            results[b].n_eval = gr->layout.points;
+        }
+    }
+    free(lse);
+    free(best);
+    return rc;
+}
+
 void bf__grid_score_folds(const bf_grid *gr, const double *data,
                           const double *cw, const size_t *fold, size_t folds,
                           double *lse)

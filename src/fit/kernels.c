@@ -49,8 +49,11 @@
 
 
 
-/* Grid points per curve block: one AVX-512 register of doubles. */
-#define CURVE_LANES 16
+/* Grid points per curve block: one AVX-512 register of doubles (two of
+ * AVX2's); a block of curves (8 x K doubles: 12.7 KB at K = 198) and the
+ * next one fit a 32 KB L1 together. The bits do not depend on it: every
+ * grid point's sums are formed alone, in index order. */
+#define CURVE_LANES 8
 /* Samples scored together (each loaded curve value is used this often). */
 #define TILE_SAMPLES 4
 
@@ -759,7 +762,7 @@ double bf__sum_weighted(size_t n, const double *c, const double *d,
 
 /* Grid columns whose squared residuals are formed at once (in L2), lanes of
  * one accumulator block, weight vectors per tile: WTILE x WLANES
- * accumulators stay in registers (12 of AVX2's 16). */
+ * accumulators stay in registers (8 of AVX2's 16). */
 #define WSUPER 128
 #define WLANES 4
 #define WTILE 8
@@ -832,10 +835,57 @@ static void squared_residuals(size_t n, size_t stride,
     }
 }
 
-void bf__score_weights(size_t n, size_t cols, size_t stride,
-                       const double *curves, const double *data,
-                       const double *cw, size_t n_w, const double *const *w,
-                       double *lse)
+/* rho for the super-block of columns g0 .. g0 + width (a padded copy when
+ * width < WSUPER: the columns past the grid score 0 - d_k). */
+static void super_rho(size_t n, size_t stride, const double *curves,
+                      const double *data, const double *cw, size_t g0,
+                      size_t width, double *rho)
+{
+    size_t k;
+    size_t j;
+    if (width == WSUPER) {
+        squared_residuals(n, stride, curves + g0, data, cw, rho);
+        return;
+    }
+    for (k = 0; k < n; k++) {
+        for (j = 0; j < WSUPER; j++) {
+            double r = (j < width ? curves[k * stride + g0 + j] : 0.0) -
+                       data[k];
+            rho[k * WSUPER + j] = (cw != NULL ? cw[k] : 1.0) * (r * r);
+        }
+    }
+}
+
+/* The WTILE weight rows of tile b (the last repeated past n_w; NULL rows
+ * are ones); returns how many are real. */
+static size_t tile_rows(size_t n_w, const double *const *w, size_t b,
+                        const double *ones, const double **wt)
+{
+    size_t left = n_w - b < WTILE ? n_w - b : WTILE;
+    size_t q;
+    for (q = 0; q < WTILE; q++) {
+        const double *row = w[b + (q < left ? q : left - 1)];
+        wt[q] = row != NULL ? row : ones;
+    }
+    return left;
+}
+
+/* What one pass of the weights kernel does with the sums of a tile:
+ * tmp[q * WLANES + j] of weight vector b + q (q < left) at column g0 + j. */
+typedef struct {
+    void (*sink)(void *ctx, size_t b, size_t left, size_t g0,
+                 const double *tmp);
+    void *ctx;
+    size_t limit; /* columns scored: < limit (the rest is padding) */
+} weights_sink;
+
+/* The one pass over the curves for n_w weight vectors: each super-block's
+ * squared residuals once, every tile of weight vectors against them. 1
+ * when done, 0 when out of memory. */
+static int weights_pass(size_t n, size_t cols, size_t stride,
+                        const double *curves, const double *data,
+                        const double *cw, size_t n_w, const double *const *w,
+                        const weights_sink *out)
 {
     double *rho = aligned_alloc(64, n * WSUPER * sizeof *rho);
     double *ones = malloc(n * sizeof *ones);
@@ -845,10 +895,7 @@ void bf__score_weights(size_t n, size_t cols, size_t stride,
     if (rho == NULL || ones == NULL) {
         free(rho);
         free(ones);
-        for (g0 = 0; g0 < n_w * cols; g0++) {
-            lse[g0] = NAN; /* never a grid optimum */
-        }
-        return;
+        return 0;
     }
     for (k = 0; k < n; k++) {
         ones[k] = 1.0;
@@ -856,39 +903,95 @@ void bf__score_weights(size_t n, size_t cols, size_t stride,
     for (g0 = 0; g0 < cols; g0 += WSUPER) {
         size_t width = cols - g0 < WSUPER ? cols - g0 : WSUPER;
         size_t b;
-        if (width < WSUPER) { /* the last super-block: a padded copy */
-            size_t j;
-            for (k = 0; k < n; k++) {
-                for (j = 0; j < WSUPER; j++) {
-                    double r = (j < width ? curves[k * stride + g0 + j]
-                                          : 0.0) -
-                               data[k];
-                    rho[k * WSUPER + j] = (cw != NULL ? cw[k] : 1.0) * (r * r);
-                }
-            }
-        } else {
-            squared_residuals(n, stride, curves + g0, data, cw, rho);
-        }
+        super_rho(n, stride, curves, data, cw, g0, width, rho);
         for (b = 0; b < n_w; b += WTILE) {
             const double *wt[WTILE];
-            size_t q;
+            size_t left = tile_rows(n_w, w, b, ones, wt);
             size_t j0;
-            size_t left = n_w - b < WTILE ? n_w - b : WTILE;
-            for (q = 0; q < WTILE; q++) {
-                const double *row = w[b + (q < left ? q : left - 1)];
-                wt[q] = row != NULL ? row : ones;
-            }
-            for (j0 = 0; j0 < width; j0 += WLANES) {
+            for (j0 = 0; j0 < width && g0 + j0 < out->limit; j0 += WLANES) {
                 weights_tile(n, rho + j0, wt, tmp, WLANES);
-                for (q = 0; q < left; q++) {
-                    memcpy(lse + ((b + q) * cols) + g0 + j0,
-                           tmp + (q * WLANES), WLANES * sizeof *tmp);
-                }
+                out->sink(out->ctx, b, left, g0 + j0, tmp);
             }
         }
     }
     free(rho);
     free(ones);
+    return 1;
+}
+
+typedef struct {
+    double *lse;
+    size_t cols;
+} store_ctx;
+
+static void store_sums(void *ctx, size_t b, size_t left, size_t g0,
+                       const double *tmp)
+{
+    const store_ctx *c = ctx;
+    size_t q;
+    for (q = 0; q < left; q++) {
+        memcpy(c->lse + ((b + q) * c->cols) + g0, tmp + (q * WLANES),
+               WLANES * sizeof *tmp);
+    }
+}
+
+void bf__score_weights(size_t n, size_t cols, size_t stride,
+                       const double *curves, const double *data,
+                       const double *cw, size_t n_w, const double *const *w,
+                       double *lse)
+{
+    store_ctx c = {lse, cols};
+    weights_sink out = {store_sums, &c, cols};
+    size_t g;
+    if (!weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)) {
+        for (g = 0; g < n_w * cols; g++) {
+            lse[g] = NAN; /* never a grid optimum */
+        }
+    }
+}
+
+typedef struct {
+    const unsigned char *ok;
+    size_t points;
+    double *best_lse;
+    size_t *best;
+} argmin_ctx;
+
+/* bf__argmin's choice: index order, strict <, defined points only. */
+static void keep_best(void *ctx, size_t b, size_t left, size_t g0,
+                      const double *tmp)
+{
+    const argmin_ctx *c = ctx;
+    size_t q;
+    size_t j;
+    for (q = 0; q < left; q++) {
+        for (j = 0; j < WLANES; j++) {
+            size_t g = g0 + j;
+            if (g < c->points && c->ok[g] &&
+                tmp[q * WLANES + j] < c->best_lse[b + q]) {
+                c->best_lse[b + q] = tmp[q * WLANES + j];
+                c->best[b + q] = g;
+            }
+        }
+    }
+}
+
+int bf__weights_argmin(size_t n, size_t cols, size_t stride,
+                       const double *curves, const unsigned char *ok,
+                       size_t points, const double *data, const double *cw,
+                       size_t n_w, const double *const *w, double *best_lse,
+                       size_t *best)
+{
+    argmin_ctx c = {ok, points, best_lse, best};
+    weights_sink out = {keep_best, &c, points};
+    size_t b;
+    for (b = 0; b < n_w; b++) {
+        best_lse[b] = INFINITY;
+        best[b] = SIZE_MAX;
+    }
+    return weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)
+               ? BF_OK
+               : BF_ENOMEM;
 }
 
 /* The full-data LSE and every fold's training LSE of one 16-lane block:
@@ -1013,8 +1116,13 @@ void bf__folds_argmin(size_t n, size_t cols, size_t stride,
 
 /* ==== streaming: curves of one block, scored at once (the study) ======== */
 
-/* Samples scored together against one block of streamed curves. */
+/* Samples scored together against one block of streamed curves: their
+ * STREAM_SAMPLES x CURVE_LANES sums take 8 of AVX-512's 32 registers; with
+ * AVX2's (or the baseline's) 16, STREAM_SAMPLES_NARROW leave room for the
+ * curve values (stream_samples; measured on Zen 3: 4 is fastest). The
+ * sums, and so the bits, do not depend on how many samples share a pass. */
 #define STREAM_SAMPLES 8
+#define STREAM_SAMPLES_NARROW 4
 
 /* The raw curves of the next block of an E model (P2), computed while the
  * current block is scored (interleaved): the divider's work (a division
@@ -1031,14 +1139,17 @@ typedef struct {
 } erows_t;
 
 /* LSE of the CURVE_LANES grid points of one block (curves c[k *
- * CURVE_LANES + j], contiguous) against STREAM_SAMPLES samples d[q]:
+ * CURVE_LANES + j], contiguous) against ns samples d[q]:
  * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
  * order with one fma per term, as score_tile forms it. When e is not
  * NULL, also the rows of e (see erows_t). */
-BF__CLONES
-static void score_stream(size_t n, const double *restrict c,
-                         const double *const *d, double *restrict lse,
-                         erows_t *restrict e)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void score_stream(size_t ns, size_t n,
+                                const double *restrict c,
+                                const double *const *d,
+                                double *restrict lse, erows_t *restrict e)
 {
     double a[STREAM_SAMPLES][CURVE_LANES];
     double m2[CURVE_LANES];
@@ -1048,7 +1159,7 @@ static void score_stream(size_t n, const double *restrict c,
     size_t j;
     size_t k;
     size_t q;
-    for (q = 0; q < STREAM_SAMPLES; q++) {
+    for (q = 0; q < ns; q++) {
         for (j = 0; j < CURVE_LANES; j++) {
             a[q][j] = 0.0;
         }
@@ -1065,10 +1176,10 @@ static void score_stream(size_t n, const double *restrict c,
     for (k = 0; k < n; k++) {
         const double *restrict ck = c + (k * CURVE_LANES);
         double x[STREAM_SAMPLES];
-        for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (q = 0; q < ns; q++) {
             x[q] = d[q][k];
         }
-        for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (q = 0; q < ns; q++) {
 #pragma omp simd simdlen(CURVE_LANES)
             for (j = 0; j < CURVE_LANES; j++) {
                 double r = ck[j] - x[q]; /* SPEC §7.3 */
@@ -1091,7 +1202,7 @@ static void score_stream(size_t n, const double *restrict c,
             next_e += e->every;
         }
     }
-    for (q = 0; q < STREAM_SAMPLES; q++) {
+    for (q = 0; q < ns; q++) {
         for (j = 0; j < CURVE_LANES; j++) {
             lse[(q * CURVE_LANES) + j] = a[q][j];
         }
@@ -1100,6 +1211,35 @@ static void score_stream(size_t n, const double *restrict c,
         memcpy(e->mx, mx, sizeof mx);
         memcpy(e->nf, nf, sizeof nf);
     }
+}
+
+/* score_stream with the sample count a constant (its sums in registers). */
+BF__CLONES
+static void score_stream_wide(size_t n, const double *restrict c,
+                              const double *const *d, double *restrict lse,
+                              erows_t *restrict e)
+{
+    score_stream(STREAM_SAMPLES, n, c, d, lse, e);
+}
+
+BF__CLONES
+static void score_stream_narrow(size_t n, const double *restrict c,
+                                const double *const *d,
+                                double *restrict lse, erows_t *restrict e)
+{
+    score_stream(STREAM_SAMPLES_NARROW, n, c, d, lse, e);
+}
+
+/* Samples per pass on this processor: STREAM_SAMPLES with AVX-512's 32
+ * vector registers, STREAM_SAMPLES_NARROW otherwise. */
+static size_t stream_samples(void)
+{
+#if defined(__GNUC__) && defined(__x86_64__)
+    return __builtin_cpu_supports("avx512f") ? STREAM_SAMPLES
+                                             : STREAM_SAMPLES_NARROW;
+#else
+    return STREAM_SAMPLES;
+#endif
 }
 
 /* 1 when some defined value v[j] + pen[j] (pen 0 where defined, +inf
@@ -1131,7 +1271,8 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     gen_t g;
     bf__prep pm;
     size_t n = cs->n;
-    size_t n_tiles = (n_samples + STREAM_SAMPLES - 1) / STREAM_SAMPLES;
+    size_t ns = stream_samples();
+    size_t n_tiles = (n_samples + ns - 1) / ns;
     size_t g0;
     size_t s;
     int pipe; /* E models: the next block's curves during the scoring */
@@ -1179,18 +1320,22 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             e.out = nxt;
             e.every = n_tiles;
         }
-        for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
+        for (s = 0; s < n_samples; s += ns) {
             const double *d[STREAM_SAMPLES];
             size_t left = n_samples - s;
             size_t q;
             size_t j;
-            for (q = 0; q < STREAM_SAMPLES; q++) {
+            for (q = 0; q < ns; q++) {
                 d[q] = data[s + (q < left ? q : left - 1)];
             }
-            e.first = s / STREAM_SAMPLES; /* rows spread over the tiles */
-            score_stream(n, c, d, lse, more ? &e : NULL);
-            if (left > STREAM_SAMPLES) {
-                left = STREAM_SAMPLES;
+            e.first = s / ns; /* rows spread over the tiles */
+            if (ns == STREAM_SAMPLES) {
+                score_stream_wide(n, c, d, lse, more ? &e : NULL);
+            } else {
+                score_stream_narrow(n, c, d, lse, more ? &e : NULL);
+            }
+            if (left > ns) {
+                left = ns;
             }
             /* the running argmin: grid points in index order, strict <
              * (ties keep the first point, NaN never wins), defined points
