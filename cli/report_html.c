@@ -197,13 +197,12 @@ static void figures_of(FILE *fp, const bf_fig_set *figs, bf_fig_kind kind,
     }
 }
 
-/* The configurations target s does not use, as "54, 97, ..." (the
- * specular ones, or the others), or "none". */
-static void left_out(FILE *fp, const bf_cli_study *st, size_t s, int specular)
+/* The configurations target s does not use, as "54, 97, ...", or
+ * "none". */
+static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
 {
     size_t mat = st->targets[s].material;
     size_t nconf = bf_dataset_nconf(st->in.ds, mat);
-    const bf_geom *g = bf_dataset_geom(st->in.ds, mat);
     size_t *sel = malloc((nconf + 1) * sizeof *sel);
     double *data = malloc((nconf + 1) * sizeof *data);
     size_t K = 0;
@@ -217,10 +216,8 @@ static void left_out(FILE *fp, const bf_cli_study *st, size_t s, int specular)
                 j++;
                 continue;
             }
-            if ((bf_geom_mirror_angle(&g[k]) < 1e-6) == (specular != 0)) {
-                fprintf(fp, "%s%zu", first ? "" : ", ", k + 1);
-                first = 0;
-            }
+            fprintf(fp, "%s%zu", first ? "" : ", ", k + 1);
+            first = 0;
         }
     }
     if (first) {
@@ -311,14 +308,11 @@ static void data_section(FILE *fp, const bf_cli_study *st)
     fputs(".</li>\n", fp);
     if (one_selection(st)) {
         size_t nconf = bf_dataset_nconf(ds, st->targets[0].material);
-        fprintf(fp, "<li>Configurations used: K = %zu of %zu. Left out: in "
-                    "the mirror direction, ",
+        fprintf(fp, "<li>Configurations used: K = %zu of %zu; left out "
+                    "(specular, <code>--exclude</code>, "
+                    "<code>--max-theta</code>, invalid values): ",
                 st->k[0], nconf);
-        left_out(fp, st, 0, 1);
-        fputs("; others (the specular cone, <code>--exclude</code>, "
-              "<code>--max-theta</code>, invalid values): ",
-              fp);
-        left_out(fp, st, 0, 0);
+        left_out(fp, st, 0);
         fputs(".</li>\n", fp);
     } else {
         size_t lo = SIZE_MAX;
