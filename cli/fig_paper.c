@@ -179,7 +179,7 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                       : "in increasing order (FC-E is not in the run)",
              p->logy ? "; logarithmic LSE axis" : "");
     snprintf(e->alt, sizeof e->alt,
-             "Line chart: LSE of %zu models (%s) for %zu samples%s.", M,
+             "Line chart: LSE of %zu models (%.400s) for %zu samples%s.", M,
              models, N, by_slope ? " sorted by FC-E slope" : "");
     return BF_OK;
 }
