@@ -63,6 +63,8 @@ enum {
 #define BAR_WIDTH 0.62  /* bars, in x units (bars sit on integers) */
 #define BAR_LABEL_GAP 3.0 /* between a bar (or the axis) and its value */
 #define CELL_SEP 0.4    /* white gap around heat-map cells */
+#define SIMPLIFY_TOL 0.02 /* vector formats: points closer than this to the
+                             line are dropped (a fiftieth of a point) */
 /* Polar panels: rings at a round step giving at most POLAR_RINGS of
  * them, spokes every POLAR_STEP_DEG. */
 #define POLAR_RINGS 4.5
@@ -86,9 +88,7 @@ typedef struct {
     double *wy;
     double *px;    /* scratch: the same in points */
     double *py;
-    double *mx;    /* scratch: marker outlines (cap_m vertices) */
-    double *my;
-    size_t cap_m;
+    bf__poly poly; /* outlines joined into one polygon (vector formats) */
 } ctx_t;
 
 /* The current panel: its axes (points) and window (data after the log or
@@ -248,74 +248,160 @@ static void view_make(const ctx_t *c, size_t i, view_t *v)
 
 /* ==== lines ============================================================== */
 
-/* Draws the window polyline (n points, all finite) in the panel view,
- * dashed in page points by pattern d. */
-static void dashed_line(ctx_t *c, const view_t *v, size_t n, const double *wx,
-                        const double *wy, const bf__dash *d)
+/* Fills the outline of n points in page coordinates (page view). */
+static void fill_page(size_t n, const double *x, const double *y)
 {
-    size_t k;
-    size_t piece = 0; /* points of the dash being built */
-    size_t phase = 0; /* index into the pattern: even = on */
-    double left;      /* length left in the current pattern element */
-    if (n < 2) {
-        return;
-    }
-    if (d->n == 0) {
-        plline((PLINT)n, wx, wy);
-        return;
-    }
-    left = d->len[0];
-    to_page(v, wx[0], wy[0], &c->px[0], &c->py[0]);
-    piece = 1;
-    for (k = 1; k < n; k++) {
-        double x0;
-        double y0;
-        double x1;
-        double y1;
-        double seg;
-        double done = 0.0;
-        to_page(v, wx[k - 1], wy[k - 1], &x0, &y0);
-        to_page(v, wx[k], wy[k], &x1, &y1);
-        seg = hypot(x1 - x0, y1 - y0);
-        while (seg - done > left) { /* the pattern element ends here */
-            double t;
-            done += left;
-            t = done / seg;
-            if (phase % 2 == 0) { /* end of a dash: draw it */
-                c->px[piece] = x0 + t * (x1 - x0);
-                c->py[piece] = y0 + t * (y1 - y0);
-                piece++;
-                for (size_t q = 0; q < piece; q++) {
-                    to_window(v, c->px[q], c->py[q], &c->wx[q], &c->wy[q]);
-                }
-                plline((PLINT)piece, c->wx, c->wy);
-                piece = 0;
-            } else { /* start of a dash */
-                c->px[0] = x0 + t * (x1 - x0);
-                c->py[0] = y0 + t * (y1 - y0);
-                piece = 1;
-            }
-            phase = (phase + 1) % d->n;
-            left = d->len[phase];
-        }
-        left -= seg - done;
-        if (phase % 2 == 0) {
-            c->px[piece] = x1;
-            c->py[piece] = y1;
-            piece++;
-        }
-    }
-    if (phase % 2 == 0 && piece >= 2) {
-        for (k = 0; k < piece; k++) {
-            to_window(v, c->px[k], c->py[k], &c->wx[k], &c->wy[k]);
-        }
-        plline((PLINT)piece, c->wx, c->wy);
+    if (n >= 3) {
+        plfill((PLINT)n, x, y);
     }
 }
 
-/* Draws series s as lines: its finite runs, dashed. The scratch arrays of
- * c are used for the window coordinates of a run, then by dashed_line:
- * the run is copied first. */
+/* Fills the joined outlines of c->poly (page view) and empties it. */
+static void fill_poly(ctx_t *c)
+{
+    if (bf__poly_finish(&c->poly) == 0) {
+        fill_page(c->poly.n, c->poly.x, c->poly.y);
+    }
+    bf__poly_clear(&c->poly);
+}
+
+/* Draws the polyline of n points (window coordinates of view v, all
+ * finite), of width w points, dashed by d. In the vector formats points
+ * closer than SIMPLIFY_TOL to the line through their neighbours are
+ * dropped first (Douglas-Peucker, in points). Solid: one polyline (PLplot
+ * clips it at the axes). Dashed, in SVG: clipped to the axes here, each
+ * dash outlined as a polygon (butt ends) and added to c->poly, which the
+ * caller fills once for the series -- one path for all its dashes (SVG
+ * pays some 250 bytes a path). Dashed, in PDF and PNG: each dash a
+ * polyline of at least 3 points (PLplot's cairo driver gives 2-point lines
+ * round caps and longer ones butt caps: every dash gets butt caps, as the
+ * outlines have). */
+static void line_run(ctx_t *c, const view_t *v, size_t n, const double *wx,
+                     const double *wy, const bf__dash *d, double w)
+{
+    size_t cap;
+    double *px = NULL;
+    double *py = NULL;
+    double *cx = NULL;
+    double *cy = NULL;
+    size_t *rs = NULL;
+    size_t *ps = NULL;
+    double *qx = NULL;
+    double *qy = NULL;
+    size_t runs;
+    size_t base;
+    size_t r;
+    size_t k;
+    if (n < 2) {
+        return;
+    }
+    px = malloc(2 * n * sizeof *px);
+    py = malloc(2 * n * sizeof *py);
+    rs = malloc((n + 1) * sizeof *rs);
+    if (px == NULL || py == NULL || rs == NULL) {
+        goto done;
+    }
+    base = n; /* the page points at [n, 2n); runs are built below them */
+    for (k = 0; k < n; k++) {
+        to_page(v, wx[k], wy[k], &px[base + k], &py[base + k]);
+    }
+    if (c->fmt != BF_PLOT_PNG) {
+        n = bf__simplify(n, px + base, py + base, SIMPLIFY_TOL);
+    }
+    if (d->n == 0) {
+        for (k = 0; k < n; k++) {
+            to_window(v, px[base + k], py[base + k], &px[k], &py[k]);
+        }
+        plline((PLINT)n, px, py);
+        goto done;
+    }
+    if (c->fmt != BF_PLOT_SVG) { /* one run; PLplot clips */
+        memmove(px, px + base, n * sizeof *px);
+        memmove(py, py + base, n * sizeof *py);
+        rs[0] = 0;
+        rs[1] = n;
+        runs = 1;
+    } else {
+        runs = bf__clip_runs(&v->box, n, px + base, py + base, px, py, rs);
+    }
+    cap = bf__dash_capacity(d, rs[runs], px, py) + 4;
+    cx = malloc(cap * sizeof *cx);
+    cy = malloc(cap * sizeof *cy);
+    ps = malloc(cap * sizeof *ps);
+    qx = malloc(2 * cap * sizeof *qx);
+    qy = malloc(2 * cap * sizeof *qy);
+    if (cx == NULL || cy == NULL || ps == NULL || qx == NULL || qy == NULL) {
+        goto done;
+    }
+    for (r = 0; r < runs; r++) {
+        size_t pieces = bf__dash_cut(d, rs[r + 1] - rs[r], px + rs[r],
+                                     py + rs[r], cx, cy, ps);
+        size_t q;
+        for (q = 0; q < pieces; q++) {
+            size_t m = ps[q + 1] - ps[q];
+            const double *x = cx + ps[q];
+            const double *y = cy + ps[q];
+            if (m < 2) {
+                continue;
+            }
+            if (c->fmt == BF_PLOT_SVG) {
+                size_t o = bf__stroke_outline(m, x, y, w / 2, qx, qy);
+                if (bf__poly_add(&c->poly, o, qx, qy) != 0) {
+                    goto done;
+                }
+                continue;
+            }
+            for (k = 0; k < m; k++) {
+                to_window(v, x[k], y[k], &qx[k], &qy[k]);
+            }
+            if (m == 2) { /* its midpoint: a polyline, butt caps */
+                qx[2] = qx[1];
+                qy[2] = qy[1];
+                qx[1] = (qx[0] + qx[2]) / 2;
+                qy[1] = (qy[0] + qy[2]) / 2;
+                m = 3;
+            }
+            plline((PLINT)m, qx, qy);
+        }
+    }
+done:
+    free(px);
+    free(py);
+    free(rs);
+    free(cx);
+    free(cy);
+    free(ps);
+    free(qx);
+    free(qy);
+}
+
+/* The width of series s's lines, points. */
+static double line_width(const bf_plot_series *s)
+{
+    return W_CURVE * (s->weight > 0.0 ? s->weight : 1.0);
+}
+
+/* Starts drawing series s's lines (panel view, its colour and width). */
+static void lines_begin(ctx_t *c, const bf_plot_series *s)
+{
+    color(COL_SLOT + (int)s->style);
+    width(c, line_width(s));
+    bf__poly_clear(&c->poly);
+}
+
+/* Ends them: fills the outlines of the dashes collected (vector formats),
+ * back in the panel view. */
+static void lines_end(ctx_t *c, const view_t *v)
+{
+    if (c->poly.n_anchor > 0) {
+        page_view(c);
+        width(c, W_FILL);
+        fill_poly(c);
+        panel_view(c, v);
+    }
+}
+
+/* Draws series s as lines: its finite runs. */
 static void series_line(ctx_t *c, const view_t *v, const bf_plot_series *s)
 {
     const bf__dash *d = bf__series_dash(s);
@@ -327,8 +413,7 @@ static void series_line(ctx_t *c, const view_t *v, const bf_plot_series *s)
         free(ry);
         return;
     }
-    color(COL_SLOT + (int)s->style);
-    width(c, W_CURVE * (s->weight > 0.0 ? s->weight : 1.0));
+    lines_begin(c, s);
     while (i < s->n) {
         size_t m = 0;
         while (i < s->n) {
@@ -343,78 +428,44 @@ static void series_line(ctx_t *c, const view_t *v, const bf_plot_series *s)
             ry[m] = wy;
             m++;
         }
-        dashed_line(c, v, m, rx, ry, d);
+        line_run(c, v, m, rx, ry, d, line_width(s));
     }
+    lines_end(c, v);
     free(rx);
     free(ry);
 }
 
 /* ==== markers ============================================================ */
 
-/* Fills the outline of n points in page coordinates (page view). */
-static void fill_page(const ctx_t *c, size_t n, const double *x,
-                      const double *y)
-{
-    (void)c;
-    if (n >= 3) {
-        plfill((PLINT)n, x, y);
-    }
-}
-
 /* Draws markers mk of radius r (points) at the n page points (x, y), in
  * the current colour, page view. PNG: one filled polygon each. SVG and
- * PDF: one polygon for them all -- the outlines joined by "bridges" that
- * the path goes along and back, so they enclose nothing (non-zero rule). */
+ * PDF: one polygon for them all (bf__poly). */
 static void markers_at(ctx_t *c, bf__marker mk, double r, size_t n,
                        const double *x, const double *y)
 {
     double dx[BF__MARKER_MAX];
     double dy[BF__MARKER_MAX];
+    double ox[BF__MARKER_MAX];
+    double oy[BF__MARKER_MAX];
     size_t m = bf__marker_shape(mk, r, dx, dy);
     size_t i;
     size_t k;
-    size_t used = 0;
-    if (n == 0) {
-        return;
-    }
     width(c, W_FILL);
-    if (c->fmt == BF_PLOT_PNG) {
-        for (i = 0; i < n; i++) {
-            double ox[BF__MARKER_MAX];
-            double oy[BF__MARKER_MAX];
-            for (k = 0; k < m; k++) {
-                ox[k] = x[i] + dx[k];
-                oy[k] = y[i] + dy[k];
-            }
-            fill_page(c, m, ox, oy);
-        }
-        return;
-    }
-    if (c->cap_m < n * (m + 1)) {
-        size_t cap = n * (m + 1);
-        double *nx = realloc(c->mx, cap * sizeof *nx);
-        double *ny = nx != NULL ? realloc(c->my, cap * sizeof *ny) : NULL;
-        if (nx == NULL || ny == NULL) {
-            c->mx = nx != NULL ? nx : c->mx;
-            return;
-        }
-        c->mx = nx;
-        c->my = ny;
-        c->cap_m = cap;
-    }
-    for (i = 0; i < n; i++) { /* out: each outline from its anchor */
+    bf__poly_clear(&c->poly);
+    for (i = 0; i < n; i++) {
         for (k = 0; k < m; k++) {
-            c->mx[used] = x[i] + dx[k];
-            c->my[used] = y[i] + dy[k];
-            used++;
+            ox[k] = x[i] + dx[k];
+            oy[k] = y[i] + dy[k];
+        }
+        if (c->fmt == BF_PLOT_PNG) {
+            fill_page(m, ox, oy);
+        } else if (bf__poly_add(&c->poly, m, ox, oy) != 0) {
+            break;
         }
     }
-    for (i = n - 1; i-- > 0;) { /* back along the bridges to the first */
-        c->mx[used] = x[i] + dx[0];
-        c->my[used] = y[i] + dy[0];
-        used++;
+    if (c->fmt != BF_PLOT_PNG) {
+        fill_poly(c);
     }
-    fill_page(c, used, c->mx, c->my);
 }
 
 static double marker_r(const bf_plot_series *s)
@@ -492,8 +543,7 @@ static void series_intervals(ctx_t *c, const view_t *v,
 {
     const bf__dash *d = bf__series_dash(s);
     size_t i;
-    color(COL_SLOT + (int)s->style);
-    width(c, W_CURVE * (s->weight > 0.0 ? s->weight : 1.0));
+    lines_begin(c, s);
     for (i = 0; i < s->n; i++) {
         double wx[2] = {s->x[i], s->x2[i]};
         double wy[2] = {s->y[i], s->y[i]};
@@ -501,7 +551,7 @@ static void series_intervals(ctx_t *c, const view_t *v,
         if (!isfinite(wx[0]) || !isfinite(wx[1]) || !isfinite(wy[0])) {
             continue;
         }
-        dashed_line(c, v, 2, wx, wy, d);
+        line_run(c, v, 2, wx, wy, d, line_width(s));
         for (e = 0; e < 2; e++) { /* end ticks, where the end is shown */
             double px;
             double py;
@@ -517,6 +567,7 @@ static void series_intervals(ctx_t *c, const view_t *v,
             plline(2, tx, ty);
         }
     }
+    lines_end(c, v);
 }
 
 static void draw_cells(ctx_t *c, const view_t *v)
@@ -545,7 +596,7 @@ static void draw_cells(ctx_t *c, const view_t *v)
             color(cls >= 0 && (size_t)cls < h->n_classes ? COL_CLASS + cls
                                                           : COL_EMPTY);
             width(c, W_FILL);
-            fill_page(c, 4, bx, by);
+            fill_page(4, bx, by);
             if (t != NULL) {
                 color(cls >= 0 && cls < BF__CLASS_DARK ? COL_WHITE : COL_INK);
                 text(c, (x0 + x1) / 2, (y0 + y1) / 2, 0, 0.5, L->font - 1.0,
@@ -829,7 +880,7 @@ static void legend_key(ctx_t *c, const bf__entry *e)
         double by[4] = {y - h, y + h, y + h, y - h};
         color(s == NULL ? COL_CLASS + e->cls : COL_SLOT + (int)s->style);
         width(c, W_FILL);
-        fill_page(c, 4, bx, by);
+        fill_page(4, bx, by);
         if (s == NULL) { /* a thin outline: the lightest class on white */
             double ox[5] = {bx[0], bx[1], bx[2], bx[3], bx[0]};
             double oy[5] = {by[0], by[1], by[2], by[3], by[0]};
@@ -840,7 +891,7 @@ static void legend_key(ctx_t *c, const bf__entry *e)
         return;
     }
     if (s->kind == BF_SERIES_LINE || s->kind == BF_SERIES_INTERVALS) {
-        view_t v; /* the page as a view, for the dash code */
+        view_t v; /* the page as a view, for the line code */
         double lx[2] = {x0, x1};
         double ly[2] = {y, y};
         v.p = NULL;
@@ -848,9 +899,13 @@ static void legend_key(ctx_t *c, const bf__entry *e)
         v.box.y0 = v.wy0 = 0.0;
         v.box.x1 = v.wx1 = (double)L->width;
         v.box.y1 = v.wy1 = (double)L->height;
-        color(COL_SLOT + (int)s->style);
-        width(c, W_CURVE * (s->weight > 0.0 ? s->weight : 1.0));
-        dashed_line(c, &v, 2, lx, ly, bf__series_dash(s));
+        lines_begin(c, s);
+        line_run(c, &v, 2, lx, ly, bf__series_dash(s), line_width(s));
+        if (c->poly.n_anchor > 0) {
+            width(c, W_FILL);
+            fill_poly(c);
+            width(c, line_width(s));
+        }
         if (s->kind == BF_SERIES_INTERVALS) {
             double tx[2] = {x0, x0};
             double ty[2] = {y - CAP, y + CAP};
@@ -1075,9 +1130,7 @@ static int ctx_alloc(ctx_t *c)
     c->wy = malloc(n * sizeof *c->wy);
     c->px = malloc(n * sizeof *c->px);
     c->py = malloc(n * sizeof *c->py);
-    c->mx = NULL;
-    c->my = NULL;
-    c->cap_m = 0;
+    memset(&c->poly, 0, sizeof c->poly);
     return c->wx != NULL && c->wy != NULL && c->px != NULL && c->py != NULL;
 }
 
@@ -1087,8 +1140,7 @@ static void ctx_free(ctx_t *c)
     free(c->wy);
     free(c->px);
     free(c->py);
-    free(c->mx);
-    free(c->my);
+    bf__poly_free(&c->poly);
 }
 
 int bf_plot_write(const bf_plot_figure *fig, bf_plot_format fmt,

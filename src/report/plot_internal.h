@@ -65,6 +65,59 @@ const bf__dash *bf__series_dash(const bf_plot_series *s);
 #define BF__MARKER_MAX 64
 size_t bf__marker_shape(bf__marker mk, double r, double *dx, double *dy);
 
+/* ==== path geometry (plot_path.c), in page points ===================== */
+
+/* A rectangle in points, origin at the bottom left of the page. */
+typedef struct {
+    double x0, y0, x1, y1;
+} bf__box;
+
+
+/* Outlines joined into one polygon (see plot_path.c); owns its arrays. */
+typedef struct {
+    double *x, *y;
+    size_t n, cap;
+    size_t *anchor;          /* where each outline starts */
+    size_t n_anchor, cap_anchor;
+} bf__poly;
+
+/* Appends the closed outline of n >= 3 points (closed here if it is not)
+ * and the bridge to it. Returns 0, -1 when out of memory. */
+int bf__poly_add(bf__poly *p, size_t n, const double *x, const double *y);
+/* Appends the way back along the bridges: the polygon is then complete.
+ * Returns 0, -1 when out of memory. */
+int bf__poly_finish(bf__poly *p);
+void bf__poly_clear(bf__poly *p);
+void bf__poly_free(bf__poly *p);
+
+/* Clips the polyline of n points to box b: the visible runs into ox, oy
+ * (capacity 2 n), run r being points start[r] .. start[r + 1] - 1
+ * (start: capacity n + 1). Returns the number of runs. */
+size_t bf__clip_runs(const bf__box *b, size_t n, const double *x,
+                     const double *y, double *ox, double *oy, size_t *start);
+
+/* Drops, in place, the points of the polyline that lie within tol of the
+ * simplified line (Douglas-Peucker; the ends are kept). Returns the
+ * number of points left. */
+size_t bf__simplify(size_t n, double *x, double *y, double tol);
+
+/* Cuts the polyline of n points into the dashes of pattern d (solid: one
+ * piece, the polyline): pieces into ox, oy, piece r being points start[r]
+ * .. start[r + 1] - 1 (pieces of fewer than 2 points are to be skipped).
+ * Capacities from bf__dash_capacity (points; pieces need half as many
+ * plus one). Returns the number of pieces. */
+size_t bf__dash_cut(const bf__dash *d, size_t n, const double *x,
+                    const double *y, double *ox, double *oy, size_t *start);
+size_t bf__dash_capacity(const bf__dash *d, size_t n, const double *x,
+                         const double *y);
+
+/* The outline of the polyline of n >= 2 points stroked with half-width h
+ * and butt ends (mitred joins [PostScript §4.5]): 2 n points into ox, oy,
+ * the left side forward then the right side back. Returns 2 n (0 for
+ * n < 2). */
+size_t bf__stroke_outline(size_t n, const double *x, const double *y,
+                          double h, double *ox, double *oy);
+
 /* ==== text and ticks (plot_layout.c) ================================== */
 
 /* Estimated width of UTF-8 text in DejaVu Sans at size points (advance
@@ -91,11 +144,6 @@ void bf__ticks_make(double lo, double hi, double step, int logy,
 
 #define BF__MAX_PANELS 128
 #define BF__MAX_ENTRIES 48
-
-/* A rectangle in points, origin at the bottom left of the page. */
-typedef struct {
-    double x0, y0, x1, y1;
-} bf__box;
 
 /* A legend entry: a series' key, or a cell class's box. */
 typedef struct {

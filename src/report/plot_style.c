@@ -13,15 +13,15 @@
 
 #include "plot_internal.h"
 
-/* Dash patterns, on/off lengths in points at print size (the stroke's
- * round caps add the line width to each dash). */
+/* Dash patterns, on/off lengths in points at print size; dashes have
+ * butt ends (a dot of a 1-point line is a 1-point square). */
 const bf__dash bf__dashes[BF__NDASHES] = {
     {0, {0}},                                /* solid */
-    {2, {3.5, 2.0}},                         /* dashed */
-    {2, {0.6, 1.8}},                         /* dotted */
-    {4, {3.5, 1.6, 0.6, 1.6}},               /* dash-dot */
-    {2, {7.0, 2.5}},                         /* long dash */
-    {6, {3.5, 1.4, 0.6, 1.4, 0.6, 1.4}},     /* dash-dot-dot */
+    {2, {4.0, 2.2}},                         /* dashed */
+    {2, {1.1, 1.9}},                         /* dotted */
+    {4, {4.0, 1.9, 1.1, 1.9}},               /* dash-dot */
+    {2, {7.5, 2.5}},                         /* long dash */
+    {6, {4.0, 1.7, 1.1, 1.7, 1.1, 1.7}},     /* dash-dot-dot */
 };
 
 /* Okabe & Ito [1]: blue, vermillion, bluish green, reddish purple, sky

@@ -141,9 +141,9 @@ Test(plot, writes_a_one_page_pdf_in_points_without_title_or_date)
     fmt_check_pdf_plain(path);
 }
 
-/* The markers of a series are one path in SVG: 600 points add one path
- * (not 600) to the figure with 6 points. */
-Test(plot, draws_all_markers_of_a_series_as_one_svg_path)
+/* The markers and the dashes of a series are one path each in SVG: 600
+ * points (some 200 dashes) give as many paths as 6. */
+Test(plot, draws_all_markers_and_dashes_of_a_series_as_one_svg_path)
 {
     static double x[600];
     static double y[600];
@@ -163,7 +163,7 @@ Test(plot, draws_all_markers_of_a_series_as_one_svg_path)
     s.x = x;
     s.y = y;
     s.n = 6;
-    s.style = 5; /* an open marker: outer and inner outline */
+    s.style = 5; /* an open marker (outer and inner outline); dash-dot-dot */
     memset(&p, 0, sizeof p);
     p.xmax = p.ymax = 1.0;
     p.series = &s;
@@ -182,6 +182,17 @@ Test(plot, draws_all_markers_of_a_series_as_one_svg_path)
     many = fmt_check_svg_plain(path_in(dir, "b.svg"));
     cr_expect_eq(many, few, "600 markers: %zu paths, 6 markers: %zu", many,
                  few);
+    s.kind = BF_SERIES_LINE; /* the same points as a dashed line */
+    s.n = 6;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "c.svg")),
+                 BF_OK);
+    s.n = 600;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "d.svg")),
+                 BF_OK);
+    few = fmt_check_svg_plain(path_in(dir, "c.svg"));
+    many = fmt_check_svg_plain(path_in(dir, "d.svg"));
+    cr_expect_eq(many, few, "dashed line of 600 points: %zu paths, of 6: %zu",
+                 many, few);
 }
 
 /* Figures are drawn in any order by any process: a figure's bytes must
