@@ -195,6 +195,7 @@ int bf_cmd_report(int argc, char **argv)
     bf_cli_extra extra;
     bf_out page;
     int page_open = 0;
+    int started = 0;
     size_t i;
     int rc;
 
@@ -231,14 +232,26 @@ int bf_cmd_report(int argc, char **argv)
                             "samples...\n",
                     st.n_models, st.n_samples);
         }
-        rc = bf_cli_study_run(&st);
+        rc = bf_cli_study_run_protocol(&st);
     }
     /* Everything is drawn and written to temporary files first, then
-     * renamed into place: a failure leaves no partial output. */
+     * renamed into place: a failure leaves no partial output. The paper's
+     * figures are drawn while the analysis runs (with --fit exact the
+     * analysis is the study: the figures wait for it). */
+    fo.jobs = st.spec.n_threads > 1 ? st.spec.n_threads : 1;
+    fo.jobs = fo.jobs > MAX_JOBS ? MAX_JOBS : fo.jobs;
+    if (rc == BF_EXIT_OK && !st.opts.exact) {
+        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 0);
+        started = rc == BF_EXIT_OK;
+    }
     if (rc == BF_EXIT_OK) {
-        fo.jobs = st.spec.n_threads > 1 ? st.spec.n_threads : 1;
-        fo.jobs = fo.jobs > MAX_JOBS ? MAX_JOBS : fo.jobs;
-        rc = bf_figures_render(&st, &fo, st.opts.out_dir, &figs);
+        rc = bf_cli_study_run_analysis(&st);
+    }
+    if (rc == BF_EXIT_OK && !started) {
+        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 1);
+    }
+    if (rc == BF_EXIT_OK) {
+        rc = bf_figures_finish(&st, &figs);
     }
     if (rc == BF_EXIT_OK) {
         rc = write_page(&st, &figs, &meta, &page);

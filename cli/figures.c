@@ -238,36 +238,45 @@ static bf_fig_entry *add_entry(bf_fig_set *set, bf_fig_kind kind,
     return f;
 }
 
-/* Every figure of the run, in the order of the page. */
-static int list_figures(const bf_fig_data *D, bf_fig_set *set)
+/* The figures of the paper's protocol: Figure 2(b), wins, Figures 3-6 and
+ * per sample the plane of incidence (and the scatter panels). */
+static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 {
     const bf_cli_study *st = D->st;
     size_t N = st->n_samples;
     size_t groups = (N + BF_FIG_SCATTER_SAMPLES - 1) / BF_FIG_SCATTER_SAMPLES;
     size_t g;
-    size_t m;
     size_t s;
     int ok = add_entry(set, BF_FIG_LSE, 0, 0) != NULL &&
              add_entry(set, BF_FIG_WINS, 0, 0) != NULL;
     for (g = 0; g < groups && ok; g++) {
         ok = add_entry(set, BF_FIG_SCATTER, g, 0) != NULL;
     }
-    if (st->stats != NULL && ok) {
-        ok = add_entry(set, BF_FIG_DELTA_BIC, 0, 0) != NULL;
-        for (m = 0; m < st->n_models && ok; m++) {
-            if (bf_fig_has_forest(st, m)) {
-                ok = add_entry(set, BF_FIG_FOREST, m, 0) != NULL;
-            }
-        }
-    }
     for (s = 0; s < N && ok; s++) {
         int sample = st->samples[s];
         ok = (!D->o->per_sample ||
               add_entry(set, BF_FIG_SAMPLE, s, sample) != NULL) &&
              add_entry(set, BF_FIG_PLANE, s, sample) != NULL &&
-             add_entry(set, BF_FIG_POLAR, s, sample) != NULL &&
-             (st->stats == NULL ||
-              add_entry(set, BF_FIG_PROFILE, s, sample) != NULL);
+             add_entry(set, BF_FIG_POLAR, s, sample) != NULL;
+    }
+    return ok ? BF_OK : BF_ENOMEM;
+}
+
+/* The figures of the analysis (st->stats): delta BIC, a forest plot per
+ * model with fitted parameters, a profile per sample. */
+static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
+{
+    const bf_cli_study *st = D->st;
+    size_t m;
+    size_t s;
+    int ok = add_entry(set, BF_FIG_DELTA_BIC, 0, 0) != NULL;
+    for (m = 0; m < st->n_models && ok; m++) {
+        if (bf_fig_has_forest(st, m)) {
+            ok = add_entry(set, BF_FIG_FOREST, m, 0) != NULL;
+        }
+    }
+    for (s = 0; s < st->n_samples && ok; s++) {
+        ok = add_entry(set, BF_FIG_PROFILE, s, st->samples[s]) != NULL;
     }
     return ok ? BF_OK : BF_ENOMEM;
 }
@@ -404,47 +413,79 @@ static int next_index(int fd, size_t *i)
     return 1;
 }
 
-/* Draws every figure with jobs processes: the parent hands out figure
- * indices on a work pipe (4 bytes each, an atomic pipe write and read),
- * each worker draws the figures it reads, reports each file drawn on a
- * progress pipe and exits with its status. */
-static int draw_parallel(const bf_fig_data *D, bf_fig_set *set, int jobs,
-                         progress_t *pr)
+/* The drawing processes of one batch of figures. */
+#define MAX_WORKERS 64
+typedef struct {
+    pid_t pid[MAX_WORKERS];
+    int n;    /* processes started */
+    int prog; /* read end of their progress pipe, -1 when none */
+} pool_t;
+
+/* What a render keeps from bf_figures_start to bf_figures_finish. */
+struct bf_fig_run {
+    bf_fig_data D;
+    const bf_fig_opts *o;
+    pool_t pool[2];   /* the paper's figures, the analysis figures */
+    size_t n_pools;
+    progress_t pr;
+    int analysis;     /* the analysis figures are listed */
+};
+
+/* Draws figures [from, set->n) with jobs processes: the parent writes
+ * their indices into a work pipe (4 bytes each: atomic pipe writes and
+ * reads) before any worker starts reading, each worker draws the figures
+ * it reads, reports each file drawn on the progress pipe and exits with
+ * its status. With jobs = 1 the figures are drawn here. Returns
+ * BF_EXIT_OK or an exit status (after printing the error). */
+static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
+                      int jobs, pool_t *p, progress_t *pr)
 {
-    pid_t pid[64];
     int work[2];
     int prog[2];
     int w;
-    int started = 0;
-    int rc = BF_EXIT_OK;
-    char buf[256];
-    ssize_t got;
     size_t i;
-    void (*old_pipe)(int);
-
+    p->n = 0;
+    p->prog = -1;
+    if (jobs <= 1 || set->n - from <= 1) {
+        int rc = BF_EXIT_OK;
+        for (i = from; i < set->n && rc == BF_EXIT_OK; i++) {
+            rc = draw_entry(D, set, &set->fig[i], progress_tick, pr);
+        }
+        return rc;
+    }
     if (pipe(work) != 0) {
         bf_cli_err("cannot start the drawing processes: %s", strerror(errno));
         return BF_EXIT_SOFTWARE;
     }
+    for (i = from; i < set->n; i++) { /* a few bytes a figure: fits */
+        unsigned char b[4] = {(unsigned char)(i & 0xFF),
+                              (unsigned char)((i >> 8) & 0xFF),
+                              (unsigned char)((i >> 16) & 0xFF),
+                              (unsigned char)((i >> 24) & 0xFF)};
+        if (write(work[1], b, sizeof b) != (ssize_t)sizeof b) {
+            bf_cli_err("cannot hand out the figures: %s", strerror(errno));
+            close(work[0]);
+            close(work[1]);
+            return BF_EXIT_SOFTWARE;
+        }
+    }
+    close(work[1]);
     if (pipe(prog) != 0) {
         bf_cli_err("cannot start the drawing processes: %s", strerror(errno));
         close(work[0]);
-        close(work[1]);
         return BF_EXIT_SOFTWARE;
     }
     fflush(stdout);
     fflush(stderr);
-    for (w = 0; w < jobs && w < 64; w++) {
-        pid[w] = fork();
-        if (pid[w] < 0) {
-            rc = BF_EXIT_SOFTWARE;
+    for (w = 0; w < jobs && w < MAX_WORKERS; w++) {
+        pid_t pid = fork();
+        if (pid < 0) {
             bf_cli_err("cannot start a drawing process: %s", strerror(errno));
             break;
         }
-        if (pid[w] == 0) { /* a worker */
+        if (pid == 0) { /* a worker */
             progress_t mine = *pr;
             int status = BF_EXIT_OK;
-            close(work[1]);
             close(prog[0]);
             mine.fd = prog[1];
             while (status == BF_EXIT_OK && next_index(work[0], &i) &&
@@ -454,97 +495,60 @@ static int draw_parallel(const bf_fig_data *D, bf_fig_set *set, int jobs,
             }
             _exit(status);
         }
-        started++;
+        p->pid[p->n++] = pid;
     }
     close(work[0]);
     close(prog[1]);
-    /* a write after every worker stopped fails (EPIPE) instead of killing
-     * the process */
-    old_pipe = signal(SIGPIPE, SIG_IGN);
-    for (i = 0; i < set->n && started > 0; i++) {
-        unsigned char b[4] = {(unsigned char)(i & 0xFF),
-                              (unsigned char)((i >> 8) & 0xFF),
-                              (unsigned char)((i >> 16) & 0xFF),
-                              (unsigned char)((i >> 24) & 0xFF)};
-        if (write(work[1], b, sizeof b) != (ssize_t)sizeof b) {
-            break; /* every worker has stopped: its status says why */
-        }
+    p->prog = prog[0];
+    return p->n > 0 ? BF_EXIT_OK : BF_EXIT_SOFTWARE;
+}
+
+/* Waits for the processes of p, counting the files they report; returns
+ * the first failing status (BF_EXIT_OK when all succeeded). With kill_them,
+ * stops them first (the run failed elsewhere). */
+static int pool_wait(pool_t *p, progress_t *pr, int kill_them)
+{
+    char buf[256];
+    ssize_t got;
+    int rc = BF_EXIT_OK;
+    int w;
+    for (w = 0; kill_them && w < p->n; w++) {
+        kill(p->pid[w], SIGTERM);
     }
-    close(work[1]);
-    signal(SIGPIPE, old_pipe);
-    while ((got = read(prog[0], buf, sizeof buf)) > 0 ||
-           (got < 0 && errno == EINTR)) {
+    while (p->prog >= 0 && ((got = read(p->prog, buf, sizeof buf)) > 0 ||
+                            (got < 0 && errno == EINTR))) {
         ssize_t k;
         for (k = 0; k < got; k++) {
             progress_tick(pr);
         }
     }
-    close(prog[0]);
-    for (w = 0; w < started; w++) {
+    if (p->prog >= 0) {
+        close(p->prog);
+        p->prog = -1;
+    }
+    for (w = 0; w < p->n; w++) {
         int status = 0;
-        while (waitpid(pid[w], &status, 0) < 0 && errno == EINTR) {
+        while (waitpid(p->pid[w], &status, 0) < 0 && errno == EINTR) {
         }
         if (rc == BF_EXIT_OK) {
             rc = WIFEXITED(status) ? WEXITSTATUS(status) : BF_EXIT_SOFTWARE;
         }
     }
-    return rc;
-}
-
-static int draw_all(const bf_fig_data *D, bf_fig_set *set, int jobs,
-                    progress_t *pr)
-{
-    size_t i;
-    int rc = BF_EXIT_OK;
-    if (jobs > 1 && set->n > 1) {
-        return draw_parallel(D, set, jobs, pr);
-    }
-    for (i = 0; i < set->n && rc == BF_EXIT_OK; i++) {
-        rc = draw_entry(D, set, &set->fig[i], progress_tick, pr);
-    }
+    p->n = 0;
     return rc;
 }
 
 /* ==== the render ========================================================= */
 
-int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
-                      const char *out_dir, bf_fig_set *set)
+/* Names, texts and sizes of figures [from, set->n) (the page needs them),
+ * then their temporary files. */
+static int prepare(const bf_fig_data *D, bf_fig_set *set, size_t from)
 {
-    bf_fig_data D;
-    progress_t pr;
-    size_t s;
     size_t i;
-    int rc = BF_EXIT_OK;
     int f;
-
-    memset(set, 0, sizeof *set);
-    memset(&D, 0, sizeof D);
-    set->formats = o->formats;
-    snprintf(set->dir, sizeof set->dir, "%s/%s", out_dir, BF_FIG_DIR);
-    D.st = st;
-    D.o = o;
-    D.smp = calloc(st->n_samples + 1, sizeof *D.smp);
-    if (D.smp == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
-    }
-    for (s = 0; s < st->n_samples && rc == BF_EXIT_OK; s++) {
-        int e = sample_compute(st, s, &D.smp[s]);
-        if (e != BF_OK) {
-            bf_cli_err("sample %d: cannot compute the radiances to plot: %s",
-                       st->samples[s], bf_strerror(e));
-            rc = e == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
-        }
-    }
-    D.nm = scatter_models(st, D.idx);
-    if (rc == BF_EXIT_OK && list_figures(&D, set) != BF_OK) {
-        bf_cli_err("out of memory");
-        rc = BF_EXIT_SOFTWARE;
-    }
-    /* names, texts and sizes first (the page needs them), then the files */
-    for (i = 0; i < set->n && rc == BF_EXIT_OK; i++) {
+    for (i = from; i < set->n; i++) {
         bf_fig_desc d;
-        int e = describe(&D, &set->fig[i], &d, 0);
+        int e = describe(D, &set->fig[i], &d, 0);
         if (e == BF_OK) {
             e = bf_plot_size(&d.fig, &set->fig[i].width,
                              &set->fig[i].height);
@@ -553,38 +557,122 @@ int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
         if (e != BF_OK) {
             bf_cli_err("%s: cannot lay out the figure: %s",
                        set->fig[i].base, bf_strerror(e));
-            rc = BF_EXIT_SOFTWARE;
+            return BF_EXIT_SOFTWARE;
         }
     }
+    for (i = from; i < set->n; i++) {
+        for (f = 0; f < BF_PLOT_NFORMATS; f++) {
+            if ((set->formats >> f) & 1u) {
+                int rc = make_tmp(set, &set->fig[i], (bf_plot_format)f);
+                if (rc != BF_EXIT_OK) {
+                    return rc;
+                }
+            }
+        }
+    }
+    return BF_EXIT_OK;
+}
+
+/* Lists figures from `from` on with list, prepares and starts them. */
+static int batch(struct bf_fig_run *run, bf_fig_set *set,
+                 int (*list)(const bf_fig_data *, bf_fig_set *))
+{
+    size_t from = set->n;
+    int rc;
+    if (list(&run->D, set) != BF_OK) {
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    }
+    rc = prepare(&run->D, set, from);
+    run->pr.total += (set->n - from) * (size_t)n_formats(set->formats);
+    if (rc == BF_EXIT_OK) {
+        rc = pool_start(&run->D, set, from, run->o->jobs,
+                        &run->pool[run->n_pools++], &run->pr);
+    }
+    return rc;
+}
+
+int bf_figures_start(const bf_cli_study *st, const bf_fig_opts *o,
+                     const char *out_dir, bf_fig_set *set,
+                     int with_analysis)
+{
+    struct bf_fig_run *run = calloc(1, sizeof *run);
+    size_t s;
+    int rc = BF_EXIT_OK;
+
+    memset(set, 0, sizeof *set);
+    set->formats = o->formats;
+    snprintf(set->dir, sizeof set->dir, "%s/%s", out_dir, BF_FIG_DIR);
+    if (run == NULL || (run->D.smp = calloc(st->n_samples + 1,
+                                            sizeof *run->D.smp)) == NULL) {
+        free(run);
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    }
+    set->run = run;
+    run->o = o;
+    run->D.st = st;
+    run->D.o = o;
+    run->pr.show = o->progress;
+    run->pr.fd = -1;
+    for (s = 0; s < st->n_samples && rc == BF_EXIT_OK; s++) {
+        int e = sample_compute(st, s, &run->D.smp[s]);
+        if (e != BF_OK) {
+            bf_cli_err("sample %d: cannot compute the radiances to plot: %s",
+                       st->samples[s], bf_strerror(e));
+            rc = e == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+        }
+    }
+    run->D.nm = scatter_models(st, run->D.idx);
     if (rc == BF_EXIT_OK) {
         rc = bf_cli_make_outdir(out_dir);
     }
     if (rc == BF_EXIT_OK) {
         rc = bf_cli_make_outdir(set->dir);
     }
-    for (i = 0; i < set->n && rc == BF_EXIT_OK; i++) {
-        for (f = 0; f < BF_PLOT_NFORMATS && rc == BF_EXIT_OK; f++) {
-            if ((o->formats >> f) & 1u) {
-                rc = make_tmp(set, &set->fig[i], (bf_plot_format)f);
-            }
-        }
-    }
     if (rc == BF_EXIT_OK) {
-        pr.done = 0;
-        pr.total = set->n * (size_t)n_formats(o->formats);
-        pr.show = o->progress;
-        pr.fd = -1;
-        rc = draw_all(&D, set, o->jobs, &pr);
-        if (o->progress && pr.done > 0) {
-            fputc('\n', stderr);
-        }
+        rc = batch(run, set, list_paper);
     }
-    data_free(&D);
+    if (rc == BF_EXIT_OK && with_analysis && st->stats != NULL) {
+        run->analysis = 1;
+        rc = batch(run, set, list_analysis);
+    }
     if (rc != BF_EXIT_OK) {
         bf_figures_free(set);
-        (void)rmdir(set->dir); /* only when empty: nothing else is lost */
     }
     return rc;
+}
+
+int bf_figures_finish(const bf_cli_study *st, bf_fig_set *set)
+{
+    struct bf_fig_run *run = set->run;
+    int rc = BF_EXIT_OK;
+    size_t p;
+    if (run == NULL) {
+        return BF_EXIT_SOFTWARE;
+    }
+    if (!run->analysis && st->stats != NULL) {
+        run->analysis = 1;
+        rc = batch(run, set, list_analysis);
+    }
+    for (p = 0; p < run->n_pools; p++) {
+        int w = pool_wait(&run->pool[p], &run->pr, rc != BF_EXIT_OK);
+        rc = rc == BF_EXIT_OK ? w : rc;
+    }
+    if (run->pr.show && run->pr.done > 0) {
+        fputc('\n', stderr);
+    }
+    if (rc != BF_EXIT_OK) {
+        bf_figures_free(set);
+    }
+    return rc;
+}
+
+int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
+                      const char *out_dir, bf_fig_set *set)
+{
+    int rc = bf_figures_start(st, o, out_dir, set, 1);
+    return rc == BF_EXIT_OK ? bf_figures_finish(st, set) : rc;
 }
 
 int bf_figures_commit(bf_fig_set *set)
@@ -613,8 +701,14 @@ int bf_figures_commit(bf_fig_set *set)
 
 void bf_figures_free(bf_fig_set *set)
 {
+    struct bf_fig_run *run = set->run;
     size_t i;
     int f;
+    if (run != NULL) { /* processes still drawing: stop them first */
+        for (i = 0; i < run->n_pools; i++) {
+            (void)pool_wait(&run->pool[i], &run->pr, 1);
+        }
+    }
     for (i = 0; i < set->n; i++) {
         for (f = 0; f < BF_PLOT_NFORMATS; f++) {
             if (set->fig[i].tmp[f][0] != '\0') {
@@ -626,4 +720,10 @@ void bf_figures_free(bf_fig_set *set)
     free(set->fig);
     set->fig = NULL;
     set->n = 0;
+    if (run != NULL) {
+        data_free(&run->D);
+        free(run);
+        set->run = NULL;
+        (void)rmdir(set->dir); /* only when empty: nothing else is lost */
+    }
 }

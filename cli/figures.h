@@ -66,20 +66,37 @@ typedef struct {
     size_t n;
     unsigned formats;
     char dir[4096];         /* out_dir/BF_FIG_DIR */
+    struct bf_fig_run *run; /* drawing in progress (figures.c) */
 } bf_fig_set;
 
 /* Draws every figure of the study st into temporary files in
- * out_dir/BF_FIG_DIR (created if missing) and describes them in set.
- * Returns BF_EXIT_OK or an exit status after printing the error (the
- * temporaries are then removed). */
+ * out_dir/BF_FIG_DIR (created if missing) and describes them in set:
+ * bf_figures_start then bf_figures_finish. Returns BF_EXIT_OK or an exit
+ * status after printing the error (the temporaries are then removed). */
 int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
                       const char *out_dir, bf_fig_set *set);
+
+/* Starts drawing the figures of the paper's protocol (and, with
+ * with_analysis and st->stats, those of the analysis): with o->jobs > 1 in
+ * drawing processes, and returns while they draw, so that the caller can
+ * run the analysis meanwhile (st's rows must not change: the paper's
+ * protocol, not --fit exact). Returns BF_EXIT_OK or an exit status after
+ * printing the error (set is then freed). */
+int bf_figures_start(const bf_cli_study *st, const bf_fig_opts *o,
+                     const char *out_dir, bf_fig_set *set,
+                     int with_analysis);
+
+/* Draws the analysis figures if st->stats is now there and they were not
+ * started, and waits for every drawing process. Returns BF_EXIT_OK or an
+ * exit status after printing the error (set is then freed). */
+int bf_figures_finish(const bf_cli_study *st, bf_fig_set *set);
 
 /* Renames every temporary file into place. Returns BF_EXIT_OK or an exit
  * status after printing the error; the files not yet renamed are removed. */
 int bf_figures_commit(bf_fig_set *set);
 
-/* Removes any temporary file left and frees set (NULL-safe fields). */
+/* Stops any drawing process, removes any temporary file left and frees
+ * set (NULL-safe fields). */
 void bf_figures_free(bf_fig_set *set);
 
 /* "Felt (1)", "Felt [R] (1)", or "sample 1" without a name, for target

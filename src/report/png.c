@@ -77,8 +77,13 @@ static size_t exact_palette(cache_t *c, const unsigned char *rgb, size_t n,
     size_t np = 0;
     size_t i;
     for (i = 0; i < n; i++) {
-        uint32_t key = rgb_key(&rgb[3 * i]);
-        size_t h = cache_slot(c, key);
+        uint32_t key;
+        size_t h;
+        if (i > 0 && memcmp(&rgb[3 * i], &rgb[3 * i - 3], 3) == 0) {
+            continue; /* runs of one colour: seen */
+        }
+        key = rgb_key(&rgb[3 * i]);
+        h = cache_slot(c, key);
         if (c->key[h] == key) {
             continue;
         }
