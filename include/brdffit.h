@@ -926,7 +926,7 @@ int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
  * bf_fit_refine), n the sum of the weights. The profile interval is where
  * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
  * undefined. BF_EINVAL on bad arguments or theta out of range or not
- * increasing; BF_ENOMEM. (src/fit/profile.c) */
+ * increasing; BF_ENOMEM. (src/fit/profile_curve.c) */
 int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
                          size_t j, size_t n, const double *theta,
                          double *dev);

@@ -1,4 +1,4 @@
-/* profile.c: the profile of a fit's objective along one parameter, as a
+/* profile_curve.c: the profile of a fit's objective along one parameter, as a
  * curve -- what the profile interval (uncertainty.c, doc/methods.md §3)
  * thresholds, for drawing it.
  *
