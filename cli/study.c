@@ -667,13 +667,20 @@ int bf_cli_study_error(const bf_error *err)
     return err->code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
 }
 
-int bf_cli_study_run(bf_cli_study *st)
+int bf_cli_study_run_protocol(bf_cli_study *st)
 {
     bf_error err;
-    if (!st->opts.exact &&
-        bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
+    if (st->opts.exact) { /* the analysis is the study */
+        return BF_EXIT_OK;
+    }
+    if (bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
         return bf_cli_study_error(&err);
     }
+    return check_rows(st);
+}
+
+int bf_cli_study_run_analysis(bf_cli_study *st)
+{
     /* The analysis beyond the paper (refinement, intervals, AIC, BIC, CV;
      * with --fit exact also the study itself) runs with --fit exact,
      * --stats or --bootstrap: the paper's protocol alone stays the fast
@@ -684,7 +691,13 @@ int bf_cli_study_run(bf_cli_study *st)
             return rc;
         }
     }
-    return check_rows(st);
+    return st->opts.exact ? check_rows(st) : BF_EXIT_OK;
+}
+
+int bf_cli_study_run(bf_cli_study *st)
+{
+    int rc = bf_cli_study_run_protocol(st);
+    return rc == BF_EXIT_OK ? bf_cli_study_run_analysis(st) : rc;
 }
 
 void bf_cli_study_free(bf_cli_study *st)

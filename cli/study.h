@@ -94,8 +94,16 @@ int bf_cli_study_prepare(bf_cli_study *st);
  * and returns its exit status. */
 int bf_cli_study_error(const bf_error *err);
 
-/* Runs the study (after prepare). Returns BF_EXIT_OK or an exit status. */
+/* Runs the study (after prepare): the paper's protocol, then the analysis
+ * when asked. Returns BF_EXIT_OK or an exit status. */
 int bf_cli_study_run(bf_cli_study *st);
+
+/* The two halves of bf_cli_study_run: the paper's protocol (nothing with
+ * --fit exact, where the analysis is the study), then the analysis
+ * (--stats, --fit exact, --bootstrap; nothing otherwise). The report
+ * draws the paper's figures while the analysis runs. */
+int bf_cli_study_run_protocol(bf_cli_study *st);
+int bf_cli_study_run_analysis(bf_cli_study *st);
 
 /* Frees everything st owns. */
 void bf_cli_study_free(bf_cli_study *st);

@@ -918,6 +918,39 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
 int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
               unsigned long seed, double *cv);
 
+/* The profile of pb's objective along free parameter j as a curve
+ * (doc/methods.md §3): dev[i] = n ln(S_p(theta[i]) / S_min) at the n
+ * increasing values theta[i] within the search range [lo_j, hi_j], S_p
+ * minimised over the other free parameters (warm-started outward from the
+ * optimum), S_min the objective at best (the exact optimum,
+ * bf_fit_refine), n the sum of the weights. The profile interval is where
+ * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
+ * undefined. BF_EINVAL on bad arguments or theta out of range or not
+ * increasing; BF_ENOMEM. (src/fit/profile_curve.c) */
+int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
+                         size_t j, size_t n, const double *theta,
+                         double *dev);
+
+/* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
+ * model at the n configurations at[], divided by its maximum over the
+ * n_used configurations used[] the fit saw. work holds n_used doubles.
+ * out[i] is NaN where the model is undefined at at[i]. BF_EDOM when the
+ * model cannot be normalised on used[] (maximum not positive or
+ * undefined); BF_EINVAL on bad arguments. (src/fit/plane.c) */
+int bf_fit_curve(const bf_model_type *type, const double *param,
+                 size_t n_used, const bf_geom *used, size_t n,
+                 const bf_geom *at, double *work, double *out);
+
+/* The configuration of the plane of incidence at incidence theta_i and
+ * signed viewing angle t in [-pi/2, pi/2] (t > 0 on the forward, specular
+ * side; Beckmann's frame, SPEC §1.2). */
+bf_geom bf_geom_in_plane(double theta_i, double t);
+
+/* The signed viewing angle of g in its plane of incidence (> 0 forward),
+ * and in *off_plane (may be NULL) the angle between the viewing direction
+ * and that plane, radians. */
+double bf_geom_plane_angle(const bf_geom *g, double *off_plane);
+
 /* A model type with some parameters' status or search range changed (n
  * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise
  * with bf_model_variant_init and use &v->type; v must not be moved or

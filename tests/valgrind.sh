@@ -18,6 +18,10 @@
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
+# main_job/runs_from_a_bare_clone... runs `make run` on the 24 study samples
+# through make and sh (valgrind follows every child, every figure
+# process); the report code runs under valgrind in test_cmd_report, the
+# data script in the other two main_job tests.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -33,7 +37,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
     bk/original_beckmann_peaks_at_specular_below_the_slope_threshold
     oren_nayar/is_finite_and_non_negative_everywhere_for_every_rho_and_sigma
-    determinism/every_model_on_every_sample_gives_byte_identical_outputs"}
+    determinism/every_model_on_every_sample_gives_byte_identical_outputs
+    main_job/runs_from_a_bare_clone_with_the_curet_files_fetched_and_verified"}
 
 status=0
 for exe in "$build"/tests/test_*; do
