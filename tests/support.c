@@ -160,6 +160,54 @@ void bf_test_expect_read_error(bf_test_reader rd, const char *name,
     cr_assert_str_eq(err.msg, msg);
 }
 
+void bf_test_grid_point(const bf_model_type *type, double frac,
+                        double *param)
+{
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        const bf_param *pj = &type->param[j];
+        param[j] = pj->value;
+        if (pj->fitted && pj->grid_n > 0) {
+            size_t i = (size_t)(frac * (double)(pj->grid_n - 1));
+            param[j] = pj->grid_lo + pj->grid_step * (double)i; /* grid.c */
+        }
+    }
+}
+
+void bf_test_model_brdf(const bf_model_type *type, const double *param,
+                        size_t n, const bf_geom *geom, double *out)
+{
+    size_t k;
+    cr_assert_eq(bf_model_eval(type, param, n, geom, out), BF_OK, "%s",
+                 type->name);
+    for (k = 0; k < n; k++) {
+        out[k] /= cos(geom[k].theta_i);
+    }
+}
+
+bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
+                              const bf_model_type *type, size_t *k)
+{
+    bf_target t = {m, BF_CHANNEL_MEAN};
+    bf_study_row row;
+    bf_study_spec spec;
+    bf_error err;
+    memset(&spec, 0, sizeof spec);
+    spec.data = ds;
+    bf_select_init(&spec.select);
+    spec.targets = &t;
+    spec.n_targets = 1;
+    spec.models = &type;
+    spec.n_models = 1;
+    spec.n_default = BF_DEFAULT_N;
+    cr_assert_eq(bf_study_run(&spec, &row, &err), BF_OK, "%s", err.msg);
+    cr_assert_eq(row.status, BF_OK, "%s", type->name);
+    if (k != NULL) {
+        *k = row.k;
+    }
+    return row.fit;
+}
+
 const char *bf_test_fixture_path(const char *file)
 {
     return path_in("BRDFFIT_FIXTURES_DIR", BF_FIXTURES_DIR, file);

@@ -70,6 +70,23 @@ void bf_test_expect_read_error(bf_test_reader rd, const char *name,
                                const void *buf, size_t len, int code,
                                long line, const char *msg);
 
+/* The parameters of type at a point of its paper grid (SPEC §7.4): each
+ * fitted parameter at grid index floor(frac (grid_n - 1)), computed as the
+ * grid computes it; the others at their defaults. */
+void bf_test_grid_point(const bf_model_type *type, double frac,
+                        double *param);
+
+/* BRDF values whose radiance (SPEC §2: value times cos theta_i) is type's
+ * at param on n configurations: out[k] = L_k / cos theta_i,k. */
+void bf_test_model_brdf(const bf_model_type *type, const double *param,
+                        size_t n, const bf_geom *geom, double *out);
+
+/* The paper's grid fit (bf_study_run, format defaults: every valid
+ * configuration outside the format's default cone) of material m of ds,
+ * mean channel, with one model; fails the test on an error. *k gets K. */
+bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
+                              const bf_model_type *type, size_t *k);
+
 /* Path of a fixture in tests/fixtures (static buffer). */
 const char *bf_test_fixture_path(const char *file);
 

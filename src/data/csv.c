@@ -571,14 +571,15 @@ static const char *label(const bf_dataset *ds, size_t m, char num[32])
  * ("550nm") for a wavelength channel, its name for any other. 1 when
  * that reads back as the channel itself: not for a wavelength channel
  * named otherwise than by its wavelength, nor for a name the reader takes
- * for a wavelength. num gets the wavelength's text. */
+ * for a wavelength or for one of its own columns (theta_i, ..., material).
+ * num gets the wavelength's text. */
 static int channel_ok(const bf_dataset *ds, size_t c, char num[32])
 {
     const char *name = bf_dataset_channel(ds, 0, c);
     double wl = bf_dataset_wavelength(ds, 0, c);
     double nm;
     if (isnan(wl)) {
-        return !bf__channel_wavelength(name, &nm);
+        return !bf__channel_wavelength(name, &nm) && reserved(name) < 0;
     }
     bf__format_double(wl, num);
     return strcmp(num, name) == 0;

@@ -201,16 +201,15 @@ int bf_merl_read(FILE *fp, const char *name, bf_merl **out, bf_error *err)
         bf_merl_free(t);
         return bf__error_set(err, BF_ENOMEM, 0, "out of memory");
     }
-    got = fread(t->v, sizeof *t->v, 3 * N_CELLS, fp); /* one read */
+    got = fread(t->v, 1, FILE_BYTES - HEADER_BYTES, fp); /* one read */
     if (ferror(fp)) {
         rc = bf__error_set(err, BF_EIO, 0, "read error: %s",
                            strerror(errno));
-    } else if (got < 3 * N_CELLS) {
+    } else if (got < FILE_BYTES - HEADER_BYTES) {
         rc = bf__error_set(err, BF_EPARSE, 0,
                            "byte %zu: the file ends early; its dimensions "
                            "90 x 90 x 180 imply %zu bytes",
-                           HEADER_BYTES + got * sizeof *t->v,
-                           (size_t)FILE_BYTES);
+                           HEADER_BYTES + got, (size_t)FILE_BYTES);
     } else if (getc(fp) != EOF) {
         rc = bf__error_set(err, BF_EPARSE, 0,
                            "byte %zu: data after the table (its dimensions "
