@@ -254,7 +254,7 @@ int bf_format_detect(const char *path, bf_format *f, bf_error *err)
             *f = BF_FORMAT_CURET;
             return BF_OK;
         }
-        return bf__error_set(err, BF_EPARSE, 0,
+        return bf__error_set(err, BF_EIO, 0,
                              "a folder without table.txt (only CURET data "
                              "is a folder)");
     }

@@ -344,26 +344,52 @@ int bf_merl_lookup(const bf_merl *t, double theta_i, double phi_i,
 
 /* ==== sampling ==== */
 
+/* Sines and cosines of the cells' centre angles (theta_h by i, theta_d
+ * by j, phi_d by k), each computed once. */
+typedef struct {
+    double sh[N_TH], ch[N_TH];
+    double sd[N_TD], cd[N_TD];
+    double sp[N_PD], cp[N_PD];
+} centres_t;
+
+static void centres_init(centres_t *c)
+{
+    size_t i;
+    for (i = 0; i < N_TH; i++) {
+        double theta_h = ((i + 0.5) / N_TH) * ((i + 0.5) / N_TH) * BF__PI_2;
+        c->sh[i] = sin(theta_h);
+        c->ch[i] = cos(theta_h);
+    }
+    for (i = 0; i < N_TD; i++) {
+        double theta_d = ((i + 0.5) / N_TD) * BF__PI_2;
+        c->sd[i] = sin(theta_d);
+        c->cd[i] = cos(theta_d);
+    }
+    for (i = 0; i < N_PD; i++) {
+        double phi_d = ((i + 0.5) / N_PD) * BF__PI;
+        c->sp[i] = sin(phi_d);
+        c->cp[i] = cos(phi_d);
+    }
+}
+
 /* The directions of the centre of cell (i, j, k) (see the file's
  * comment); 1 when both lie on or above the horizon. */
-static int centre(long i, long j, long k, double angles[4])
+static int centre(const centres_t *c, size_t i, size_t j, size_t k,
+                  double angles[4])
 {
-    double theta_h = ((i + 0.5) / N_TH) * ((i + 0.5) / N_TH) * BF__PI_2;
-    double theta_d = ((j + 0.5) / N_TD) * BF__PI_2;
-    double phi_d = ((k + 0.5) / N_PD) * BF__PI;
     double d[3];
     double in[3];
     double out[3];
-    d[0] = sin(theta_d) * cos(phi_d);
-    d[1] = sin(theta_d) * sin(phi_d);
-    d[2] = cos(theta_d);
+    d[0] = c->sd[j] * c->cp[k];
+    d[1] = c->sd[j] * c->sp[k];
+    d[2] = c->cd[j];
     /* R_y(theta_h): the inverse of the lookup's rotation, phi_h = 0 */
-    in[0] = (d[0] * cos(theta_h)) + (d[2] * sin(theta_h));
+    in[0] = (d[0] * c->ch[i]) + (d[2] * c->sh[i]);
     in[1] = d[1];
-    in[2] = (d[2] * cos(theta_h)) - (d[0] * sin(theta_h));
-    out[0] = (-d[0] * cos(theta_h)) + (d[2] * sin(theta_h));
+    in[2] = (d[2] * c->ch[i]) - (d[0] * c->sh[i]);
+    out[0] = (-d[0] * c->ch[i]) + (d[2] * c->sh[i]);
     out[1] = -d[1];
-    out[2] = (d[2] * cos(theta_h)) + (d[0] * sin(theta_h));
+    out[2] = (d[2] * c->ch[i]) + (d[0] * c->sh[i]);
     if (in[2] < 0.0 || out[2] < 0.0) {
         return 0;
     }
@@ -380,9 +406,10 @@ static int centre(long i, long j, long k, double angles[4])
 static int all_cells(const bf_merl *t, size_t *n, double **angles,
                      double **values)
 {
-    long i;
-    long j;
-    long k;
+    centres_t c;
+    size_t i;
+    size_t j;
+    size_t k;
     void *p;
     *n = 0;
     *angles = malloc(N_CELLS * 4 * sizeof **angles);
@@ -390,14 +417,13 @@ static int all_cells(const bf_merl *t, size_t *n, double **angles,
     if (*angles == NULL || *values == NULL) {
         return BF_ENOMEM;
     }
+    centres_init(&c);
     for (i = 0; i < N_TH; i++) {
         for (j = 0; j < N_TD; j++) {
             for (k = 0; k < N_PD; k++) {
-                size_t cell = (size_t)k + (size_t)N_PD *
-                                              ((size_t)j +
-                                               (size_t)N_TD * (size_t)i);
+                size_t cell = k + N_PD * (j + N_TD * i);
                 if (cell_values(t, cell, *values + 3 * *n) &&
-                    centre(i, j, k, *angles + 4 * *n)) {
+                    centre(&c, i, j, k, *angles + 4 * *n)) {
                     (*n)++;
                 }
             }

@@ -148,7 +148,7 @@ Test(format, what_no_reader_recognises_is_an_error)
                    "no format recognised: not ASTM (no NUM_POINTS or VARS "
                    "header), not tidy CSV (no header theta_i,phi_i,theta_o,"
                    "phi_o), not pbrt (no wavelength count first), not MERL");
-    expect_unknown(dir, BF_EPARSE,
+    expect_unknown(dir, BF_EIO,
                    "a folder without table.txt (only CURET data is a "
                    "folder)");
     snprintf(fifo, sizeof fifo, "%s/pipe", dir);
