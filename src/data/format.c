@@ -300,6 +300,12 @@ int bf_format_detect(const char *path, bf_format *f, bf_error *err)
 
 /* ==== loading ==== */
 
+static int is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
 /* A MERL file at the configurations of opts (checked first: nothing is
  * read without them). */
 static int load_merl(const char *path, const bf_load_opts *opts,
@@ -337,6 +343,9 @@ int bf_dataset_load(const char *path, const bf_load_opts *opts,
     bf__error_clear(err, path);
     if (path == NULL || out == NULL) {
         return bf__error_set(err, BF_EINVAL, 0, "no file name or no output");
+    }
+    if (f == BF_FORMAT_AUTO && is_dir(path)) {
+        f = BF_FORMAT_CURET; /* a folder is read as CURET (brdffit.h) */
     }
     if (f == BF_FORMAT_AUTO) {
         rc = bf_format_detect(path, &f, err);

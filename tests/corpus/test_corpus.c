@@ -685,9 +685,9 @@ Test(corpus, input_folder_without_table_and_missing_file)
     fresh_data(data, sizeof data);
     snprintf(dir, sizeof dir, "%s/empty-folder", data);
     cr_assert_eq(mkdir(dir, 0755), 0);
+    /* a folder is read as CURET (brdffit.h): its table is missing */
     snprintf(message, sizeof message,
-             "%s: a folder without table.txt (only CURET data is a folder)",
-             dir);
+             "%s/table.txt: cannot open: No such file or directory", dir);
     expect_input_rejected("folder", data, dir, NULL, NULL, EXIT_NOINPUT,
                           message);
     snprintf(path, sizeof path, "%s/no-such.csv", data);

@@ -195,6 +195,23 @@ Test(format, bf_dataset_load_reads_each_format_as_its_reader_does)
     bf_dataset_free(a);
 }
 
+Test(format, a_folder_is_read_as_curet)
+{
+    /* bf_dataset_load does not detect a folder: CURET's reader names the
+     * file it lacks (bf_format_detect alone says what the folder lacks) */
+    char dir[512];
+    char table[600];
+    bf_dataset *ds = (bf_dataset *)&ds;
+    bf_error err;
+    snprintf(dir, sizeof dir, "%s", bf_test_tmpdir());
+    snprintf(table, sizeof table, "%s/table.txt", dir);
+    cr_assert_eq(bf_dataset_load(dir, NULL, &ds, &err), BF_EIO);
+    cr_assert_null(ds);
+    cr_assert_str_eq(err.file, table);
+    cr_assert_str_eq(err.msg, "cannot open: No such file or directory");
+    rmdir(dir);
+}
+
 Test(format, a_forced_format_is_read_as_that_format)
 {
     bf_dataset *ds = (bf_dataset *)&ds;
