@@ -235,7 +235,7 @@ static void dump_cells(const bf_dataset *ds, const char *path)
     double *d = malloc(n * sizeof *d);
     const bf_geom *g = bf_dataset_geom(ds, 0);
     double kd;
-    size_t k;
+    size_t k = 0;
     size_t i;
     bf_error err;
     FILE *fp;
