@@ -1,4 +1,5 @@
-/* fuzz_astm.c: libFuzzer target for the ASTM E1392 reader (bf_astm_read; SPEC §8).
+/* fuzz_astm.c: libFuzzer target for the ASTM E1392 reader
+ * (bf_astm_read; SPEC §8).
  *
  * Beyond "no crash, leak or sanitizer report" it checks the contract:
  * status, dataset and error report agree (fuzz.h); a loaded dataset has

@@ -1,4 +1,5 @@
-/* fuzz_pbrt.c: libFuzzer target for the pbrt-v2 / Cornell .brdf reader (bf_pbrt_read; SPEC §8).
+/* fuzz_pbrt.c: libFuzzer target for the pbrt-v2 / Cornell .brdf reader
+ * (bf_pbrt_read; SPEC §8).
  *
  * Beyond "no crash, leak or sanitizer report" it checks the contract:
  * status, dataset and error report agree (fuzz.h); a loaded dataset has

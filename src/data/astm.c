@@ -248,7 +248,8 @@ static int data_row(astm_state *s, bf__lines *r, bf_error *err)
         if (rc == BF_OK && k < 4 && !bf__angle_ok(&v, k % 2 == 0)) {
             rc = bf__error_set(err, BF_EPARSE, r->line,
                                "field %zu (%s) = %g outside [%s]", k + 1,
-                               what, v, k % 2 == 0 ? "0, pi/2" : "-2 pi, 2 pi");
+                               what, v,
+                               k % 2 == 0 ? "0, pi/2" : "-2 pi, 2 pi");
         }
         if (rc == BF_OK && k < 4) {
             s->angles[4 * s->n + k] = v;

@@ -25,7 +25,6 @@
  * configuration lists are identical, row for row and bit for bit, share
  * one configuration set. Without a `material` column the file holds one
  * material named after the file (its name without extension). */
-#include <ctype.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>

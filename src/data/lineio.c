@@ -368,7 +368,8 @@ int bf__parse_double(const char *text, double *value)
     if ((errno == ERANGE) && (fabs(v) > 1.0)) {
         return BF__NUM_RANGE;
     }
-    /* ERANGE with a tiny result is underflow: accepted, v is 0 or subnormal. */
+    /* ERANGE with a tiny result is underflow: accepted, v is 0 or
+     * subnormal. */
     *value = v;
     return BF__NUM_OK;
 }

@@ -28,9 +28,9 @@ static const char rgb[] =
 
 /* Reading text (a valid file; a malformed one: code, line, message). */
 #define read_ok(text) bf_test_read_ok(bf_astm_read, NAME, (text))
-#define expect_error(text, code, line, msg)                                \
-    bf_test_expect_read_error(bf_astm_read, NAME, (text), strlen(text), (code),      \
-                              (line), (msg))
+#define expect_error(text, code, line, msg)                          \
+    bf_test_expect_read_error(bf_astm_read, NAME, (text), strlen(text),    \
+                              (code), (line), (msg))
 
 /* The header of a 1-row RGB file with NUM_POINTS n, then rows. */
 static const char *with_rows(const char *num_points, const char *rows)

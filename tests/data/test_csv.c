@@ -213,9 +213,9 @@ Test(degrees, the_reader_rounds_the_decimal_value_not_a_double)
 
 /* Reading text (a valid file; a malformed one: code, line, message). */
 #define read_ok(text) bf_test_read_ok(bf_csv_read, NAME, (text))
-#define expect_error(text, code, line, msg)                                \
-    bf_test_expect_read_error(bf_csv_read, NAME, (text), strlen(text), (code),      \
-                              (line), (msg))
+#define expect_error(text, code, line, msg)                          \
+    bf_test_expect_read_error(bf_csv_read, NAME, (text), strlen(text),    \
+                              (code), (line), (msg))
 
 Test(csv, one_material_is_named_after_the_file)
 {

@@ -269,7 +269,8 @@ Test(format, a_merl_table_needs_its_configurations)
     /* every valid cell: all_cells wins over given configurations */
     opts.all_cells = 1;
     cr_assert_eq(bf_dataset_load(saved, &opts, &ds, &err), BF_OK);
-    cr_assert_eq(bf_dataset_nconf(ds, 0), 1096216); /* test_merl.c */
+    /* the centres above the horizon: tests/ref/merl_cells.py */
+    cr_assert_eq(bf_dataset_nconf(ds, 0), 1096216);
     bf_dataset_free(ds);
     bf_table_free(t);
     free(at);

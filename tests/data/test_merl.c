@@ -311,7 +311,8 @@ Test(merl, a_negative_cell_is_invalid_and_never_clamped)
     srand48(3);
     /* one configuration in an invalid cell, one in a valid one */
     while (k < 2) {
-        if (random_config(at + 4 * k, &n[k], 1) && (n[k] % 7 == 3) == (k == 0)) {
+        if (random_config(at + 4 * k, &n[k], 1) &&
+            (n[k] % 7 == 3) == (k == 0)) {
             k++;
         }
     }
@@ -395,8 +396,9 @@ Test(merl, every_valid_cell_gives_its_centre_which_maps_back_to_it)
     }
     cr_assert_eq(q, bf_dataset_nconf(ds, 0));
     /* 1,096,216 of the 1,458,000 cell centres lie above the horizon
-     * (cos td cos th >= |sin td cos pd sin th|, counted by a separate
-     * script); every seventh cell marked invalid leaves 939,619 */
+     * (cos td cos th >= |sin td cos pd sin th|); every seventh cell
+     * marked invalid leaves 939,619 (both counted by
+     * tests/ref/merl_cells.py) */
     cr_assert_eq(q, 939619);
     bf_dataset_free(ds);
     bf_merl_free(t);
@@ -683,7 +685,8 @@ Test(merl, models_are_fitted_back_within_the_lookup_error_elsewhere)
     /* Random configurations (phi_d in [0, pi), as the table stores it:
      * the models of BK's family are not reciprocal, and a swapped pair
      * would read the value of (o, i), which MERL's reciprocity assumes
-     * equal): each reads the model's value at the centre of its cell. With D* the model's normalised radiance at the
+     * equal): each reads the model's value at the centre of its cell.
+     * With D* the model's normalised radiance at the
      * configurations (known parameters p*) and D the data's, the lookup
      * error is delta = D - D*: the model's change from a configuration to
      * its cell's centre, at most half a cell away in theta_h, theta_d and
@@ -777,7 +780,8 @@ Test(merl, models_are_fitted_back_within_the_lookup_error_elsewhere)
         for (i = 0; i < type->param[j].grid_n; i++) {
             double q[BF_MAX_PARAMS];
             memcpy(q, p, sizeof q);
-            q[j] = type->param[j].grid_lo + type->param[j].grid_step * (double)i;
+            q[j] = type->param[j].grid_lo +
+                   type->param[j].grid_step * (double)i;
             if (bf_fit_lse(type, q, N_RANDOM, g, star, w, &dist) == BF_OK &&
                 sqrt(dist) <= 2.0 * delta + 1e-9) {
                 admissible++;

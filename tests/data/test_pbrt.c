@@ -30,9 +30,9 @@ static bf_dataset *load_cornell(const char *file)
 
 /* Reading text (a valid file; a malformed one: code, line, message). */
 #define read_ok(text) bf_test_read_ok(bf_pbrt_read, NAME, (text))
-#define expect_error(text, code, line, msg)                                \
-    bf_test_expect_read_error(bf_pbrt_read, NAME, (text), strlen(text), (code),      \
-                              (line), (msg))
+#define expect_error(text, code, line, msg)                          \
+    bf_test_expect_read_error(bf_pbrt_read, NAME, (text), strlen(text),    \
+                              (code), (line), (msg))
 
 /* ==== the real Cornell files ==== */
 
