@@ -7,8 +7,9 @@
 #   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
 #   make report-all  the report for all 61 samples and every model
 #   make test   build and run every test, plain and with ASan+UBSan
-#   make bench  run the speed benchmark (never part of the tests; the numpy
-#               baseline runs when /usr/bin/python3 has numpy)
+#   make bench  run the speed benchmarks, bench_study and bench_merl (never
+#               part of the tests; the numpy baselines run when
+#               /usr/bin/python3 has numpy)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
@@ -110,6 +111,8 @@ bench: build
 	@scripts/install-deps.sh bench
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
 	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
+	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_merl --data "$(CURET)" \
+	    --numpy bench/numpy_cells.py
 
 # make install [PREFIX=DIR] [DESTDIR=STAGE]: libraries, header, brdffit.pc,
 # the CMake package, the CLI and its man page (default prefix /usr/local).
