@@ -1,13 +1,16 @@
 # Makefile: one target per task; CMake does the work (STYLE §8).
 #   make        install missing Debian packages, build into build/
 #   make run    the main job: the full model comparison on the CURET data,
-#               with every figure and out/report.html
+#               with every figure and out/report.html (builds only the
+#               library and the CLI; fetches CURET's two files into the
+#               per-user cache when they are not in CURET=DIR)
 #   make rank   model selection (AIC, BIC, CV) over all 61 CURET samples
 #   make report-all  the report for all 61 samples and every model
 #   make test   build and run every test, plain and with ASan+UBSan
-#   make bench  run the speed benchmark (never part of the tests; the numpy
-#               baseline runs when /usr/bin/python3 has numpy, the
-#               numpy/scipy peer of the analysis when it has scipy too)
+#   make bench  run the speed benchmarks, bench_study and bench_merl (never
+#               part of the tests; the numpy baselines run when
+#               /usr/bin/python3 has numpy, the numpy/scipy peer of the
+#               analysis when it has scipy too)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
@@ -16,7 +19,13 @@
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
 REFERENCE ?= $(SHARED)/reference
+# The study's Oren-Nayar inputs (the paper's Table 2), shipped in data/.
+ON_PARAMS ?= data/oren_nayar_params.tsv
 OUT      ?= out
+# The CLI the main jobs run, and what they build first (RUN_DEPS= runs a
+# CLI built elsewhere: the test of the main job on a bare clone does).
+BRDFFIT  ?= $(BUILD)/brdffit
+RUN_DEPS ?= cli
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
@@ -29,8 +38,8 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
-.PHONY: all deps build run rank report-all test test-plain test-asan asan bench install \
-        format tidy clean screenshot fuzz fuzz-build valgrind
+.PHONY: all deps build cli run rank report-all test test-plain test-asan asan bench \
+        install format tidy clean screenshot fuzz fuzz-build valgrind
 
 all: build
 
@@ -41,20 +50,28 @@ build: deps
 	@$(CONFIGURE) -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
-run: build
-	$(BUILD)/brdffit report --data "$(CURET)" --samples paper --stats \
-	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+# Only what the main jobs need: the library and the CLI (no tests, no bench).
+cli: deps
+	@$(CONFIGURE) -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target brdffit
 
-rank: build
-	$(BUILD)/brdffit rank --data "$(CURET)" \
-	    --on-params "$(REFERENCE)/oren_nayar_params.tsv" --out "$(OUT)"
+# The main job: the paper's study with the analysis, every figure drawn by
+# one process per core, report.html.
+run: $(RUN_DEPS)
+	data=$$(scripts/curet-data.sh "$(CURET)") && \
+	$(BRDFFIT) report --data "$$data" --samples paper --stats \
+	    --on-params "$(ON_PARAMS)" --out "$(OUT)" --threads 0
+
+rank: $(RUN_DEPS)
+	data=$$(scripts/curet-data.sh "$(CURET)") && \
+	$(BRDFFIT) rank --data "$$data" --on-params "$(ON_PARAMS)" --out "$(OUT)"
 
 # All 61 CURET samples, every model, with the analysis (ON where CURET's
 # parameters are given): tables, ranking section and figures.
-report-all: build
-	$(BUILD)/brdffit report --data "$(CURET)" --samples all --models all \
-	    --stats --on-params "$(REFERENCE)/oren_nayar_params.tsv" \
-	    --out "$(OUT)-all"
+report-all: $(RUN_DEPS)
+	data=$$(scripts/curet-data.sh "$(CURET)") && \
+	$(BRDFFIT) report --data "$$data" --samples all --models all \
+	    --stats --on-params "$(ON_PARAMS)" --out "$(OUT)-all" --threads 0
 
 test: test-plain test-asan
 
@@ -96,6 +113,8 @@ bench: build
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
 	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py \
 	    --peer ../shared/peers/rank_baseline.py
+	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_merl --data "$(CURET)" \
+	    --numpy bench/numpy_cells.py
 
 # make install [PREFIX=DIR] [DESTDIR=STAGE]: libraries, header, brdffit.pc,
 # the CMake package, the CLI and its man page (default prefix /usr/local).

@@ -28,6 +28,7 @@
 
 #include "brdffit.h"
 #include "machine.h"
+#include "timing.h"
 
 #ifndef BF_BUILD_TYPE
 #define BF_BUILD_TYPE "?"
@@ -52,32 +53,10 @@ typedef struct {
 
 /* ==== helpers ============================================================ */
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (1e-9 * (double)ts.tv_nsec);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a;
-    double y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *t, int n)
-{
-    qsort(t, (size_t)n, sizeof *t, cmp_double);
-    return (n % 2 == 1) ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-}
 
 static void die(const char *what, const bf_error *err)
 {
-    char buf[1024];
-    fprintf(stderr, "bench_study: %s: %s\n", what,
-            err != NULL ? bf_error_format(err, buf, sizeof buf) : "failed");
-    exit(1);
+    bf_bench_die("bench_study", what, err);
 }
 
 /* Inputs shared by every measurement. */
@@ -125,14 +104,14 @@ static double time_study(const bf_study_spec *spec, int reps)
         die("out of memory", NULL);
     }
     for (i = 0; i < reps; i++) {
-        double t0 = now();
+        double t0 = bf_bench_now();
         if (bf_study_run(spec, rows, &err) != BF_OK) {
             die("study", &err);
         }
-        t[i] = now() - t0;
+        t[i] = bf_bench_now() - t0;
     }
-    med = median(t, reps);
-    last_min = t[0]; /* sorted by median() */
+    med = bf_bench_median(t, reps);
+    last_min = t[0]; /* sorted by bf_bench_median() */
     free(rows);
     free(t);
     return med;
@@ -151,7 +130,7 @@ static double time_process(char *const *argv)
     struct rusage ru;
     fflush(stdout); /* the child must not repeat buffered output */
     fflush(stderr);
-    t0 = now();
+    t0 = bf_bench_now();
     pid = fork();
     if (pid < 0) {
         return -1.0;
@@ -179,7 +158,7 @@ static double time_process(char *const *argv)
         last_cpu = all - before;
         before = all;
     }
-    return now() - t0;
+    return bf_bench_now() - t0;
 }
 
 static double median_process(char *const *argv, int reps)
@@ -197,7 +176,7 @@ static double median_process(char *const *argv, int reps)
             return -1.0;
         }
     }
-    med = median(t, reps);
+    med = bf_bench_median(t, reps);
     free(t);
     return med;
 }
@@ -351,7 +330,7 @@ static void eval_rates(const inputs_t *in, int reps)
             points = type->param[0].grid_n;
         }
         for (r = 0; r < reps; r++) {
-            double t0 = now();
+            double t0 = bf_bench_now();
             size_t rounds = points == 1 ? 100 : 1;
             size_t q;
             for (q = 0; q < rounds; q++) {
@@ -366,19 +345,19 @@ static void eval_rates(const inputs_t *in, int reps)
                     }
                 }
             }
-            t[r] = (now() - t0) / (double)rounds;
+            t[r] = (bf_bench_now() - t0) / (double)rounds;
         }
         snprintf(label, sizeof label, "%s | plain", type->name);
-        print_rate(label, (double)(points * in->n_sel), median(t, reps));
+        print_rate(label, (double)(points * in->n_sel), bf_bench_median(t, reps));
         if (points > 1) {
             size_t grid_points = points;
             for (r = 0; r < reps; r++) {
                 int st;
-                double t0 = now();
+                double t0 = bf_bench_now();
                 bf_grid *gr;
                 defaults(type, param);
                 gr = bf_grid_alloc(type, param, 0, in->n_sel, in->geom, &st);
-                t[r] = now() - t0;
+                t[r] = bf_bench_now() - t0;
                 if (gr == NULL) {
                     die(type->name, NULL);
                 }
@@ -388,7 +367,7 @@ static void eval_rates(const inputs_t *in, int reps)
             }
             snprintf(label, sizeof label, "%s | study", type->name);
             print_rate(label, (double)(grid_points * in->n_sel),
-                       median(t, reps));
+                       bf_bench_median(t, reps));
         }
     }
     printf("\n");
@@ -485,7 +464,7 @@ static double bootstrap(const inputs_t *in)
     }
     bf_sample_table_get(in->on, 1, 0, &on_param[0]);
     bf_sample_table_get(in->on, 1, 1, &on_param[1]);
-    t0 = now();
+    t0 = bf_bench_now();
     for (r = 0; r < BOOT_RESAMPLES; r++) {
         size_t m;
         for (k = 0; k < n; k++) {
@@ -514,7 +493,7 @@ static double bootstrap(const inputs_t *in)
             bf_grid_free(gr);
         }
     }
-    t0 = now() - t0;
+    t0 = bf_bench_now() - t0;
     free(g);
     free(raw);
     free(d);
@@ -711,18 +690,18 @@ static void analysis(const char *cli, const char *peer, const char *dir,
            "|---|---|---|---|---|\n");
     printf("| `brdffit rank` (61 samples, 9 default models) | %.2f s | "
            "%.2f s | %.0f s | %.0fx faster |\n",
-           median(t_rank, r), median(c_rank, r), NOW_RANK,
-           NOW_RANK / median(t_rank, r));
+           bf_bench_median(t_rank, r), bf_bench_median(c_rank, r), NOW_RANK,
+           NOW_RANK / bf_bench_median(t_rank, r));
     printf("| `brdffit rank` without WNO-R (8 models) | %.2f s | %.2f s | "
            "%.0f s | %.0fx faster |\n",
-           median(t_rank8, r), median(c_rank8, r), NOW_RANK8,
-           NOW_RANK8 / median(t_rank8, r));
-    if (have_peer && median(t_peer, r) > 0.0) {
+           bf_bench_median(t_rank8, r), bf_bench_median(c_rank8, r), NOW_RANK8,
+           NOW_RANK8 / bf_bench_median(t_rank8, r));
+    if (have_peer && bf_bench_median(t_peer, r) > 0.0) {
         printf("| numpy/scipy peer (`rank_baseline.py`, the same 8 models) "
                "| %.2f s | %.2f s | | brdffit %.1fx faster (before: "
                "%.2fx) |\n",
-               median(t_peer, r), median(c_peer, r),
-               median(t_peer, r) / median(t_rank8, r), NOW_PEER_RATIO);
+               bf_bench_median(t_peer, r), bf_bench_median(c_peer, r),
+               bf_bench_median(t_peer, r) / bf_bench_median(t_rank8, r), NOW_PEER_RATIO);
     }
     if (t_boot > 0.0) {
         printf("| `compare --fit exact --bootstrap 1000 --samples all "
@@ -937,8 +916,8 @@ int main(int argc, char **argv)
         printf("| bootstrap: %d resamples of sample 1's configurations, the "
                "6 paper models refitted on each (grid per model and "
                "resample) | %.1f ms (%.1f us per resample) | |\n\n",
-               BOOT_RESAMPLES, 1e3 * median(tb, r),
-               1e6 * median(tb, r) / BOOT_RESAMPLES);
+               BOOT_RESAMPLES, 1e3 * bf_bench_median(tb, r),
+               1e6 * bf_bench_median(tb, r) / BOOT_RESAMPLES);
     }
 
     scaling(&in, &reps);

@@ -1,9 +1,10 @@
 /* cmd_report.c: `brdffit report` -- runs the study of SPEC §7 like
  * `compare` and writes, into the output folder, its tables (fits.csv,
  * table2.md, table3.md), every figure (figures/: Figure 2(b), Figures 3-6,
- * per-sample plane-of-incidence views, the model-wins chart) in PNG, SVG
- * and PDF, and report.html, one page that gathers them with the
- * conventions and provenance of the run. */
+ * the model-wins chart, per-sample plane-of-incidence views and, with the
+ * analysis, forest plots, profiles and the delta-BIC overview) in PNG and
+ * PDF (SVG on request), and report.html, one page that gathers them with
+ * the conventions and provenance of the run. */
 #include <math.h>
 #include <string.h>
 #include <unistd.h>
@@ -20,11 +21,14 @@ static const double default_incidence[] = {11.25, 33.75, 56.25, 78.75};
 /* Largest incidence angle accepted by --incidence, degrees (the original
  * BK models diverge at grazing incidence, SPEC §3.3). */
 #define MAX_INCIDENCE_DEG 89.0
+/* Most processes drawing figures at once. */
+#define MAX_JOBS 64
 
-enum { O_FORMAT = 512, O_LOG, O_PER_SAMPLE, O_INCIDENCE };
+enum { O_FORMAT = 512, O_LOG, O_PER_SAMPLE, O_INCIDENCE, O_SIZE };
 
 static const struct option report_opts[] = {
     {"format", required_argument, NULL, O_FORMAT},
+    {"size", required_argument, NULL, O_SIZE},
     {"log", no_argument, NULL, O_LOG},
     {"per-sample", no_argument, NULL, O_PER_SAMPLE},
     {"incidence", required_argument, NULL, O_INCIDENCE},
@@ -36,25 +40,43 @@ static void usage(FILE *fp)
 "Usage: brdffit report [OPTIONS]\n"
 "\n"
 "Run the study of 'brdffit compare' and write into the output folder its\n"
-"tables (fits.csv, table2.md, table3.md), every figure in figures/ --\n"
-"Figure 2(b) (fig2b: LSE against the samples sorted by FC-E slope),\n"
-"Figures 3-6 (scatterN: predicted against measured, six samples each),\n"
-"wins (samples best fitted by each model), and per sample\n"
-"plane_sampleN / polar_sampleN (model curves and measurements in the\n"
-"plane of incidence) -- and report.html, one page with the tables,\n"
-"figures, conventions and provenance that opens from disk.\n"
+"tables (fits.csv, table2.md, table3.md), report.html (one page with the\n"
+"tables, the figures with their captions, the conventions and the\n"
+"provenance; it opens from disk) and every figure in figures/. Figures\n"
+"carry no title (the captions are on the page):\n"
+"  fig2b           LSE of each model against the samples sorted by\n"
+"                  fitted FC-E slope (the paper's Figure 2(b))\n"
+"  wins            samples fitted best (lowest LSE) by each model\n"
+"  scatterN        predicted against measured normalised radiance, a\n"
+"                  column per sample (six per figure), a row per model\n"
+"                  (the paper's Figures 3-6)\n"
+"  plane_sampleN   fitted model curves and the measurements in the plane\n"
+"  polar_sampleN   of incidence, Cartesian and polar, per incidence angle\n"
+"  scatter_sampleN one sample's scatter panels (--per-sample)\n"
+"With the analysis (--stats, --fit exact, --bootstrap):\n"
+"  delta_bic       samples x models, BIC minus each sample's best\n"
+"  forest_MODEL    each sample's fitted parameters with their 95%\n"
+"                  profile (and bootstrap) intervals\n"
+"  profile_sampleN the profile n ln(S/S_min) along each fitted parameter\n"
+"                  with the 95% threshold 3.84\n"
+"Every curve and measurement is divided by its maximum over the used\n"
+"configurations (SPEC §2). Figures are drawn at print size (--size) with\n"
+"8-point text; PNG at 150 pixels per inch.\n"
 "\n"
 "Options:\n",
         fp);
     bf_cli_opts_usage(fp);
     fputs(
-"  --format LIST     figure formats among png,svg,pdf (default all three)\n"
+"  --format LIST     figure formats among png,svg,pdf (default png,pdf)\n"
+"  --size SIZE       figure width: double (7 in, default) or single\n"
+"                    (3.5 in), the journal column widths\n"
 "  --log             Figure 2(b) on a logarithmic LSE axis\n"
 "  --per-sample      also one scatter figure per sample (scatter_sampleN)\n"
 "  --incidence LIST  incidence angles of the plane-of-incidence figures,\n"
 "                    degrees, at most 4 (default 11.25,33.75,56.25,78.75)\n"
 "\n"
-"A progress line is printed on stderr when it is a terminal.\n",
+"--threads N also draws the figures in N processes (the same files for\n"
+"every N). A progress line is printed on stderr when it is a terminal.\n",
         fp);
     bf_cli_exit_usage(fp);
 }
@@ -122,6 +144,17 @@ static int handle(int val, const char *arg, void *ctx)
                                       "list of png, svg, pdf", arg);
         }
         return 0;
+    case O_SIZE:
+        if (strcmp(arg, "double") == 0) {
+            o->width = BF_PLOT_DOUBLE_COLUMN;
+        } else if (strcmp(arg, "single") == 0) {
+            o->width = BF_PLOT_SINGLE_COLUMN;
+        } else {
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, "report ",
+                                     "--size: '%s' is not single or double",
+                                     arg);
+        }
+        return 0;
     case O_LOG: o->log_lse = 1; return 0;
     case O_PER_SAMPLE: o->per_sample = 1; return 0;
     case O_INCIDENCE:
@@ -162,6 +195,7 @@ int bf_cmd_report(int argc, char **argv)
     bf_cli_extra extra;
     bf_out page;
     int page_open = 0;
+    int started = 0;
     size_t i;
     int rc;
 
@@ -169,7 +203,8 @@ int bf_cmd_report(int argc, char **argv)
     memset(&fo, 0, sizeof fo);
     memset(&figs, 0, sizeof figs);
     memset(&meta, 0, sizeof meta);
-    fo.formats = (1u << BF_PLOT_NFORMATS) - 1;
+    fo.formats = (1u << BF_PLOT_PNG) | (1u << BF_PLOT_PDF);
+    fo.width = BF_PLOT_DOUBLE_COLUMN;
     for (i = 0; i < sizeof default_incidence / sizeof *default_incidence; i++) {
         fo.incidence[i] = default_incidence[i] * DEG;
     }
@@ -197,12 +232,26 @@ int bf_cmd_report(int argc, char **argv)
                             "samples...\n",
                     st.n_models, st.n_samples);
         }
-        rc = bf_cli_study_run(&st);
+        rc = bf_cli_study_run_protocol(&st);
     }
     /* Everything is drawn and written to temporary files first, then
-     * renamed into place: a failure leaves no partial output. */
+     * renamed into place: a failure leaves no partial output. The paper's
+     * figures are drawn while the analysis runs (with --fit exact the
+     * analysis is the study: the figures wait for it). */
+    fo.jobs = st.spec.n_threads > 1 ? st.spec.n_threads : 1;
+    fo.jobs = fo.jobs > MAX_JOBS ? MAX_JOBS : fo.jobs;
+    if (rc == BF_EXIT_OK && !st.opts.exact) {
+        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 0);
+        started = rc == BF_EXIT_OK;
+    }
     if (rc == BF_EXIT_OK) {
-        rc = bf_figures_render(&st, &fo, st.opts.out_dir, &figs);
+        rc = bf_cli_study_run_analysis(&st);
+    }
+    if (rc == BF_EXIT_OK && !started) {
+        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 1);
+    }
+    if (rc == BF_EXIT_OK) {
+        rc = bf_figures_finish(&st, &figs);
     }
     if (rc == BF_EXIT_OK) {
         rc = write_page(&st, &figs, &meta, &page);

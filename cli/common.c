@@ -295,7 +295,8 @@ int bf_cli_load_data(const bf_cli_source *src, const char *n_file,
         if (!is_dir(src->data_dir)) {
             bf_cli_err("%s: data folder not found (give --data DIR with "
                        "CURET's table.txt and abrdf.dat, or --input FILE; "
-                       "see README.md)",
+                       "scripts/curet-data.sh fetches CURET's files into a "
+                       "cache and prints their folder; see README.md)",
                        src->data_dir);
             return BF_EXIT_NOINPUT;
         }

@@ -1,29 +1,20 @@
-/* report_html.c: report.html (report_html.h) -- tables, figures,
- * conventions (SPEC §1.4, §2, §4, §7) and provenance in one page that opens
- * from disk. */
+/* report_html.c: report.html (report_html.h) -- the page: contents, the
+ * data it was given, tables, figures with captions, the analysis, the
+ * per-sample figures in collapsible sections, conventions (SPEC §1.4, §2,
+ * §4, §7) and provenance, in one page that opens from disk. */
 #include "report_html.h"
 #include "texttable.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #define DEG (M_PI / 180.0)
-
-/* Writes s with HTML's special characters escaped. */
-static void put_text(FILE *fp, const char *s)
-{
-    for (; *s != '\0'; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", fp); break;
-        case '<': fputs("&lt;", fp); break;
-        case '>': fputs("&gt;", fp); break;
-        case '"': fputs("&quot;", fp); break;
-        default: fputc(*s, fp); break;
-        }
-    }
-}
+/* Figures are shown at twice their size in points, in CSS pixels (a
+ * double-column figure 1008 pixels wide): 1.5 times print size. */
+#define CSS_PX_PER_PT 2
 
 /* Writes an argument as a POSIX shell word (quoted when needed). */
 static void put_shell_word(FILE *fp, const char *s)
@@ -31,7 +22,7 @@ static void put_shell_word(FILE *fp, const char *s)
     const char *safe = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                        "0123456789-_./,=:+%@";
     if (s[0] != '\0' && strspn(s, safe) == strlen(s)) {
-        put_text(fp, s);
+        bf_tt_html_text(fp, s);
         return;
     }
     fputc('\'', fp);
@@ -40,13 +31,13 @@ static void put_shell_word(FILE *fp, const char *s)
             fputs("'\\''", fp);
         } else {
             char c[2] = {*s, '\0'};
-            put_text(fp, c);
+            bf_tt_html_text(fp, c);
         }
     }
     fputc('\'', fp);
 }
 
-/* ==== provenance ========================================================== */
+/* ==== provenance ========================================================= */
 
 static int add_input(bf_report_meta *meta, const char *role, const char *path)
 {
@@ -69,7 +60,7 @@ static int add_input(bf_report_meta *meta, const char *role, const char *path)
 
 int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta)
 {
-    int rc;
+    int rc = BF_EXIT_OK;
     size_t i;
     meta->n_inputs = 0;
     if (st->in.curet) {
@@ -81,7 +72,6 @@ int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta)
             rc = add_input(meta, "sample names", st->in.names_path);
         }
     } else {
-        rc = BF_EXIT_OK;
         for (i = 0; rc == BF_EXIT_OK && i < st->opts.src.n_inputs; i++) {
             rc = add_input(meta, "measurements", st->opts.src.inputs[i]);
         }
@@ -100,115 +90,58 @@ int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta)
     return rc;
 }
 
-/* ==== page parts ========================================================== */
+static void provenance(FILE *fp, const bf_report_meta *meta)
+{
+    size_t i;
+    int a;
+    fputs("<h2 id=\"provenance\">Provenance</h2>\n<ul>\n", fp);
+    fprintf(fp, "<li>brdffit %s</li>\n<li>Command: <code>brdffit",
+            bf_version());
+    for (a = 0; a < meta->argc; a++) {
+        fputc(' ', fp);
+        put_shell_word(fp, meta->argv[a]);
+    }
+    fputs("</code></li>\n</ul>\n<table id=\"inputs\">\n<thead><tr>"
+          "<th>Input</th><th>File</th><th>Bytes</th><th>SHA-256</th></tr>"
+          "</thead>\n<tbody>\n",
+          fp);
+    for (i = 0; i < meta->n_inputs; i++) {
+        const bf_report_input *in = &meta->inputs[i];
+        fputs("<tr><td>", fp);
+        bf_tt_html_text(fp, in->role);
+        fputs("</td><td><code>", fp);
+        bf_tt_html_text(fp, in->path);
+        fprintf(fp, "</code></td><td class=\"n\">%lld</td><td><code>%s"
+                    "</code></td></tr>\n",
+                in->size, in->sha256);
+    }
+    fputs("</tbody>\n</table>\n", fp);
+}
+
+/* ==== page parts ========================================================= */
 
 static const char *style =
-    "body{font-family:sans-serif;max-width:1250px;margin:1em auto;"
+    "body{font-family:sans-serif;max-width:1100px;margin:1em auto;"
     "padding:0 1em;color:#111;line-height:1.4}"
     "table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:90%}"
-    "th,td{border:1px solid #bbb;padding:2px 6px}"
+    "th,td{border:1px solid #bbb;padding:2px 6px}th{background:#f2f2f2}"
     "td.n{text-align:right;font-variant-numeric:tabular-nums}"
     "td.best{font-weight:bold;background:#e6f0fa}"
-    "figure{margin:1em 0 2em}img{max-width:100%;height:auto;"
-    "border:1px solid #ddd}figcaption{font-size:90%;color:#333}"
+    "figure{margin:1em 0 2em}img{max-width:100%;height:auto}"
+    "figcaption{font-size:90%;color:#333;max-width:60em}"
     "code,pre{background:#f4f4f4}pre{padding:.5em;overflow-x:auto}"
-    "nav a{margin-right:1em}";
+    "details{margin:.3em 0;border:1px solid #ddd;padding:.2em .6em}"
+    "summary{cursor:pointer;font-weight:bold}"
+    "nav ol{margin-top:0}";
 
-/* Shown at the end of loading: whether every image loaded (read by
- * `make screenshot` through the DOM). */
+/* Sets, once every image has loaded, whether all did (read by `make
+ * screenshot` through the DOM). */
 static const char *script =
     "window.addEventListener('load',function(){var im=document.images,"
     "ok=0,i;for(i=0;i<im.length;i++){if(im[i].complete&&"
     "im[i].naturalWidth>0){ok++;}}document.body.setAttribute("
     "'data-images',ok+'/'+im.length);document.body.setAttribute("
     "'data-images-ok',ok===im.length?'yes':'no');});";
-
-static void sample_cells(FILE *fp, const bf_cli_study *st, size_t s)
-{
-    char title[512];
-    bf_cli_sample_title(st, s, title, sizeof title);
-    fprintf(fp, "<td class=\"n\">%d</td><td>", st->samples[s]);
-    put_text(fp, title);
-    fputs("</td>", fp);
-}
-
-/* Table 2: fitted parameters ('*' on a grid bound). */
-static void table2(FILE *fp, const bf_cli_study *st)
-{
-    size_t s;
-    size_t m;
-    size_t j;
-    fputs("<table id=\"table2\"><tr><th>No.</th><th>Sample</th>", fp);
-    for (m = 0; m < st->n_models; m++) {
-        const bf_model_type *t = st->models[m];
-        for (j = 0; j < t->p; j++) {
-            if (bf_cli_shows_param(t, j)) {
-                fputs("<th>", fp);
-                put_text(fp, t->name);
-                fputs(" ", fp);
-                put_text(fp, t->param[j].label);
-                fputs("</th>", fp);
-            }
-        }
-    }
-    fputs("</tr>\n", fp);
-    for (s = 0; s < st->n_samples; s++) {
-        fputs("<tr>", fp);
-        sample_cells(fp, st, s);
-        for (m = 0; m < st->n_models; m++) {
-            const bf_study_row *r = &st->rows[s * st->n_models + m];
-            for (j = 0; j < r->type->p; j++) {
-                if (!bf_cli_shows_param(r->type, j)) {
-                    continue;
-                }
-                if (r->status != BF_OK) {
-                    fputs("<td class=\"n\">-</td>", fp);
-                } else {
-                    fprintf(fp, "<td class=\"n\">%.2f%s</td>", r->fit.param[j],
-                            (r->fit.bound_hit & (1u << j)) ? "*" : "");
-                }
-            }
-        }
-        fputs("</tr>\n", fp);
-    }
-    fputs("</table>\n", fp);
-}
-
-/* Table 3: LSE, the lowest of each sample highlighted. */
-static void table3(FILE *fp, const bf_cli_study *st)
-{
-    size_t s;
-    size_t m;
-    fputs("<table id=\"table3\"><tr><th>No.</th><th>Sample</th>", fp);
-    for (m = 0; m < st->n_models; m++) {
-        fputs("<th>", fp);
-        put_text(fp, st->models[m]->name);
-        fputs("</th>", fp);
-    }
-    fputs("</tr>\n", fp);
-    for (s = 0; s < st->n_samples; s++) {
-        const bf_study_row *row = &st->rows[s * st->n_models];
-        double best = HUGE_VAL;
-        for (m = 0; m < st->n_models; m++) {
-            if (row[m].status == BF_OK && row[m].fit.lse < best) {
-                best = row[m].fit.lse;
-            }
-        }
-        fputs("<tr>", fp);
-        sample_cells(fp, st, s);
-        for (m = 0; m < st->n_models; m++) {
-            if (row[m].status != BF_OK) {
-                fputs("<td class=\"n\">-</td>", fp);
-            } else {
-                fprintf(fp, "<td class=\"n%s\">%.2f</td>",
-                        row[m].fit.lse == best ? " best" : "",
-                        row[m].fit.lse);
-            }
-        }
-        fputs("</tr>\n", fp);
-    }
-    fputs("</table>\n", fp);
-}
 
 /* The format shown inline: PNG, else SVG; -1 when only PDF was drawn. */
 static int inline_format(unsigned formats)
@@ -226,18 +159,18 @@ static void figure(FILE *fp, const bf_fig_set *figs, const bf_fig_entry *e)
 {
     int show = inline_format(figs->formats);
     int f;
-    fprintf(fp, "<figure id=\"%s\">", e->base);
+    fprintf(fp, "<figure id=\"%s\">\n", e->base);
     if (show >= 0) {
         fprintf(fp, "<img src=\"%s/%s.%s\" width=\"%u\" height=\"%u\" alt=\"",
                 BF_FIG_DIR, e->base, bf_plot_format_ext((bf_plot_format)show),
-                e->width, e->height);
-        put_text(fp, e->title);
-        fputs("\">", fp);
+                e->width * CSS_PX_PER_PT, e->height * CSS_PX_PER_PT);
+        bf_tt_html_text(fp, e->alt);
+        fputs("\">\n", fp);
     }
     fputs("<figcaption><b>", fp);
-    put_text(fp, e->title);
+    bf_tt_html_text(fp, e->title);
     fputs(".</b> ", fp);
-    put_text(fp, e->caption);
+    bf_tt_html_text(fp, e->caption);
     fputs(" Files:", fp);
     for (f = 0; f < BF_PLOT_NFORMATS; f++) {
         const char *ext = bf_plot_format_ext((bf_plot_format)f);
@@ -246,69 +179,154 @@ static void figure(FILE *fp, const bf_fig_set *figs, const bf_fig_entry *e)
                     ext, ext);
         }
     }
-    fputs("</figcaption></figure>\n", fp);
+    fprintf(fp, " (%u \xc3\x97 %u pt).</figcaption>\n</figure>\n", e->width,
+            e->height);
 }
 
+/* Every figure of the kind; with index != SIZE_MAX only the one of that
+ * index (the sample of per-sample kinds, the model of forest plots). */
 static void figures_of(FILE *fp, const bf_fig_set *figs, bf_fig_kind kind,
-                       int sample)
+                       size_t index)
 {
     size_t i;
     for (i = 0; i < figs->n; i++) {
-        if (figs->fig[i].kind == kind && figs->fig[i].sample == sample) {
+        if (figs->fig[i].kind == kind &&
+            (index == SIZE_MAX || figs->fig[i].index == index)) {
             figure(fp, figs, &figs->fig[i]);
         }
     }
 }
 
-/* Model selection (with --stats or --fit exact): the summary over samples
- * by AIC, BIC and CV and the per-sample BIC table, as `brdffit rank`
- * writes them (doc/methods.md §4-5). */
-static void selection(FILE *fp, const bf_cli_study *st)
+/* The configurations target s does not use, as "54, 97, ...", or
+ * "none". */
+static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
 {
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *mem;
-    bf_tt *t;
-    int c;
-    fputs("<h2 id=\"selection\">Model selection</h2>\n", fp);
-    if (st->stats == NULL) {
-        fputs("<p>Not computed: run with <code>--stats</code> (or "
-              "<code>brdffit rank</code>) for AIC, BIC and cross-validation."
-              "</p>\n",
-              fp);
-        return;
-    }
-    fputs("<p>Per sample, "
-          "the models ranked by AIC, BIC (Gaussian errors) and the "
-          "cross-validated error (doc/methods.md §4–5); lower is better, * "
-          "marks the best.</p>\n<ul>\n",
-          fp);
-    for (c = 0; c < BF_CLI_NCRIT; c++) {
-        mem = open_memstream(&buf, &len);
-        if (mem == NULL) {
-            return;
+    size_t mat = st->targets[s].material;
+    size_t nconf = bf_dataset_nconf(st->in.ds, mat);
+    size_t *sel = malloc((nconf + 1) * sizeof *sel);
+    double *data = malloc((nconf + 1) * sizeof *data);
+    size_t K = 0;
+    size_t j = 0;
+    size_t k;
+    int first = 1;
+    if (sel != NULL && data != NULL &&
+        bf_cli_target_data(st, s, sel, &K, data) == BF_OK) {
+        for (k = 0; k < nconf; k++) {
+            if (j < K && sel[j] == k) {
+                j++;
+                continue;
+            }
+            fprintf(fp, "%s%zu", first ? "" : ", ", k + 1);
+            first = 0;
         }
-        bf_cli_rank_summary(st, c, mem);
-        fclose(mem);
-        buf[strcspn(buf, "\n")] = '\0';
-        fputs("<li>", fp);
-        put_text(fp, buf);
-        fputs("</li>\n", fp);
-        free(buf);
-        buf = NULL;
+    }
+    if (first) {
+        fputs("none", fp);
+    }
+    free(sel);
+    free(data);
+}
+
+/* Whether every target uses the same configurations of the same list. */
+static int one_selection(const bf_cli_study *st)
+{
+    size_t s;
+    for (s = 1; s < st->n_samples; s++) {
+        if (bf_dataset_set(st->in.ds, st->targets[s].material) !=
+                bf_dataset_set(st->in.ds, st->targets[0].material) ||
+            st->k[s] != st->k[0]) {
+            return 0;
+        }
+    }
+    return st->n_samples > 0;
+}
+
+/* What the run was given: the data (format, files, names), the samples,
+ * the models, the configurations used and left out. */
+static void data_section(FILE *fp, const bf_cli_study *st)
+{
+    const bf_cli_inputs *in = &st->in;
+    const bf_dataset *ds = in->ds;
+    char cone[512];
+    size_t m;
+    size_t s;
+    fputs("<h2 id=\"data\">Data</h2>\n<ul>\n", fp);
+    if (in->curet) {
+        fputs("<li>Format: CURET (the Columbia-Utrecht Reflectance and "
+              "Texture database; K. J. Dana et al., ACM TOG 18(1), 1999): "
+              "<code>",
+              fp);
+        bf_tt_html_text(fp, in->table_path);
+        fprintf(fp, "</code> (%zu illumination and viewing configurations) "
+                    "and <code>",
+                bf_dataset_nconf(ds, 0));
+        bf_tt_html_text(fp, in->brdf_path);
+        fprintf(fp, "</code> (BRDF values of %zu samples); names %s.</li>\n",
+                bf_dataset_count(ds),
+                in->names_path[0] != '\0'
+                    ? "from samples.tsv"
+                    : "by number (no samples.tsv in the data folder)");
+    } else {
+        fprintf(fp, "<li>%zu material%s from %zu file%s:<ul>\n",
+                bf_dataset_count(ds), bf_dataset_count(ds) == 1 ? "" : "s",
+                st->opts.src.n_inputs, st->opts.src.n_inputs == 1 ? "" : "s");
+        for (m = 0; m < bf_dataset_count(ds); m++) {
+            size_t nc = bf_dataset_nchannels(ds, m);
+            char who[256];
+            bf_cli_material_label(ds, m, who, sizeof who);
+            fputs("<li>", fp);
+            bf_tt_html_text(fp, who);
+            fprintf(fp, ": format %s, <code>",
+                    bf_format_name(bf_dataset_format(ds, m)));
+            bf_tt_html_text(fp, bf_dataset_source(ds, m));
+            fprintf(fp, "</code>, %zu configurations, %zu channel%s",
+                    bf_dataset_nconf(ds, m), nc, nc == 1 ? "" : "s");
+            if (nc > 1) {
+                fputs(" (", fp);
+                bf_tt_html_text(fp, bf_dataset_channel(ds, m, 0));
+                fputs(" … ", fp);
+                bf_tt_html_text(fp, bf_dataset_channel(ds, m, nc - 1));
+                fputs(")", fp);
+            }
+            fputs("</li>\n", fp);
+        }
+        fputs("</ul></li>\n", fp);
+    }
+    fprintf(fp, "<li>Fitted: %zu sample%s (channel: ", st->n_samples,
+            st->n_samples == 1 ? "" : "s");
+    bf_tt_html_text(fp, st->opts.channel != NULL ? st->opts.channel
+                                                 : "mean of the channels");
+    fprintf(fp, "), %zu models (", st->n_models);
+    for (m = 0; m < st->n_models; m++) {
+        fputs(m ? ", " : "", fp);
+        bf_tt_html_text(fp, st->models[m]->name);
+    }
+    fputs(").</li>\n", fp);
+    bf_cli_describe_cone(st, cone, sizeof cone);
+    fputs("<li>Specular exclusion: ", fp);
+    bf_tt_html_text(fp, cone);
+    fputs(".</li>\n", fp);
+    if (one_selection(st)) {
+        size_t nconf = bf_dataset_nconf(ds, st->targets[0].material);
+        fprintf(fp, "<li>Configurations used: K = %zu of %zu; left out "
+                    "(specular, <code>--exclude</code>, "
+                    "<code>--max-theta</code>, invalid values): ",
+                st->k[0], nconf);
+        left_out(fp, st, 0);
+        fputs(".</li>\n", fp);
+    } else {
+        size_t lo = SIZE_MAX;
+        size_t hi = 0;
+        for (s = 0; s < st->n_samples; s++) {
+            lo = st->k[s] < lo ? st->k[s] : lo;
+            hi = st->k[s] > hi ? st->k[s] : hi;
+        }
+        fprintf(fp, "<li>Configurations used: K from %zu to %zu per sample "
+                    "(each sample's list is in the run's description, "
+                    "under Conventions).</li>\n",
+                lo, hi);
     }
     fputs("</ul>\n", fp);
-    t = bf_cli_rank_table(st, BF_CLI_BIC);
-    mem = t != NULL ? open_memstream(&buf, &len) : NULL;
-    if (mem != NULL) {
-        bf_tt_print(t, mem);
-        fclose(mem);
-        fputs("<h3>BIC per sample</h3>\n<pre>", fp);
-        put_text(fp, buf);
-        fputs("</pre>\n", fp);
-        free(buf);
-    }
-    bf_tt_free(t);
 }
 
 static void conventions(FILE *fp, const bf_cli_study *st,
@@ -323,18 +341,8 @@ static void conventions(FILE *fp, const bf_cli_study *st,
     fputs("<li>Measured radiance = BRDF × cos θ<sub>i</sub>, divided by its "
           "maximum over the K used configurations; every model curve is "
           "divided by its own maximum over the same configurations, so the "
-          "models' scale constants cancel (SPEC §2).</li>\n", fp);
-    {
-        char cone[256];
-        bf_cli_describe_cone(st, cone, sizeof cone);
-        fputs("<li>Specular exclusion: ", fp);
-        put_text(fp, cone);
-        fprintf(fp, "%s; the configurations used and left out are listed "
-                    "below.</li>\n",
-                (st->opts.exclude != NULL || st->opts.max_theta < 90.0)
-                    ? ", and more by --exclude or --max-theta"
-                    : "");
-    }
+          "models' scale constants cancel (SPEC §2). Every figure shows "
+          "radiance normalised this way.</li>\n", fp);
     fputs("<li>LSE = Σ<sub>k</sub> (L<sub>model,k</sub> − L<sub>data,k"
           "</sub>)², a sum over the K configurations (SPEC §7.3).</li>\n"
           "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "
@@ -345,7 +353,7 @@ static void conventions(FILE *fp, const bf_cli_study *st,
           "<li>Fresnel reflectance with the factor ½ (SPEC §4.1); ", fp);
     if (st->opts.n_file != NULL) {
         fputs("refractive index per sample from <code>", fp);
-        put_text(fp, st->opts.n_file);
+        bf_tt_html_text(fp, st->opts.n_file);
         fputs("</code>.</li>\n", fp);
     } else {
         fprintf(fp, "refractive index n = %g for every sample (SPEC §4.2)."
@@ -356,7 +364,7 @@ static void conventions(FILE *fp, const bf_cli_study *st,
           "(SPEC §5)", fp);
     if (st->opts.on_file != NULL) {
         fputs(" from <code>", fp);
-        put_text(fp, st->opts.on_file);
+        bf_tt_html_text(fp, st->opts.on_file);
         fputs("</code>", fp);
     }
     fputs(".</li>\n<li>Plane-of-incidence figures: incidence angles", fp);
@@ -364,49 +372,104 @@ static void conventions(FILE *fp, const bf_cli_study *st,
         fprintf(fp, "%s %.2f°", a ? "," : "", meta->fig->incidence[a] / DEG);
     }
     fputs("; θ<sub>s</sub> &gt; 0 on the forward (specular) side, Beckmann's "
-          "frame (SPEC §1.2).</li>\n</ul>\n", fp);
+          "frame (SPEC §1.2).</li>\n", fp);
+    fprintf(fp, "<li>Figures are drawn at print size, %s column (%u pt = "
+                "%.1f in wide), with %g-point text; PNG at %d pixels per "
+                "inch, PDF%s vector.</li>\n</ul>\n",
+            meta->fig->width == BF_PLOT_SINGLE_COLUMN ? "single" : "double",
+            meta->fig->width, meta->fig->width / 72.0, BF_PLOT_FONT,
+            BF_PLOT_PNG_DPI,
+            (meta->fig->formats & (1u << BF_PLOT_SVG)) ? " and SVG" : "");
     if (mem != NULL) {
         bf_cli_study_describe(st, mem);
         fclose(mem);
         fputs("<p>The run, as printed by brdffit:</p>\n<pre>", fp);
-        put_text(fp, text != NULL ? text : "");
+        bf_tt_html_text(fp, text != NULL ? text : "");
         fputs("</pre>\n", fp);
     }
     free(text);
 }
 
-static void provenance(FILE *fp, const bf_report_meta *meta)
+/* The analysis beyond the paper: model selection and intervals. */
+static void analysis(FILE *fp, const bf_cli_study *st, const bf_fig_set *figs)
 {
-    size_t i;
-    int a;
-    fputs("<h2 id=\"provenance\">Provenance</h2>\n<ul>\n", fp);
-    fprintf(fp, "<li>brdffit %s</li>\n<li>Command: <code>brdffit",
-            bf_version());
-    for (a = 0; a < meta->argc; a++) {
-        fputc(' ', fp);
-        put_shell_word(fp, meta->argv[a]);
+    size_t m;
+    fputs("<h2 id=\"analysis\">Analysis beyond the paper</h2>\n", fp);
+    if (st->stats == NULL) {
+        fputs("<p>Not computed: run with <code>--stats</code> (or "
+              "<code>brdffit rank</code>) for refined optima, 95% intervals, "
+              "AIC, BIC and cross-validation.</p>\n",
+              fp);
+        return;
     }
-    fputs("</code></li>\n</ul>\n<table id=\"inputs\"><tr><th>Input</th>"
-          "<th>File</th><th>Bytes</th><th>SHA-256</th></tr>\n", fp);
-    for (i = 0; i < meta->n_inputs; i++) {
-        const bf_report_input *in = &meta->inputs[i];
-        fputs("<tr><td>", fp);
-        put_text(fp, in->role);
-        fputs("</td><td><code>", fp);
-        put_text(fp, in->path);
-        fprintf(fp, "</code></td><td class=\"n\">%lld</td><td><code>%s</code>"
-                    "</td></tr>\n",
-                in->size, in->sha256);
+    fputs("<h3 id=\"selection\">Model selection</h3>\n", fp);
+    figures_of(fp, figs, BF_FIG_DELTA_BIC, SIZE_MAX);
+    bf_report_selection(fp, st);
+    fputs("<h3 id=\"intervals-section\">Fitted parameters and their "
+          "intervals</h3>\n",
+          fp);
+    for (m = 0; m < st->n_models; m++) {
+        figures_of(fp, figs, BF_FIG_FOREST, m);
     }
-    fputs("</table>\n", fp);
+    fputs("<details>\n<summary>The same as a table: each sample's grid and "
+          "exact optima with their 95% intervals</summary>\n",
+          fp);
+    bf_report_intervals(fp, st);
+    fputs("</details>\n", fp);
 }
 
-/* ==== the page ============================================================ */
+/* One collapsible section per sample with its figures. */
+static void per_sample(FILE *fp, const bf_cli_study *st,
+                       const bf_fig_set *figs)
+{
+    size_t s;
+    fputs("<h2 id=\"samples\">Per sample</h2>\n<p>Each sample's figures "
+          "(open a section to see them): the fitted models in the plane of "
+          "incidence, Cartesian and polar",
+          fp);
+    fputs(st->stats != NULL ? ", and the profiles of the objective" : "", fp);
+    fputs(".</p>\n", fp);
+    for (s = 0; s < st->n_samples; s++) {
+        char key[64];
+        char who[256];
+        fprintf(fp, "<details id=\"%s\">\n<summary>",
+                bf_fig_target_key(st, s, key, sizeof key));
+        bf_tt_html_text(fp, bf_fig_sample_label(st, s, who, sizeof who));
+        fputs("</summary>\n", fp);
+        figures_of(fp, figs, BF_FIG_SAMPLE, s);
+        figures_of(fp, figs, BF_FIG_PLANE, s);
+        figures_of(fp, figs, BF_FIG_POLAR, s);
+        figures_of(fp, figs, BF_FIG_PROFILE, s);
+        fputs("</details>\n", fp);
+    }
+}
+
+static void contents(FILE *fp, const bf_cli_study *st)
+{
+    fputs("<nav aria-label=\"Contents\">\n<h2>Contents</h2>\n<ol>\n"
+          "<li><a href=\"#data\">Data</a></li>\n"
+          "<li><a href=\"#tables\">Tables 2 and 3</a></li>\n"
+          "<li><a href=\"#figures\">Figures</a>: <a href=\"#fig2b\">Figure "
+          "2(b)</a>, <a href=\"#wins\">samples fitted best</a>, <a href=\""
+          "#scatter\">Figures 3–6</a></li>\n"
+          "<li><a href=\"#analysis\">Analysis beyond the paper</a>",
+          fp);
+    if (st->stats != NULL) {
+        fputs(": <a href=\"#selection\">model selection</a>, <a href=\""
+              "#intervals-section\">fitted parameters and intervals</a>",
+              fp);
+    }
+    fputs("</li>\n<li><a href=\"#samples\">Per sample</a></li>\n"
+          "<li><a href=\"#conventions\">Conventions</a></li>\n"
+          "<li><a href=\"#provenance\">Provenance</a></li>\n</ol>\n</nav>\n",
+          fp);
+}
+
+/* ==== the page =========================================================== */
 
 int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
                    const bf_report_meta *meta, FILE *fp)
 {
-    size_t s;
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8"
           "\">\n<title>brdffit report</title>\n<style>",
           fp);
@@ -414,48 +477,39 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
     fputs("</style>\n<script>", fp);
     fputs(script, fp);
     fputs("</script>\n</head>\n<body>\n", fp);
-    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu %s"
-                "samples</h1>\n",
-            st->n_models, st->n_samples, st->in.curet ? "CURET " : "");
+    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu %s</h1>\n",
+            st->n_models, st->n_samples,
+            st->in.curet ? "samples of the CURET database"
+                         : (st->n_samples == 1 ? "sample" : "samples"));
     fputs("<p>Rough-surface reflectance models fitted to measured BRDF data "
           "with the protocol of Ragheb &amp; Hancock, “Comparing Variants of "
           "the Beckmann Model” (tables and figures numbered as in the "
-          "paper).</p>\n<nav><a href=\"#tables\">Tables</a><a href=\"#fig2b"
-          "\">Figure 2(b)</a><a href=\"#scatter\">Figures 3–6</a><a href=\""
-          "#samples\">Per sample</a><a href=\"#selection\">Model selection</a>"
-          "<a href=\"#conventions\">Conventions</a>"
-          "<a href=\"#provenance\">Provenance</a></nav>\n",
+          "paper), and the analysis beyond it when it ran.</p>\n",
           fp);
-    fputs("<h2 id=\"tables\">Tables</h2>\n<h3>Table 2: fitted parameters "
-          "(grid optima; * on a grid bound)</h3>\n",
+    contents(fp, st);
+    data_section(fp, st);
+    fputs("<h2 id=\"tables\">Tables 2 and 3</h2>\n<h3>Table 2: fitted "
+          "parameters (grid optima; * on a grid bound)</h3>\n",
           fp);
-    table2(fp, st);
-    fprintf(fp, "<h3>Table 3: LSE (sum over the K = %zu used configurations; "
-                "lowest per sample highlighted)</h3>\n",
-            st->n_sel);
-    table3(fp, st);
+    bf_report_table2(fp, st);
+    {
+        char ktext[48];
+        fprintf(fp, "<h3>Table 3: LSE (sum over the %s used configurations; "
+                    "lowest per sample highlighted)</h3>\n",
+                bf_fig_k_text(st, ktext, sizeof ktext));
+    }
+    bf_report_table3(fp, st);
     fputs("<p>The same as files: <a href=\"fits.csv\">fits.csv</a>, <a href="
           "\"table2.md\">table2.md</a>, <a href=\"table3.md\">table3.md</a>."
-          "</p>\n<h2>Figures</h2>\n",
+          "</p>\n<h2 id=\"figures\">Figures</h2>\n",
           fp);
-    figures_of(fp, figs, BF_FIG_LSE, 0);
-    figures_of(fp, figs, BF_FIG_WINS, 0);
+    figures_of(fp, figs, BF_FIG_LSE, SIZE_MAX);
+    figures_of(fp, figs, BF_FIG_WINS, SIZE_MAX);
     fputs("<h3 id=\"scatter\">Figures 3–6: predicted against measured</h3>\n",
           fp);
-    figures_of(fp, figs, BF_FIG_SCATTER, 0);
-    fputs("<h3 id=\"samples\">Per sample</h3>\n", fp);
-    for (s = 0; s < st->n_samples; s++) {
-        int sample = st->samples[s];
-        char title[512];
-        bf_cli_sample_title(st, s, title, sizeof title);
-        fprintf(fp, "<h4 id=\"sample%d\">", sample);
-        put_text(fp, title[0] != '\0' ? title : "sample");
-        fprintf(fp, " (%d)</h4>\n", sample);
-        figures_of(fp, figs, BF_FIG_SAMPLE, sample);
-        figures_of(fp, figs, BF_FIG_PLANE, sample);
-        figures_of(fp, figs, BF_FIG_POLAR, sample);
-    }
-    selection(fp, st);
+    figures_of(fp, figs, BF_FIG_SCATTER, SIZE_MAX);
+    analysis(fp, st, figs);
+    per_sample(fp, st, figs);
     conventions(fp, st, meta);
     provenance(fp, meta);
     fputs("</body>\n</html>\n", fp);

@@ -1,7 +1,10 @@
 /* report_html.h: writes report.html -- one self-contained page (no
  * network: inline style, images by relative path into the output folder)
- * with the tables, the figures, the conventions of the run and its
- * provenance (version, command line, SHA-256 of every input file). */
+ * that describes the data it was given, with a table of contents, every
+ * table as an HTML table, the figures with captions and alternative text
+ * (per-sample figures in collapsible sections), the conventions of the run
+ * and its provenance (version, command line, SHA-256 of every input file).
+ * report_html.c writes the page, report_tables.c its tables. */
 #ifndef BF_CLI_REPORT_HTML_H
 #define BF_CLI_REPORT_HTML_H
 
@@ -39,5 +42,18 @@ int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta);
  * (no dates). Returns 0, or -1 when a write failed. */
 int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
                    const bf_report_meta *meta, FILE *fp);
+
+/* ---- the tables (report_tables.c) ---- */
+
+/* Table 2 (id "table2"): fitted parameters, * on a grid bound. */
+void bf_report_table2(FILE *fp, const bf_cli_study *st);
+/* Table 3 (id "table3"): LSE, the lowest of each sample marked. */
+void bf_report_table3(FILE *fp, const bf_cli_study *st);
+/* Model selection (needs st->stats): samples won per criterion (id
+ * "wins-table") and, collapsed, BIC per sample (id "bic-table"). */
+void bf_report_selection(FILE *fp, const bf_cli_study *st);
+/* The fitted parameters with their intervals (needs st->stats; id
+ * "intervals"): one row per sample, model and free parameter. */
+void bf_report_intervals(FILE *fp, const bf_cli_study *st);
 
 #endif

@@ -50,7 +50,8 @@ int bf_cli_study_run(bf_cli_study *st);
 
 /* The two halves of bf_cli_study_run: the paper's protocol (nothing with
  * --fit exact, where the analysis is the study), then the analysis
- * (--stats, --fit exact, --bootstrap; nothing otherwise). */
+ * (--stats, --fit exact, --bootstrap; nothing otherwise). The report
+ * draws the paper's figures while the analysis runs. */
 int bf_cli_study_run_protocol(bf_cli_study *st);
 int bf_cli_study_run_analysis(bf_cli_study *st);
 

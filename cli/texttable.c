@@ -162,3 +162,46 @@ int bf_tt_print(const bf_tt *t, FILE *fp)
     free(w);
     return ferror(fp) ? -1 : 0;
 }
+
+void bf_tt_html_text(FILE *fp, const char *s)
+{
+    for (; s != NULL && *s != '\0'; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", fp); break;
+        case '<': fputs("&lt;", fp); break;
+        case '>': fputs("&gt;", fp); break;
+        case '"': fputs("&quot;", fp); break;
+        default: fputc(*s, fp); break;
+        }
+    }
+}
+
+int bf_tt_print_html(const bf_tt *t, const char *id, FILE *fp)
+{
+    size_t r;
+    size_t c;
+    fputs("<table", fp);
+    if (id != NULL) {
+        fputs(" id=\"", fp);
+        bf_tt_html_text(fp, id);
+        fputc('"', fp);
+    }
+    fputs(">\n<thead><tr>", fp);
+    for (c = 0; c < t->ncols; c++) {
+        fputs("<th>", fp);
+        bf_tt_html_text(fp, t->cells[c]);
+        fputs("</th>", fp);
+    }
+    fputs("</tr></thead>\n<tbody>\n", fp);
+    for (r = 1; r <= t->nrows; r++) {
+        fputs("<tr>", fp);
+        for (c = 0; c < t->ncols; c++) {
+            fputs(t->right[c] ? "<td class=\"n\">" : "<td>", fp);
+            bf_tt_html_text(fp, t->cells[r * t->ncols + c]);
+            fputs("</td>", fp);
+        }
+        fputs("</tr>\n", fp);
+    }
+    fputs("</tbody>\n</table>\n", fp);
+    return ferror(fp) ? -1 : 0;
+}

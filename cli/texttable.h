@@ -1,5 +1,6 @@
 /* texttable.h: a small grid of strings printed as an aligned Markdown pipe
- * table (readable in a terminal, pasteable into documents). */
+ * table (readable in a terminal, pasteable into documents) or as an HTML
+ * table (report.html). */
 #ifndef BF_TEXTTABLE_H
 #define BF_TEXTTABLE_H
 
@@ -25,5 +26,11 @@ int bf_tt_set(bf_tt *t, size_t c, const char *fmt, ...)
     ;
 /* Prints the table; returns 0, or -1 when a write failed. */
 int bf_tt_print(const bf_tt *t, FILE *fp);
+/* Writes the table as an HTML <table> (id attribute when id is not NULL;
+ * the header row in <thead>, right-aligned columns with class "n"), text
+ * escaped. Returns 0, or -1 when a write failed. */
+int bf_tt_print_html(const bf_tt *t, const char *id, FILE *fp);
+/* Writes s (NULL: nothing) with HTML's special characters escaped. */
+void bf_tt_html_text(FILE *fp, const char *s);
 
 #endif

@@ -30,4 +30,19 @@ long bf_fuzz_lines(const uint8_t *data, size_t size);
  * [0, lines] and a non-empty, terminated message. */
 void bf_fuzz_check(int rc, int ok, const bf_error *err, long lines);
 
+/* Checks a dataset a reader returned: at least one material, each with
+ * configurations and channels, angles in their ranges (zeniths in [0,
+ * pi/2], azimuths finite and, when bounded, in [-2 pi, 2 pi] as the text
+ * readers check them), finite valid values, names that are strings. */
+void bf_fuzz_check_dataset(const bf_dataset *ds, int bounded);
+
+/* Writes ds as tidy CSV and reads it back: bit for bit the same dataset
+ * (or, when bf_csv_write refuses it, BF_EINVAL and nothing else). */
+void bf_fuzz_csv_round_trip(const bf_dataset *ds);
+
+/* One dataset reader on the fuzzer's bytes, with every check above. */
+void bf_fuzz_dataset_reader(int (*read)(FILE *, const char *, bf_dataset **,
+                                        bf_error *),
+                            const uint8_t *data, size_t size);
+
 #endif

@@ -447,13 +447,17 @@ const char *bf_format_name(bf_format f);
  * "binary" for merl). BF_ENOTFOUND when unknown. */
 int bf_format_find(const char *name, bf_format *f);
 
-/* Detects the format of path from its content, never from its name alone:
- * a folder holding table.txt is CURET; MERL by its three int32 dimensions
- * 90, 90, 180 and the file size they imply; ASTM by its header keywords
- * (NUM_POINTS, VARS); CSV by a header row naming theta_i, phi_i, theta_o,
- * phi_o; pbrt by a first number token that is a plausible wavelength
- * count. BF_OK and *f, or BF_EIO (cannot open) / BF_EPARSE (no format
- * recognised: err names the file and says which formats were tried). */
+/* Detects the format of path from its content, never from its name alone
+ * (src/data/format.c): a folder holding table.txt is CURET; MERL by its
+ * first 12 bytes, the little-endian int32 dimensions 90, 90, 180 (the
+ * file size they imply is checked by bf_merl_read, which names it); ASTM
+ * by its header keywords (NUM_POINTS, VARS); CSV by a header row naming
+ * theta_i, phi_i, theta_o, phi_o; pbrt by a first number token that is a
+ * plausible wavelength count (an integer in [1, 65536]). BF_OK and *f, or
+ * BF_EIO (cannot open; a folder without table.txt; a pipe, which cannot
+ * be read twice: name its format instead) / BF_EPARSE (empty, binary or
+ * no format recognised: err names the file and says which formats were
+ * tried). */
 int bf_format_detect(const char *path, bf_format *f, bf_error *err);
 
 /* ---- building a dataset (readers, tests, Python) ---- */
@@ -666,16 +670,24 @@ int bf_astm_load(const char *path, bf_dataset **out, bf_error *err);
  * (degrees, SPEC §1.5) and one column per channel, optionally a first
  * column `material`; '#' comment lines; an empty value field is invalid.
  * One or more materials (in order of first appearance); materials listing
- * the same configurations share a configuration set. */
+ * the same configurations share a configuration set. A channel named
+ * "<number>nm" is a wavelength channel, named by the number. */
 int bf_csv_read(FILE *fp, const char *name, bf_dataset **out,
                 bf_error *err);
 int bf_csv_load(const char *path, bf_dataset **out, bf_error *err);
 
-/* Writes ds as tidy CSV (the `material` column always present). Angles are
- * written in degrees with as few digits as read back (bf_csv_read) into
- * the same radians bit for bit; values with %.17g; invalid values as empty
- * fields. Every material must have the same channel names (BF_EINVAL
- * otherwise). BF_EIO on a write error. */
+/* Writes ds as tidy CSV (the `material` column always present; a material
+ * without a name is written under its number). Angles are written in
+ * degrees with as few digits as read back (bf_csv_read) into the same
+ * radians bit for bit; values with the fewest of %.15g, %.16g, %.17g that
+ * read back bit for bit; invalid values as empty fields; wavelength
+ * channels as "<nm>nm". So bf_csv_read gives ds back. BF_EINVAL when it
+ * could not: materials with different channels, two materials written
+ * under one name, a line break in a name, a channel that would not read
+ * back as itself (a wavelength channel not named by its wavelength, a
+ * name ending in nm, or one of the CSV's own column names), or an angle
+ * below 1e-200 degrees that no decimal reads back into. BF_EIO on a
+ * write error. */
 int bf_csv_write(const bf_dataset *ds, FILE *fp);
 
 /* Reads a configuration list: a tidy CSV (bf_csv_read's syntax) whose
@@ -693,7 +705,9 @@ typedef struct bf_merl bf_merl;
 
 /* Reads a MERL table: the three dimensions must be 90, 90, 180 and the
  * stream must hold exactly the values they imply (checked against the
- * file size before any allocation when fp is seekable). */
+ * file size before any allocation when fp is seekable), each finite (a
+ * negative one marks its cell invalid and is kept). The table is read
+ * with one fread and scaled in place. */
 int bf_merl_read(FILE *fp, const char *name, bf_merl **out, bf_error *err);
 int bf_merl_load(const char *path, bf_merl **out, bf_error *err);
 void bf_merl_free(bf_merl *t);
@@ -708,8 +722,12 @@ int bf_merl_lookup(const bf_merl *t, double theta_i, double phi_i,
 /* A dataset of one material (channels R, G, B) sampled from t at n
  * configurations (measurement frame, n x 4, as bf_dataset_add_configs), or
  * -- when at is NULL -- at every valid cell (one configuration per cell, at
- * the directions of the cell's centre that lie above the horizon). An
- * invalid cell gives invalid values (never clamped to 0). */
+ * the directions of the cell's centre, for the cells whose centre lies
+ * above the horizon: 1,096,216 of the 1,458,000; the lookup of a centre
+ * finds its own cell, src/data/merl.c). An invalid cell gives invalid
+ * values on all three channels, kept as read (never clamped to 0).
+ * BF_EINVAL for a configuration outside the hemisphere, BF_EDOM when no
+ * cell is valid. */
 int bf_merl_dataset(const bf_merl *t, size_t n, const double *at,
                     const char *material, const char *source,
                     bf_dataset **out, bf_error *err);
@@ -718,8 +736,9 @@ int bf_merl_dataset(const bf_merl *t, size_t n, const double *at,
 typedef struct {
     bf_format format;  /* BF_FORMAT_AUTO: bf_format_detect */
     /* MERL only: the configurations to sample (n_at x 4, measurement
-     * frame), or all_cells = 1 for every valid cell. A MERL file without
-     * either is BF_EINVAL (the CLI passes CURET's 205 by default). */
+     * frame), or all_cells = 1 for every valid cell (which wins over at).
+     * A MERL file without either is BF_EINVAL, before it is read (the CLI
+     * passes CURET's 205 by default). */
     size_t n_at;
     const double *at;
     int all_cells;
@@ -968,6 +987,39 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
  * configurations (comparable to the LSE, which is a sum too). */
 int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
               unsigned long seed, double *cv);
+
+/* The profile of pb's objective along free parameter j as a curve
+ * (doc/methods.md §3): dev[i] = n ln(S_p(theta[i]) / S_min) at the n
+ * increasing values theta[i] within the search range [lo_j, hi_j], S_p
+ * minimised over the other free parameters (warm-started outward from the
+ * optimum), S_min the objective at best (the exact optimum,
+ * bf_fit_refine), n the sum of the weights. The profile interval is where
+ * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
+ * undefined. BF_EINVAL on bad arguments or theta out of range or not
+ * increasing; BF_ENOMEM. (src/fit/profile_curve.c) */
+int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
+                         size_t j, size_t n, const double *theta,
+                         double *dev);
+
+/* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
+ * model at the n configurations at[], divided by its maximum over the
+ * n_used configurations used[] the fit saw. work holds n_used doubles.
+ * out[i] is NaN where the model is undefined at at[i]. BF_EDOM when the
+ * model cannot be normalised on used[] (maximum not positive or
+ * undefined); BF_EINVAL on bad arguments. (src/fit/plane.c) */
+int bf_fit_curve(const bf_model_type *type, const double *param,
+                 size_t n_used, const bf_geom *used, size_t n,
+                 const bf_geom *at, double *work, double *out);
+
+/* The configuration of the plane of incidence at incidence theta_i and
+ * signed viewing angle t in [-pi/2, pi/2] (t > 0 on the forward, specular
+ * side; Beckmann's frame, SPEC §1.2). */
+bf_geom bf_geom_in_plane(double theta_i, double t);
+
+/* The signed viewing angle of g in its plane of incidence (> 0 forward),
+ * and in *off_plane (may be NULL) the angle between the viewing direction
+ * and that plane, radians. */
+double bf_geom_plane_angle(const bf_geom *g, double *off_plane);
 
 /* A model type with some parameters' status or search range changed (n
  * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise

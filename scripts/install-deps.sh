@@ -10,12 +10,15 @@
 set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
-# figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font).
+# figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font);
+# zlib1g-dev: the report's PNG writer; python3-html5lib: the test that
+# parses report.html; curl: `make run` fetches the CURET files when they
+# are not on the machine (scripts/curet-data.sh).
 # python3-numpy, python3-cffi, python3-pytest: the Python package (python/)
 # and its tests; python3-pip: `pip install ./python`.
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
-plplot-driver-cairo fonts-dejavu-core python3-numpy python3-cffi \
-python3-pytest python3-pip"
+plplot-driver-cairo fonts-dejavu-core zlib1g-dev python3-html5lib curl \
+python3-numpy python3-cffi python3-pytest python3-pip"
 for group in "$@"; do
     case $group in
     # bench/numpy_baseline.py; ../shared/peers/rank_baseline.py (scipy)

@@ -44,6 +44,15 @@ int bf__error_set(bf_error *err, int code, long line, const char *fmt, ...)
 /* At most this many bytes of an offending field are quoted in a message. */
 #define BF__QUOTE_MAX 24
 
+/* Size of a buffer for bf__quote. */
+#define BF__QUOTE_BUF (4 * BF__QUOTE_MAX + 8)
+
+/* Writes a printable, truncated copy of text into out (size n, at least
+ * BF__QUOTE_BUF for the whole of it): bytes outside printable ASCII become
+ * \xNN, and text longer than BF__QUOTE_MAX bytes ends in "...". For
+ * quoting what a file holds in a message. */
+void bf__quote(const char *text, char *out, size_t n);
+
 /* A line reader over a FILE * (see lineio.c for the accepted syntax: LF or
  * CRLF line ends, optional final newline, optional UTF-8 BOM, blank lines
  * skipped, trailing blanks ignored; NUL bytes, lone CRs and lines longer
@@ -123,6 +132,105 @@ int bf__field_error(const bf__lines *r, size_t i, const char *what,
  * is a directory, or is neither a regular file nor a FIFO/pipe. On success
  * *fp is the stream. */
 int bf__open(const char *path, FILE **fp, bf_error *err);
+
+/* 1 when the current line of r is a comment: its first non-blank
+ * character is '#' (the pbrt, ASTM and tidy CSV readers). */
+int bf__lines_is_comment(const bf__lines *r);
+
+/* Splits r->buf in place into comma-separated fields (the ASTM and tidy
+ * CSV readers): spaces and tabs around a field are removed and empty
+ * fields are kept. A field may be enclosed in double quotes (RFC 4180;
+ * "" inside stands for one "), which keeps its commas and blanks; after
+ * the closing quote only blanks may follow. Returns BF_OK, BF_EPARSE (a
+ * quote not closed on the line, text after a closing quote; err names the
+ * field) or BF_ENOMEM. */
+int bf__lines_split_csv(bf__lines *r, bf_error *err);
+
+/* The file name of path without its folders and its last extension
+ * ("data/cayman.brdf" -> "cayman"; a leading dot is kept: ".x" -> ".x"),
+ * into out (size len, truncated); "" when path is NULL. Readers name a
+ * material after its file with it. */
+void bf__stem(const char *path, char *out, size_t len);
+
+/* Tolerance on the angle ranges of every reader (radians): absorbs the
+ * rounding of angles printed with 10 or more decimals, far below the 6 of
+ * CURET's and Cornell's files. */
+#define BF__ANGLE_TOL 1e-9
+
+/* Checks an angle in radians read from a file: a zenith (zenith = 1) must
+ * lie in [0, pi/2], an azimuth in [-2 pi, 2 pi], each up to BF__ANGLE_TOL;
+ * a zenith within the tolerance outside [0, pi/2] is clamped onto it, so
+ * that a pi/2 printed with rounding passes the models' closed-hemisphere
+ * check. Returns 1 when *a is accepted, 0 when it is out of range. */
+int bf__angle_ok(double *a, int zenith);
+
+/* 1 when a channel name of an ASTM or CSV header names a wavelength: a
+ * positive decimal number followed by the unit nm, in any case, blanks
+ * allowed before it ("550nm", "552.5 nm", as libbsdf's ASTM reader
+ * requires); a bare number ("550") is a name like any other. *nm gets it.
+ * The readers then name the channel bf__format_double(*nm) ("550"), as
+ * the pbrt reader names its wavelengths, so one spectrum has the same
+ * channels in every format. */
+int bf__channel_wavelength(const char *text, double *nm);
+
+/* A new dataset of one material (desc, whose set is filled here) on one
+ * configuration set of n configurations (angles n x 4, measurement frame):
+ * what the pbrt, ASTM, MERL and single-material CSV readers return. On
+ * failure *out is NULL and err says why at line 0: BF_ENOMEM, or BF_EINVAL
+ * when the dataset refuses what the reader should have checked.
+ * src/data/format.c. */
+int bf__dataset_single(const bf_material_desc *desc, size_t n,
+                       const double *angles, bf_dataset **out,
+                       bf_error *err);
+
+/* A malloc'ed copy of s (NULL when out of memory). */
+char *bf__strdup(const char *s);
+
+/* 1 when a and b are equal ignoring ASCII case (header keywords, column
+ * and format names; strcasecmp is POSIX, and locale-dependent). */
+int bf__same_nocase(const char *a, const char *b);
+
+/* Grows *p, an array of elements of size bytes with room for *cap, to
+ * hold need elements (doubling from 64). BF_OK, or BF_ENOMEM with *p and
+ * *cap unchanged. */
+int bf__grow(void **p, size_t *cap, size_t need, size_t size);
+
+/* The entry of a dataset reader: resets err to name (bf__error_clear),
+ * *out to NULL and r to read fp. BF_EINVAL (err filled) when fp or out is
+ * NULL. */
+int bf__reader_begin(bf__lines *r, FILE *fp, const char *name,
+                     bf_dataset **out, bf_error *err);
+
+/* The load-from-path form of a dataset reader: opens path (bf__open),
+ * calls read(fp, path, out, err), closes it. */
+int bf__load_dataset(const char *path,
+                     int (*read)(FILE *, const char *, bf_dataset **,
+                                 bf_error *),
+                     bf_dataset **out, bf_error *err);
+
+/* ======================================================================
+ * --- angles in degrees as text (src/data/degrees.c) ---
+ * ====================================================================== */
+
+/* Parses text (bf__parse_double's strict syntax) as degrees and returns
+ * the radians nearest its decimal value times pi/180, computed from the
+ * decimal digits in double-double arithmetic (so every double in
+ * [-2 pi, 2 pi] is the value of some decimal text, which a single double
+ * multiplication cannot give). Returns BF__NUM_*. */
+int bf__parse_degrees(const char *text, double *rad);
+
+/* Longest text bf__format_degrees writes, with its terminating NUL. */
+#define BF__DEGREES_MAX 32
+
+/* Writes rad (finite) in degrees into buf (BF__DEGREES_MAX bytes): the
+ * decimal with the fewest significant digits that bf__parse_degrees reads
+ * back into rad bit for bit (plain notation from 1e-4 up to 1e17, else
+ * with an exponent, as %g). Returns BF_OK, or BF_EINVAL when rad is not finite. */
+int bf__format_degrees(double rad, char *buf);
+
+/* Writes a finite double v into buf (32 bytes) with the fewest digits of
+ * %.15g, %.16g, %.17g that strtod reads back bit for bit. */
+void bf__format_double(double v, char *buf);
 
 /* ======================================================================
  * --- geometry and model helpers (src/geometry.c, src/fresnel.c,

@@ -31,6 +31,29 @@ static void read_all(int fd, char *buf)
     fclose(fp);
 }
 
+/* Runs path with args (argv[0] first, NULL-terminated), stdin from
+ * /dev/null, stdout into fo and stderr into fe (may be fo); returns the
+ * wait status. */
+static int run_child(const char *path, const char *const *args, FILE *fo,
+                     FILE *fe)
+{
+    pid_t pid;
+    int status;
+    fflush(NULL);
+    pid = fork();
+    cr_assert_geq(pid, 0, "fork failed");
+    if (pid == 0) {
+        int devnull = open("/dev/null", O_RDONLY);
+        dup2(devnull, 0);
+        dup2(fileno(fo), 1);
+        dup2(fileno(fe), 2);
+        execv(path, (char *const *)(uintptr_t)args);
+        _exit(127);
+    }
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    return status;
+}
+
 int bf_test_run_cli(const char *const *argv, const char **out,
                     const char **err)
 {
@@ -38,7 +61,6 @@ int bf_test_run_cli(const char *const *argv, const char **out,
     FILE *fe = tmpfile();
     const char *args[64];
     size_t n = 0;
-    pid_t pid;
     int status;
 
     cr_assert(fo != NULL && fe != NULL);
@@ -49,18 +71,7 @@ int bf_test_run_cli(const char *const *argv, const char **out,
         n++;
     }
     args[n] = NULL;
-    fflush(NULL);
-    pid = fork();
-    cr_assert_geq(pid, 0, "fork failed");
-    if (pid == 0) {
-        int devnull = open("/dev/null", O_RDONLY);
-        dup2(devnull, 0);
-        dup2(fileno(fo), 1);
-        dup2(fileno(fe), 2);
-        execv(BF_CLI_PATH, (char *const *)(uintptr_t)args);
-        _exit(127);
-    }
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    status = run_child(BF_CLI_PATH, args, fo, fe);
     read_all(dup(fileno(fo)), out_buf);
     read_all(dup(fileno(fe)), err_buf);
     fclose(fo);
@@ -78,6 +89,21 @@ int bf_test_run_cli(const char *const *argv, const char **out,
         return -1;
     }
     return WEXITSTATUS(status);
+}
+
+int bf_test_run_sh(const char *cmd, const char **out)
+{
+    const char *args[4] = {"sh", "-c", cmd, NULL};
+    FILE *fo = tmpfile();
+    int status;
+    cr_assert_not_null(fo);
+    status = run_child("/bin/sh", args, fo, fo);
+    read_all(dup(fileno(fo)), out_buf);
+    fclose(fo);
+    if (out != NULL) {
+        *out = out_buf;
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 const char *bf_test_tmpdir(void)

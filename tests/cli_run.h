@@ -15,6 +15,12 @@ int bf_test_run_cli(const char *const *argv, const char **out,
  * folder (bf_test_curet_path): argv is changed in place. */
 int bf_test_run_curet(const char **argv);
 
+/* Runs the shell command cmd (/bin/sh -c) with standard output and error
+ * captured together into the static buffer returned through out (may be
+ * NULL; shared with bf_test_run_cli's stdout buffer). Returns the exit
+ * status, or -1 if it did not exit normally. */
+int bf_test_run_sh(const char *cmd, const char **out);
+
 /* Creates a fresh temporary folder (static buffer). */
 const char *bf_test_tmpdir(void);
 

@@ -58,6 +58,156 @@ const char *bf_test_reference_path(const char *file)
     return path_in("BRDFFIT_REFERENCE_DIR", BF_REFERENCE_DIR, file);
 }
 
+const char *bf_test_cornell_path(const char *file)
+{
+    return path_in("BRDFFIT_CORNELL_DIR", BF_CORNELL_DIR, file);
+}
+
+const char *const bf_test_cornell[BF_TEST_NCORNELL] = {
+    "acryl_blue.brdf", "cayman.brdf", "garnet_red.brdf", "krylon_blue.brdf",
+    "mystique.brdf"};
+
+/* 1 when two doubles have the same bits. */
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+void bf_test_expect_same_dataset(const bf_dataset *a, const bf_dataset *b)
+{
+    size_t m;
+    cr_assert_eq(bf_dataset_count(a), bf_dataset_count(b),
+                 "material counts %zu and %zu", bf_dataset_count(a),
+                 bf_dataset_count(b));
+    for (m = 0; m < bf_dataset_count(a); m++) {
+        size_t n = bf_dataset_nconf(a, m);
+        size_t nc = bf_dataset_nchannels(a, m);
+        const double *aa = bf_dataset_angles(a, m);
+        const double *ba = bf_dataset_angles(b, m);
+        const double *av = bf_dataset_values(a, m);
+        const double *bv = bf_dataset_values(b, m);
+        const unsigned char *aok = bf_dataset_valid(a, m);
+        const unsigned char *bok = bf_dataset_valid(b, m);
+        size_t j;
+        size_t k;
+        size_t c;
+        cr_assert_str_eq(bf_dataset_name(a, m), bf_dataset_name(b, m));
+        cr_assert_eq(bf_dataset_number(a, m), bf_dataset_number(b, m));
+        cr_assert_eq(bf_dataset_nconf(b, m), n, "material %zu: %zu and %zu "
+                     "configurations", m, n, bf_dataset_nconf(b, m));
+        cr_assert_eq(bf_dataset_nchannels(b, m), nc);
+        for (j = 0; j < m; j++) {
+            cr_assert_eq(bf_dataset_set(a, m) == bf_dataset_set(a, j),
+                         bf_dataset_set(b, m) == bf_dataset_set(b, j),
+                         "materials %zu and %zu share a set in one dataset "
+                         "only", j, m);
+        }
+        for (k = 0; k < 4 * n; k++) {
+            cr_assert(same_bits(aa[k], ba[k]),
+                      "material %zu, configuration %zu, angle %zu: %.17g "
+                      "and %.17g", m, k / 4, k % 4, aa[k], ba[k]);
+        }
+        for (c = 0; c < nc; c++) {
+            double wa = bf_dataset_wavelength(a, m, c);
+            double wb = bf_dataset_wavelength(b, m, c);
+            cr_assert_str_eq(bf_dataset_channel(a, m, c),
+                             bf_dataset_channel(b, m, c));
+            cr_assert(same_bits(wa, wb) || (isnan(wa) && isnan(wb)),
+                      "channel %zu: wavelengths %g and %g", c, wa, wb);
+        }
+        cr_assert_eq(aok == NULL, bok == NULL,
+                     "material %zu: valid marks in one dataset only", m);
+        for (k = 0; k < n * nc; k++) {
+            int ok = aok == NULL || aok[k];
+            cr_assert_eq(ok, bok == NULL || bok[k]);
+            cr_assert(!ok || same_bits(av[k], bv[k]),
+                      "material %zu, value %zu: %.17g and %.17g", m, k,
+                      av[k], bv[k]);
+        }
+    }
+}
+
+bf_dataset *bf_test_read_ok(bf_test_reader rd, const char *name,
+                            const char *text)
+{
+    bf_dataset *ds = NULL;
+    bf_error err;
+    char msg[1024];
+    FILE *fp = bf_test_memfile(text);
+    int rc = rd(fp, name, &ds, &err);
+    fclose(fp);
+    cr_assert_eq(rc, BF_OK, "%s", bf_error_format(&err, msg, sizeof msg));
+    cr_assert_eq(err.code, BF_OK);
+    cr_assert_not_null(ds);
+    return ds;
+}
+
+void bf_test_expect_read_error(bf_test_reader rd, const char *name,
+                               const void *buf, size_t len, int code,
+                               long line, const char *msg)
+{
+    bf_dataset *ds = (bf_dataset *)&ds; /* the reader must reset it */
+    bf_error err;
+    FILE *fp = bf_test_membuf(buf, len);
+    int rc = rd(fp, name, &ds, &err);
+    fclose(fp);
+    cr_assert_eq(rc, code, "rc %d, expected %d (%s)", rc, code, err.msg);
+    cr_assert_null(ds);
+    cr_assert_eq(err.code, code);
+    cr_assert_eq(err.line, line, "line %ld, expected %ld (%s)", err.line,
+                 line, err.msg);
+    cr_assert_str_eq(err.file, name);
+    cr_assert_str_eq(err.msg, msg);
+}
+
+void bf_test_grid_point(const bf_model_type *type, double frac,
+                        double *param)
+{
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        const bf_param *pj = &type->param[j];
+        param[j] = pj->value;
+        if (pj->fitted && pj->grid_n > 0) {
+            size_t i = (size_t)(frac * (double)(pj->grid_n - 1));
+            param[j] = pj->grid_lo + pj->grid_step * (double)i; /* grid.c */
+        }
+    }
+}
+
+void bf_test_model_brdf(const bf_model_type *type, const double *param,
+                        size_t n, const bf_geom *geom, double *out)
+{
+    size_t k;
+    cr_assert_eq(bf_model_eval(type, param, n, geom, out), BF_OK, "%s",
+                 type->name);
+    for (k = 0; k < n; k++) {
+        out[k] /= cos(geom[k].theta_i);
+    }
+}
+
+bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
+                              const bf_model_type *type, size_t *k)
+{
+    bf_target t = {m, BF_CHANNEL_MEAN};
+    bf_study_row row;
+    bf_study_spec spec;
+    bf_error err;
+    memset(&spec, 0, sizeof spec);
+    spec.data = ds;
+    bf_select_init(&spec.select);
+    spec.targets = &t;
+    spec.n_targets = 1;
+    spec.models = &type;
+    spec.n_models = 1;
+    spec.n_default = BF_DEFAULT_N;
+    cr_assert_eq(bf_study_run(&spec, &row, &err), BF_OK, "%s", err.msg);
+    cr_assert_eq(row.status, BF_OK, "%s", type->name);
+    if (k != NULL) {
+        *k = row.k;
+    }
+    return row.fit;
+}
+
 const char *bf_test_fixture_path(const char *file)
 {
     return path_in("BRDFFIT_FIXTURES_DIR", BF_FIXTURES_DIR, file);

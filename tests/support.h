@@ -54,6 +54,54 @@ const char *bf_test_curet_path(const char *file);
  * BRDFFIT_REFERENCE_DIR); fails loudly when missing. Static buffer. */
 const char *bf_test_reference_path(const char *file);
 
+/* Path of a file in the Cornell pbrt-v2 folder (BF_CORNELL_DIR, or
+ * BRDFFIT_CORNELL_DIR); fails loudly when missing. Static buffer. */
+const char *bf_test_cornell_path(const char *file);
+
+/* The five Cornell .brdf files of shared/data/cornell-pbrt-v2/. */
+#define BF_TEST_NCORNELL 5
+extern const char *const bf_test_cornell[BF_TEST_NCORNELL];
+
+/* Asserts that two datasets hold the same measurements: materials in the
+ * same order with the same names, numbers and configuration counts, the
+ * same angles bit for bit, the same channel names and wavelengths, the
+ * same valid marks and the same valid values bit for bit, and the same
+ * sharing of configuration sets. Source, format and line are not compared
+ * (they say where the data came from). */
+void bf_test_expect_same_dataset(const bf_dataset *a, const bf_dataset *b);
+
+/* A dataset reader: bf_pbrt_read, bf_astm_read, bf_csv_read. */
+typedef int (*bf_test_reader)(FILE *fp, const char *name, bf_dataset **out,
+                              bf_error *err);
+
+/* Reads text with rd under name; fails the test unless it succeeds. */
+bf_dataset *bf_test_read_ok(bf_test_reader rd, const char *name,
+                            const char *text);
+
+/* Asserts that reading len bytes of buf with rd under name fails with
+ * code at line and exactly the message msg, leaving *out NULL and err
+ * naming the file. */
+void bf_test_expect_read_error(bf_test_reader rd, const char *name,
+                               const void *buf, size_t len, int code,
+                               long line, const char *msg);
+
+/* The parameters of type at a point of its paper grid (SPEC §7.4): each
+ * fitted parameter at grid index floor(frac (grid_n - 1)), computed as the
+ * grid computes it; the others at their defaults. */
+void bf_test_grid_point(const bf_model_type *type, double frac,
+                        double *param);
+
+/* BRDF values whose radiance (SPEC §2: value times cos theta_i) is type's
+ * at param on n configurations: out[k] = L_k / cos theta_i,k. */
+void bf_test_model_brdf(const bf_model_type *type, const double *param,
+                        size_t n, const bf_geom *geom, double *out);
+
+/* The paper's grid fit (bf_study_run, format defaults: every valid
+ * configuration outside the format's default cone) of material m of ds,
+ * mean channel, with one model; fails the test on an error. *k gets K. */
+bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
+                              const bf_model_type *type, size_t *k);
+
 /* Path of a fixture in tests/fixtures (static buffer). */
 const char *bf_test_fixture_path(const char *file);
 

@@ -23,6 +23,16 @@
 # cli_analysis/results_do_not_depend_on_the_thread_count runs the CLI's
 # analysis six times: their code paths run under valgrind in test_writers,
 # test_policy, test_rank and the rest of test_cli_analysis.
+# main_job/runs_from_a_bare_clone... runs `make run` on the 24 study samples
+# through make and sh (valgrind follows every child, every figure
+# process); the report code runs under valgrind in test_cmd_report, the
+# data script in the other two main_job tests.
+# The readers' sweeps: test_merl's runs over whole 35 MB tables (every cell
+# or tens of thousands of lookups, analytic tables fitted back), the MERL
+# all-cells load of test_format, test_csv's hundreds of thousands of random
+# angles, and test_convert's fits of the five Cornell files in three
+# formats; the smaller tests of the same files run every reader path under
+# valgrind.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -41,7 +51,19 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
     bk/original_beckmann_peaks_at_specular_below_the_slope_threshold
     oren_nayar/is_finite_and_non_negative_everywhere_for_every_rho_and_sigma
-    determinism/every_model_on_every_sample_gives_byte_identical_outputs"}
+    determinism/every_model_on_every_sample_gives_byte_identical_outputs
+    main_job/runs_from_a_bare_clone_with_the_curet_files_fetched_and_verified
+    merl/the_lookup_finds_the_cell_of_its_half_and_difference_angles
+    merl/swapping_incidence_and_view_finds_the_same_cell
+    merl/every_valid_cell_gives_its_centre_which_maps_back_to_it
+    merl/models_are_fitted_back_exactly_at_cell_centres
+    merl/models_are_fitted_back_within_the_lookup_error_elsewhere
+    merl/an_all_cells_table_is_fitted_back_exactly
+    format/a_merl_table_needs_its_configurations
+    degrees/random_angles_round_trip_bit_for_bit_in_at_most_17_digits
+    degrees/the_writer_uses_the_fewest_digits
+    convert/cornell_files_as_csv_read_back_identically
+    convert/cornell_files_as_astm_read_back_identically"}
 
 status=0
 for exe in "$build"/tests/test_*; do

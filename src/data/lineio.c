@@ -23,6 +23,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -367,7 +368,8 @@ int bf__parse_double(const char *text, double *value)
     if ((errno == ERANGE) && (fabs(v) > 1.0)) {
         return BF__NUM_RANGE;
     }
-    /* ERANGE with a tiny result is underflow: accepted, v is 0 or subnormal. */
+    /* ERANGE with a tiny result is underflow: accepted, v is 0 or
+     * subnormal. */
     *value = v;
     return BF__NUM_OK;
 }
@@ -403,7 +405,7 @@ int bf__parse_long(const char *text, long min, long max, long *value)
 /* Writes a printable, truncated copy of text into out (size n): bytes
  * outside printable ASCII become \xNN, and text longer than BF__QUOTE_MAX
  * bytes ends in "...". */
-static void quote(const char *text, char *out, size_t n)
+void bf__quote(const char *text, char *out, size_t n)
 {
     size_t k = 0;
     size_t j = 0;
@@ -425,10 +427,10 @@ static void quote(const char *text, char *out, size_t n)
 int bf__field_error(const bf__lines *r, size_t i, const char *what,
                     int status, long min, long max, bf_error *err)
 {
-    char q[4 * BF__QUOTE_MAX + 8];
+    char q[BF__QUOTE_BUF];
     char range[64];
     const char *reason;
-    quote(r->field[i], q, sizeof q);
+    bf__quote(r->field[i], q, sizeof q);
     switch (status) {
     case BF__NUM_TRAILING:
         reason = "unexpected characters after the number";
@@ -513,5 +515,234 @@ int bf__open(const char *path, FILE **fp, bf_error *err)
                              "not a regular file or pipe");
     }
     *fp = f;
+    return BF_OK;
+}
+
+/* ==== comments, comma-separated fields, file names, angles ==== */
+
+int bf__lines_is_comment(const bf__lines *r)
+{
+    return r->buf[strspn(r->buf, " \t")] == '#';
+}
+
+int bf__lines_split_csv(bf__lines *r, bf_error *err)
+{
+    char *p = r->buf;
+    r->nfield = 0;
+    for (;;) {
+        char *start;
+        char *end;
+        int rc;
+        while (is_blank(*p)) {
+            p++;
+        }
+        start = p;
+        if (*p == '"') {
+            /* Quoted: copy the content down over the quotes, "" -> ". */
+            char *w = p;
+            p++;
+            for (;;) {
+                if (*p == '\0') {
+                    return bf__error_set(err, BF_EPARSE, r->line,
+                                         "field %zu: quote not closed "
+                                         "before the end of the line",
+                                         r->nfield + 1);
+                }
+                if (*p == '"' && p[1] == '"') {
+                    *w++ = '"';
+                    p += 2;
+                } else if (*p == '"') {
+                    p++;
+                    break;
+                } else {
+                    *w++ = *p++;
+                }
+            }
+            end = w;
+            while (is_blank(*p)) {
+                p++;
+            }
+            if (*p != ',' && *p != '\0') {
+                return bf__error_set(err, BF_EPARSE, r->line,
+                                     "field %zu: text after the closing "
+                                     "quote",
+                                     r->nfield + 1);
+            }
+        } else {
+            while (*p != ',' && *p != '\0') {
+                p++;
+            }
+            end = p;
+            while (end > start && is_blank(end[-1])) {
+                end--;
+            }
+        }
+        rc = push_field(r, start, err);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        if (*p == '\0') {
+            *end = '\0';
+            return BF_OK;
+        }
+        *end = '\0'; /* end <= p: the comma (or before it) */
+        p++;
+    }
+}
+
+void bf__stem(const char *path, char *out, size_t len)
+{
+    const char *base;
+    const char *dot;
+    size_t n;
+    if (len == 0) {
+        return;
+    }
+    out[0] = '\0';
+    if (path == NULL) {
+        return;
+    }
+    base = strrchr(path, '/');
+    base = base != NULL ? base + 1 : path;
+    dot = strrchr(base, '.');
+    n = (dot != NULL && dot != base) ? (size_t)(dot - base) : strlen(base);
+    if (n >= len) {
+        n = len - 1;
+    }
+    memcpy(out, base, n);
+    out[n] = '\0';
+}
+
+int bf__angle_ok(double *a, int zenith)
+{
+    double lo = zenith ? 0.0 : -2.0 * BF__PI;
+    double hi = zenith ? BF__PI_2 : 2.0 * BF__PI;
+    if (!(*a >= lo - BF__ANGLE_TOL) || !(*a <= hi + BF__ANGLE_TOL)) {
+        return 0;
+    }
+    if (*a < lo) {
+        *a = lo;
+    } else if (*a > hi) {
+        *a = hi;
+    }
+    return 1;
+}
+
+void bf__format_double(double v, char *buf)
+{
+    int p;
+    for (p = 15; p <= 17; p++) {
+        snprintf(buf, 32, "%.*g", p, v);
+        if (strtod(buf, NULL) == v) {
+            return;
+        }
+    }
+}
+
+int bf__channel_wavelength(const char *text, double *nm)
+{
+    char num[64];
+    size_t n = strlen(text);
+    double v;
+    /* the unit nm (any case), possibly after blanks, is required: a bare
+     * number is a name like any other */
+    if (n < 2 || tolower((unsigned char)text[n - 1]) != 'm' ||
+        tolower((unsigned char)text[n - 2]) != 'n') {
+        return 0;
+    }
+    n -= 2;
+    while (n > 0 && is_blank(text[n - 1])) {
+        n--;
+    }
+    if (n == 0 || n >= sizeof num) {
+        return 0;
+    }
+    memcpy(num, text, n);
+    num[n] = '\0';
+    if (bf__parse_double(num, &v) != BF__NUM_OK || !(v > 0.0)) {
+        return 0;
+    }
+    *nm = v;
+    return 1;
+}
+
+/* ==== small helpers of the readers ==== */
+
+char *bf__strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d != NULL) {
+        memcpy(d, s, n);
+    }
+    return d;
+}
+
+int bf__same_nocase(const char *a, const char *b)
+{
+    while (*a != '\0' &&
+           tolower((unsigned char)*a) == tolower((unsigned char)*b)) {
+        a++;
+        b++;
+    }
+    return *a == '\0' && *b == '\0';
+}
+
+int bf__grow(void **p, size_t *cap, size_t need, size_t size)
+{
+    size_t c;
+    void *q;
+    if (need <= *cap) {
+        return BF_OK;
+    }
+    c = *cap == 0 ? 64 : *cap;
+    while (c < need) {
+        if (c > SIZE_MAX / 2) {
+            return BF_ENOMEM;
+        }
+        c *= 2;
+    }
+    if (c > SIZE_MAX / size) {
+        return BF_ENOMEM;
+    }
+    q = realloc(*p, c * size);
+    if (q == NULL) {
+        return BF_ENOMEM;
+    }
+    *p = q;
+    *cap = c;
+    return BF_OK;
+}
+
+int bf__load_dataset(const char *path,
+                     int (*read)(FILE *, const char *, bf_dataset **,
+                                 bf_error *),
+                     bf_dataset **out, bf_error *err)
+{
+    FILE *fp = NULL;
+    int rc;
+    if (out != NULL) {
+        *out = NULL;
+    }
+    rc = bf__open(path, &fp, err);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = read(fp, path, out, err);
+    fclose(fp);
+    return rc;
+}
+
+int bf__reader_begin(bf__lines *r, FILE *fp, const char *name,
+                     bf_dataset **out, bf_error *err)
+{
+    bf__error_clear(err, name);
+    bf__lines_init(r, fp);
+    if (out != NULL) {
+        *out = NULL;
+    }
+    if (out == NULL || fp == NULL) {
+        return bf__error_set(err, BF_EINVAL, 0, "no stream or no output");
+    }
     return BF_OK;
 }

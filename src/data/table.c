@@ -15,10 +15,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-/* Tolerance on the angle ranges (radians): absorbs the rounding of angles
- * printed with 10 or more decimals, far below CURET's 6. */
-#define BF__ANGLE_TOL 1e-9
-
 /* Number of numbers per row: index and four angles. */
 #define NCOL 5
 
@@ -48,22 +44,16 @@ static int reserve(bf_table *t, size_t *cap, size_t need)
     return BF_OK;
 }
 
-/* Checks angle a of column c (1..4) and clamps zeniths within tolerance. */
+/* Checks angle a of column c (1..4) and clamps zeniths within tolerance
+ * (bf__angle_ok). */
 static int check_angle(const bf__lines *r, size_t c, double *a, bf_error *err)
 {
     int zenith = (c == 1) || (c == 3);
-    double lo = zenith ? 0.0 : -2.0 * BF__PI;
-    double hi = zenith ? BF__PI_2 : 2.0 * BF__PI;
-    if ((*a < lo - BF__ANGLE_TOL) || (*a > hi + BF__ANGLE_TOL)) {
+    if (!bf__angle_ok(a, zenith)) {
         return bf__error_set(err, BF_EPARSE, r->line,
                              "field %zu (%s) = %g outside [%s]", c + 1,
                              col_name[c], *a,
                              zenith ? "0, pi/2" : "-2 pi, 2 pi");
-    }
-    if (*a < lo) {
-        *a = lo;
-    } else if (*a > hi) {
-        *a = hi;
     }
     return BF_OK;
 }

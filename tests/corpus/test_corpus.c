@@ -101,28 +101,53 @@ static void expect_out_untouched(const char *data, const struct stat *before,
     cr_expect_eq(entries, 1u, "%s: files created in the output folder", what);
 }
 
-/* Runs compare on data with models and extra options (NULL-terminated
- * pairs), output to DATA/out. */
+/* The arguments of compare on the data folder with models and one extra
+ * option (opt NULL: none), output to DATA/out (out_dir, PATH_LEN). */
+static void data_args(const char *data, const char *models, const char *opt,
+                      const char *value, const char **argv, char *out_dir)
+{
+    const char *a[12] = {"compare", "--data", data, "--samples", "1,2",
+                         "--models", models, "--out", out_dir, NULL};
+    snprintf(out_dir, PATH_LEN, "%s/out", data);
+    if (opt != NULL) {
+        a[9] = opt;
+        a[10] = value;
+    }
+    memcpy(argv, a, sizeof a);
+}
+
+/* The arguments of compare --input FILE with models and one extra option
+ * (--input-format F, --configs FILE; opt NULL: none), every material,
+ * output to DATA/out. */
+static void input_args(const char *data, const char *models,
+                       const char *input, const char *opt, const char *value,
+                       const char **argv, char *out_dir)
+{
+    const char *a[12] = {"compare", "--input", input, "--models", models,
+                         "--out",   out_dir, NULL};
+    snprintf(out_dir, PATH_LEN, "%s/out", data);
+    if (opt != NULL) {
+        a[7] = opt;
+        a[8] = value;
+    }
+    memcpy(argv, a, sizeof a);
+}
+
 static int run(const char *data, const char *models, const char *opt,
                const char *value, const char **out, const char **err)
 {
     char out_dir[PATH_LEN];
-    const char *argv[12] = {"compare", "--data", data, "--samples", "1,2",
-                            "--models", models, "--out", out_dir, NULL};
-    snprintf(out_dir, sizeof out_dir, "%s/out", data);
-    if (opt != NULL) {
-        argv[9] = opt;
-        argv[10] = value;
-    }
+    const char *argv[12];
+    data_args(data, models, opt, value, argv, out_dir);
     return bf_test_run_cli(argv, out, err);
 }
 
-/* Runs one case expected to fail and checks status, the exact message
- * line (prefix only when exact is 0) and the untouched output folder. */
-static void expect_rejected(const char *what, const char *data,
-                            const char *models, const char *opt,
-                            const char *value, int status,
-                            const char *message, int exact)
+/* Runs argv, a case expected to fail, and checks status, the exact
+ * message line (prefix only when exact is 0) and the untouched output
+ * folder. */
+static void expect_rejected_argv(const char *what, const char *data,
+                                 const char *const *argv, int status,
+                                 const char *message, int exact)
 {
     char path[PATH_LEN];
     char line[2 * PATH_LEN];
@@ -132,7 +157,7 @@ static void expect_rejected(const char *what, const char *data,
     int rc;
     snprintf(path, sizeof path, "%s/out/fits.csv", data);
     cr_assert_eq(stat(path, &before), 0);
-    rc = run(data, models, opt, value, &out, &err);
+    rc = bf_test_run_cli(argv, &out, &err);
     cr_expect_eq(rc, status, "%s: exit %d, expected %d; stderr: %s", what,
                  rc, status, err);
     cr_expect_str_empty(out, "%s: standard output not empty", what);
@@ -147,6 +172,30 @@ static void expect_rejected(const char *what, const char *data,
                   line, err);
     }
     expect_out_untouched(data, &before, what);
+}
+
+/* A case on the data folder (see data_args). */
+static void expect_rejected(const char *what, const char *data,
+                            const char *models, const char *opt,
+                            const char *value, int status,
+                            const char *message, int exact)
+{
+    char out_dir[PATH_LEN];
+    const char *argv[12];
+    data_args(data, models, opt, value, argv, out_dir);
+    expect_rejected_argv(what, data, argv, status, message, exact);
+}
+
+/* A case given as --input (see input_args); the message is exact. */
+static void expect_input_rejected(const char *what, const char *data,
+                                  const char *input, const char *opt,
+                                  const char *value, int status,
+                                  const char *message)
+{
+    char out_dir[PATH_LEN];
+    const char *argv[12];
+    input_args(data, "LAMBERT", input, opt, value, argv, out_dir);
+    expect_rejected_argv(what, data, argv, status, message, 1);
 }
 
 /* fits.csv of a successful run on data (static buffer of cli_run.c). */
@@ -208,6 +257,34 @@ static void expand_data(char *buf, size_t len, const char *text,
     buf[at < len ? at : len - 1] = '\0';
 }
 
+/* Runs a case of role input or input-FORMAT (--input CASE, with
+ * --input-format FORMAT): the file is given in place. */
+static void run_input_line(char *const *f, const char *data,
+                           const char *case_path)
+{
+    const char *fmt = f[1][5] == '-' ? f[1] + 6 : NULL;
+    char out_dir[PATH_LEN];
+    char message[2 * PATH_LEN];
+    const char *argv[12];
+    int status = atoi(f[3]);
+    input_args(data, f[2], case_path, fmt != NULL ? "--input-format" : NULL,
+               fmt, argv, out_dir);
+    if (status == 0) {
+        const char *csv;
+        cr_expect_eq(bf_test_run_cli(argv, NULL, NULL), 0, "%s", f[0]);
+        csv = fits_csv(data);
+        cr_assert(strncmp(f[5], "csv:", 4) == 0, "%s", f[5]);
+        cr_expect(csv != NULL && strstr(csv, f[5] + 4) != NULL,
+                  "%s: %s not in %s", f[0], f[5] + 4, csv);
+        return;
+    }
+    cr_assert_str_eq(f[4], "case", "%s: an input case names itself", f[0]);
+    snprintf(message, sizeof message, "%s", case_path);
+    expand_data(message + strlen(message), sizeof message - strlen(message),
+                f[5], data);
+    expect_rejected_argv(f[0], data, argv, status, message, 1);
+}
+
 /* Runs the case described by one line of expect.tsv. */
 static void run_expect_line(char *line, const char *baseline)
 {
@@ -223,6 +300,10 @@ static void run_expect_line(char *line, const char *baseline)
     fresh_data(data, sizeof data);
     snprintf(case_path, sizeof case_path, "%s/files/%s", BF_CORPUS_DIR, f[0]);
     snprintf(given, sizeof given, "%s", case_path);
+    if (strncmp(f[1], "input", 5) == 0) {
+        run_input_line(f, data, case_path);
+        return;
+    }
     if (strcmp(f[1], "table") == 0) {
         snprintf(given, sizeof given, "%s/table.txt", data);
         copy_file(case_path, given);
@@ -452,6 +533,201 @@ Test(corpus, fifo_is_read_like_a_file_and_its_errors_name_the_line)
              "%s:2: field 3 (value 2): not a decimal number: \"x\"", path);
     expect_rejected("FIFO", data, "LAMBERT", "--brdf", path, EXIT_DATAERR,
                     message, 1);
+    cr_assert_eq(waitpid(writer, &status, 0), writer);
+    cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+              "the writer could not write the FIFO");
+}
+
+/* ==== --input cases made at test time =================================== */
+
+/* A MERL file of len bytes in DATA: the dimensions 90, 90, 180 (dims
+ * NULL) or dims, then zeros (every cell valid, value 0) up to len. */
+static void write_merl(const char *path, const unsigned char *dims,
+                       size_t len)
+{
+    static const unsigned char merl[12] = {90, 0, 0, 0, 90, 0, 0, 0,
+                                           180, 0, 0, 0};
+    unsigned char *buf = calloc(1, len);
+    cr_assert_not_null(buf);
+    memcpy(buf, dims != NULL ? dims : merl, len < 12 ? len : 12);
+    write_bytes(path, buf, len);
+    free(buf);
+}
+
+/* Size of a full MERL table (SPEC §8): 12 + 3 x 1,458,000 x 8 bytes. */
+#define MERL_BYTES ((size_t)34992012)
+
+Test(corpus, input_binary_garbage_is_no_format)
+{
+    char data[DATA_LEN];
+    char path[PATH_LEN];
+    char message[2 * PATH_LEN];
+    static const char bin[] = "\x7f" "ELF\x02\x01\x01\0\0\0";
+    fresh_data(data, sizeof data);
+    snprintf(path, sizeof path, "%s/program", data);
+    write_bytes(path, bin, sizeof bin - 1);
+    snprintf(message, sizeof message,
+             "%s: a binary file that is not a MERL table (it does not start "
+             "with the int32 dimensions 90, 90, 180)",
+             path);
+    expect_input_rejected("ELF header", data, path, NULL, NULL, EXIT_DATAERR,
+                          message);
+}
+
+Test(corpus, input_merl_whose_header_lies_about_the_size)
+{
+    /* the dimensions imply 34992012 bytes; the file has 1000: refused
+     * before anything is allocated, whatever the configurations */
+    char data[DATA_LEN];
+    char path[PATH_LEN];
+    char message[2 * PATH_LEN];
+    fresh_data(data, sizeof data);
+    snprintf(path, sizeof path, "%s/short.binary", data);
+    write_merl(path, NULL, 1000);
+    snprintf(message, sizeof message,
+             "%s: byte 1000: the file has 1000 bytes, but its dimensions 90 "
+             "x 90 x 180 imply 34992012 (3 x 1458000 float64 after the "
+             "header)",
+             path);
+    expect_input_rejected("short MERL", data, path, "--configs", "all",
+                          EXIT_DATAERR, message);
+    write_merl(path, NULL, MERL_BYTES + 3);
+    snprintf(message, sizeof message,
+             "%s: byte 34992012: the file has 34992015 bytes, but its "
+             "dimensions 90 x 90 x 180 imply 34992012 (3 x 1458000 float64 "
+             "after the header)",
+             path);
+    expect_input_rejected("long MERL", data, path, "--configs", "all",
+                          EXIT_DATAERR, message);
+}
+
+Test(corpus, input_merl_with_other_dimensions)
+{
+    /* 90 x 90 x 360 (a full phi_d range): not detected as MERL; read as
+     * MERL when the format is forced */
+    static const unsigned char d360[12] = {90, 0, 0, 0, 90, 0, 0, 0,
+                                           104, 1, 0, 0};
+    char data[DATA_LEN];
+    char path[PATH_LEN];
+    char message[2 * PATH_LEN];
+    fresh_data(data, sizeof data);
+    snprintf(path, sizeof path, "%s/wide.binary", data);
+    write_merl(path, d360, 4096);
+    snprintf(message, sizeof message,
+             "%s: byte 0: dimensions 90 x 90 x 360; a MERL table has 90 x "
+             "90 x 180 (theta_h, theta_d, phi_d)",
+             path);
+    {
+        char out_dir[PATH_LEN];
+        const char *argv[14] = {"compare", "--input", path, "--models",
+                                "LAMBERT", "--out", out_dir,
+                                "--input-format", "merl", "--configs",
+                                "all", NULL};
+        snprintf(out_dir, sizeof out_dir, "%s/out", data);
+        expect_rejected_argv("MERL 90 x 90 x 360", data, argv, EXIT_DATAERR,
+                             message, 1);
+    }
+}
+
+Test(corpus, input_merl_at_configurations_of_a_csv_file)
+{
+    /* A full table of zeros but for R = G = B = 1500 (value 1, 1.15,
+     * 1.66): constant per channel, so its radiance is cos theta_i and
+     * LAMBERT fits with LSE 0 at any K = 3 configurations; a malformed
+     * configuration list is named with its line. */
+    char data[DATA_LEN];
+    char path[PATH_LEN];
+    char configs[PATH_LEN];
+    char message[2 * PATH_LEN];
+    char out_dir[PATH_LEN];
+    const char *argv[12];
+    unsigned char *buf = calloc(1, MERL_BYTES);
+    static const unsigned char merl[12] = {90, 0, 0, 0, 90, 0, 0, 0,
+                                           180, 0, 0, 0};
+    const double raw = 1500.0;
+    size_t k;
+    const char *csv;
+    cr_assert_not_null(buf);
+    memcpy(buf, merl, 12);
+    for (k = 0; k < 3 * (size_t)1458000; k++) {
+        memcpy(buf + 12 + 8 * k, &raw, 8); /* little-endian host */
+    }
+    fresh_data(data, sizeof data);
+    snprintf(path, sizeof path, "%s/flat.binary", data);
+    write_bytes(path, buf, MERL_BYTES);
+    free(buf);
+    write_text(data, "at.csv",
+               "theta_i,phi_i,theta_o,phi_o\n20,0,30,180\n40,0,35,90\n"
+               "60,0,50,-90\n");
+    snprintf(configs, sizeof configs, "%s/at.csv", data);
+    input_args(data, "LAMBERT", path, "--configs", configs, argv, out_dir);
+    cr_expect_eq(bf_test_run_cli(argv, NULL, NULL), 0);
+    csv = fits_csv(data);
+    cr_expect(csv != NULL && strstr(csv, "1,flat,mean,LAMBERT,,,,0,0,3,"),
+              "%s", csv);
+    fresh_data(data, sizeof data);
+    write_text(data, "at.csv",
+               "theta_i,phi_i,theta_o,phi_o\n20,0,30,180\n40,0,95,90\n");
+    snprintf(configs, sizeof configs, "%s/at.csv", data);
+    snprintf(message, sizeof message,
+             "%s:3: field 3 (theta_o) = 95 outside [0, 90] degrees", configs);
+    expect_input_rejected("bad configurations", data, path, "--configs",
+                          configs, EXIT_DATAERR, message);
+    unlink(path);
+}
+
+Test(corpus, input_folder_without_table_and_missing_file)
+{
+    char data[DATA_LEN];
+    char dir[PATH_LEN];
+    char path[PATH_LEN];
+    char message[2 * PATH_LEN];
+    fresh_data(data, sizeof data);
+    snprintf(dir, sizeof dir, "%s/empty-folder", data);
+    cr_assert_eq(mkdir(dir, 0755), 0);
+    /* a folder is read as CURET (brdffit.h): its table is missing */
+    snprintf(message, sizeof message,
+             "%s/table.txt: cannot open: No such file or directory", dir);
+    expect_input_rejected("folder", data, dir, NULL, NULL, EXIT_NOINPUT,
+                          message);
+    snprintf(path, sizeof path, "%s/no-such.csv", data);
+    snprintf(message, sizeof message,
+             "%s: cannot open: No such file or directory", path);
+    expect_input_rejected("missing input", data, path, NULL, NULL,
+                          EXIT_NOINPUT, message);
+}
+
+Test(corpus, input_fifo_needs_its_format_and_is_then_read_by_line)
+{
+    /* detection would consume the pipe: refused; with --input-format csv
+     * it is read, and its error names the line */
+    char data[DATA_LEN];
+    char path[PATH_LEN];
+    char message[2 * PATH_LEN];
+    static const char text[] =
+        "theta_i,phi_i,theta_o,phi_o,R\n20,0,30,180,0.3\n40,0,35,x,0.2\n";
+    pid_t writer;
+    int status;
+    fresh_data(data, sizeof data);
+    snprintf(path, sizeof path, "%s/fifo.csv", data);
+    cr_assert_eq(mkfifo(path, 0600), 0);
+    snprintf(message, sizeof message,
+             "%s: a pipe: its format cannot be detected without consuming "
+             "it (name the format)",
+             path);
+    expect_input_rejected("FIFO, no format", data, path, NULL, NULL,
+                          EXIT_NOINPUT, message);
+    writer = fork();
+    cr_assert_geq(writer, 0);
+    if (writer == 0) {
+        execl("/bin/sh", "sh", "-c", "printf '%s' \"$1\" > \"$0\"", path,
+              text, (char *)NULL);
+        _exit(127);
+    }
+    snprintf(message, sizeof message,
+             "%s:3: field 4 (phi_o): not a decimal number: \"x\"", path);
+    expect_input_rejected("FIFO as csv", data, path, "--input-format", "csv",
+                          EXIT_DATAERR, message);
     cr_assert_eq(waitpid(writer, &status, 0), writer);
     cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 0,
               "the writer could not write the FIFO");

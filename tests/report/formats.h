@@ -1,9 +1,11 @@
 /* formats.h: checks of the figure files the report writes -- a PNG's
- * signature, IHDR size and IEND trailer (PNG spec §5.2, §11.2.2, §11.2.5),
- * an SVG that is well-formed XML with an <svg> root and its width/height,
- * a PDF's header, %%EOF trailer, page count and MediaBox (ISO 32000-1
- * §7.5.2, §7.5.5, §7.7.3.3). Shared by the report tests; static inline so
- * a test file that uses some of them builds without warnings. */
+ * signature, IHDR size and IEND trailer (PNG spec §5.2, §11.2.2, §11.2.5)
+ * and its chunks (no text or time chunk: §11.3.4, §11.3.6), an SVG that
+ * is well-formed XML with an <svg> root and its width/height, a PDF's
+ * header, %%EOF trailer, page count and MediaBox (ISO 32000-1 §7.5.2,
+ * §7.5.5, §7.7.3.3), and that no figure carries a title in its metadata.
+ * Shared by the report tests; static inline so a test file that uses some
+ * of them builds without warnings. */
 #ifndef BF_TEST_REPORT_FORMATS_H
 #define BF_TEST_REPORT_FORMATS_H
 
@@ -76,6 +78,72 @@ static inline void fmt_check_png(const char *path, unsigned long w,
     cr_assert(memcmp(d + len - 12, iend, 12) == 0, "%s: no IEND trailer",
               path);
     free(d);
+}
+
+/* Asserts the PNG at path has no metadata chunk that could carry a title
+ * or a date (tEXt, zTXt, iTXt, tIME): walks every chunk from IHDR to IEND
+ * by its length. Returns its colour type (IHDR byte 9). */
+static inline int fmt_check_png_plain(const char *path)
+{
+    static const char *const meta[4] = {"tEXt", "zTXt", "iTXt", "tIME"};
+    size_t len;
+    unsigned char *d = (unsigned char *)fmt_read(path, &len);
+    size_t at = 8;
+    int type = d[25];
+    int k;
+    while (at + 12 <= len) {
+        unsigned long n = fmt_be32(d + at);
+        for (k = 0; k < 4; k++) {
+            cr_assert(memcmp(d + at + 4, meta[k], 4) != 0,
+                      "%s: a %s chunk (metadata) at byte %zu", path, meta[k],
+                      at);
+        }
+        cr_assert_leq(at + 12 + n, len, "%s: chunk runs past the end",
+                      path);
+        at += 12 + n;
+    }
+    cr_assert_eq(at, len, "%s: %zu bytes after the last chunk", path,
+                 len - at);
+    free(d);
+    return type;
+}
+
+/* Occurrences of needle in the NUL-terminated text s. */
+static inline size_t fmt_count(const char *s, const char *needle)
+{
+    size_t n = 0;
+    size_t k = strlen(needle);
+    for (; (s = strstr(s, needle)) != NULL; s += k) {
+        n++;
+    }
+    return n;
+}
+
+/* Asserts the SVG at path has no <title> or <desc> element, and returns
+ * its number of <path elements. */
+static inline size_t fmt_check_svg_plain(const char *path)
+{
+    size_t len;
+    char *s = fmt_read(path, &len);
+    size_t n;
+    cr_assert_null(strstr(s, "<title"), "%s: a <title> element", path);
+    cr_assert_null(strstr(s, "<desc"), "%s: a <desc> element", path);
+    n = fmt_count(s, "<path");
+    free(s);
+    return n;
+}
+
+/* Asserts the PDF at path has no /Title entry and no creation date. */
+static inline void fmt_check_pdf_plain(const char *path)
+{
+    size_t len;
+    char *s = fmt_read(path, &len);
+    cr_assert_null(fmt_find(s, len, "/Title", 6), "%s: a /Title entry",
+                   path);
+    cr_assert_null(fmt_find(s, len, "/CreationDate", 13),
+                   "%s: a creation date (the bytes would change per run)",
+                   path);
+    free(s);
 }
 
 /* Skips a quoted attribute value or markup up to the closing text end;

@@ -1,8 +1,11 @@
-/* test_cmd_report.c: `brdffit report` on the CURET data -- every figure in
- * every format is a valid file of the documented size (README.md), the
- * page references only files that exist (and every figure), nothing is
- * fetched from the network, the outputs are reproducible, and a failed
- * run leaves no partial output. */
+/* test_cmd_report.c: `brdffit report` on the CURET data -- every figure
+ * in every format is a valid file, of the size the page declares, without
+ * title or date metadata, and on the page; the analysis figures appear
+ * exactly when the analysis ran; the page is valid HTML (html5lib's strict
+ * parser) with its tables as HTML tables of the right number of rows;
+ * nothing is fetched from the network; the outputs are the same for 1 and
+ * 2 drawing processes and between runs; bad options and a failed run leave
+ * no output. */
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <stdlib.h>
@@ -13,25 +16,18 @@
 #include "formats.h"
 #include "support.h"
 
-/* Figure sizes documented in README.md (pixels for PNG, points for SVG
- * and PDF): one scatter panel is 330 x 330. */
-#define PANEL 330
-#define LSE_W 1400
-#define LSE_H 650
-#define PLANE_W 1400
-#define PLANE_H 900
-#define POLAR_H 760
-#define WINS_W 800
-#define WINS_H 500
-
 #define EXIT_BADVALUE 63
 #define EXIT_CANTCREAT 73
+/* The page shows a figure of w x h points as 2w x 2h CSS pixels; its PNG
+ * has 150 pixels per inch. */
+#define CSS_PER_PT 2
+#define PNG_DPI 150
 
 static const char *join(const char *dir, const char *name)
 {
-    static char path[2][1024];
+    static char path[4][1024];
     static int k;
-    k = !k;
+    k = (k + 1) % 4;
     snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
     return path[k];
 }
@@ -57,27 +53,22 @@ static int run_report(const char *dir, const char *samples,
     return bf_test_run_cli(argv, NULL, err);
 }
 
-/* Asserts the figure base exists in the three formats with size w x h. */
-static void check_figure(const char *dir, const char *base, unsigned w,
-                         unsigned h)
+/* A copy of the page (bf_test_slurp's buffer is reused). */
+static char *page_of(const char *dir)
 {
-    char name[256];
-    snprintf(name, sizeof name, "figures/%s.png", base);
-    fmt_check_png(join(dir, name), w, h);
-    snprintf(name, sizeof name, "figures/%s.svg", base);
-    fmt_check_svg(join(dir, name), w, h);
-    snprintf(name, sizeof name, "figures/%s.pdf", base);
-    fmt_check_pdf(join(dir, name), w, h);
+    const char *html = bf_test_slurp(join(dir, "report.html"), NULL);
+    char *page;
+    cr_assert_not_null(html, "no report.html in %s", dir);
+    page = strdup(html);
+    cr_assert_not_null(page);
+    return page;
 }
 
 /* Every src="..." and href="..." of the page: a local file that exists in
- * dir, or an anchor in the page; nothing from the network. Returns the
- * number of local references; counts each figure file referenced in
- * *figs. */
-static size_t check_references(const char *dir, const char *html)
+ * dir, or an anchor in the page; nothing from the network. */
+static void check_references(const char *dir, const char *html)
 {
     static const char *const attrs[2] = {" src=\"", " href=\""};
-    size_t local = 0;
     int a;
     for (a = 0; a < 2; a++) {
         const char *p = html;
@@ -102,80 +93,177 @@ static size_t check_references(const char *dir, const char *html)
                       "report.html refers outside its folder: %s", ref);
             cr_expect(exists(join(dir, ref)),
                       "report.html refers to a missing file: %s", ref);
-            local++;
         }
     }
-    return local;
 }
 
-Test(report, writes_every_figure_valid_in_three_formats_and_a_page_that_links_only_existing_files,
-     .timeout = 600)
+/* The <img> of figure base on the page: its declared size, CSS pixels. */
+static void img_size(const char *page, const char *base, const char *ext,
+                     unsigned *w, unsigned *h)
 {
-    static const char *const extra[] = {"--per-sample", NULL};
-    static const int samples[4] = {1, 9, 34, 44};
-    const char *dir = bf_test_tmpdir();
-    const char *err = NULL;
-    const char *html;
-    char *page;
-    size_t len;
-    size_t i;
-    DIR *d;
+    char src[256];
+    const char *p;
+    snprintf(src, sizeof src, "<img src=\"figures/%s.%s\" width=\"", base,
+             ext);
+    p = strstr(page, src);
+    cr_assert_not_null(p, "%s.%s is not shown on the page", base, ext);
+    cr_assert_eq(sscanf(p + strlen(src), "%u\" height=\"%u\"", w, h), 2);
+}
+
+/* Checks every file of figures/ -- valid in its format at the size the
+ * page declares, no metadata title, on the page, no temporary left -- and
+ * returns their number. */
+static size_t check_figures(const char *dir, const char *page)
+{
+    DIR *d = opendir(join(dir, "figures"));
     struct dirent *de;
-    size_t n_files = 0;
-    char cmd[1200];
-    char sum[65] = "";
-    FILE *p;
-
-    cr_assert_eq(run_report(dir, "1,9,34,44", extra, &err), 0, "stderr:\n%s",
-                 err);
-    cr_expect_str_empty(err, "stderr is not a terminal: no progress line");
-
-    /* the figures, at the documented sizes */
-    check_figure(dir, "fig2b", LSE_W, LSE_H);
-    check_figure(dir, "wins", WINS_W, WINS_H);
-    /* 4 samples x the paper's 4 scatter models (ON, LFTG, VH-E, FC-E) */
-    check_figure(dir, "scatter1", 4 * PANEL, 4 * PANEL);
-    cr_expect(!exists(join(dir, "figures/scatter2.png")));
-    for (i = 0; i < 4; i++) {
-        char base[64];
-        snprintf(base, sizeof base, "scatter_sample%d", samples[i]);
-        check_figure(dir, base, 4 * PANEL, PANEL);
-        snprintf(base, sizeof base, "plane_sample%d", samples[i]);
-        check_figure(dir, base, PLANE_W, PLANE_H);
-        snprintf(base, sizeof base, "polar_sample%d", samples[i]);
-        check_figure(dir, base, PLANE_W, POLAR_H);
-    }
-    /* the tables, as compare writes them */
-    cr_expect(exists(join(dir, "fits.csv")));
-    cr_expect(exists(join(dir, "table2.md")));
-    cr_expect(exists(join(dir, "table3.md")));
-
-    /* the page: well-formed enough, local references only */
-    html = bf_test_slurp(join(dir, "report.html"), &len);
-    cr_assert_not_null(html, "no report.html");
-    page = strdup(html);
-    cr_assert_not_null(page);
-    cr_expect(strncmp(page, "<!DOCTYPE html>", 15) == 0);
-    cr_expect_not_null(strstr(page, "</html>"));
-    check_references(dir, page);
-    /* every figure file is on the page; no temporary file is left */
-    d = opendir(join(dir, "figures"));
+    size_t n = 0;
     cr_assert_not_null(d);
     while ((de = readdir(d)) != NULL) {
         char ref[600];
-        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0) {
+        char base[256];
+        const char *ext = strrchr(de->d_name, '.');
+        unsigned w;
+        unsigned h;
+        if (de->d_name[0] == '.' && (strcmp(de->d_name, ".") == 0 ||
+                                     strcmp(de->d_name, "..") == 0)) {
             continue;
         }
         cr_expect(de->d_name[0] != '.', "temporary file left: %s",
                   de->d_name);
         snprintf(ref, sizeof ref, "\"figures/%s\"", de->d_name);
         cr_expect_not_null(strstr(page, ref), "%s is not on the page", ref);
-        n_files++;
+        cr_assert_not_null(ext);
+        snprintf(base, sizeof base, "%.*s", (int)(ext - de->d_name),
+                 de->d_name);
+        /* the page shows the PNG (or the SVG without PNG) */
+        img_size(page, base,
+                 exists(join(dir, "figures/fig2b.png")) ? "png" : "svg", &w,
+                 &h);
+        w /= CSS_PER_PT;
+        h /= CSS_PER_PT;
+        snprintf(ref, sizeof ref, "figures/%s", de->d_name);
+        if (strcmp(ext, ".png") == 0) {
+            fmt_check_png(join(dir, ref), (w * PNG_DPI + 36) / 72,
+                          (h * PNG_DPI + 36) / 72);
+            fmt_check_png_plain(join(dir, ref));
+        } else if (strcmp(ext, ".svg") == 0) {
+            fmt_check_svg(join(dir, ref), w, h);
+            fmt_check_svg_plain(join(dir, ref));
+        } else {
+            cr_assert_str_eq(ext, ".pdf");
+            fmt_check_pdf(join(dir, ref), w, h);
+            fmt_check_pdf_plain(join(dir, ref));
+        }
+        n++;
     }
     closedir(d);
-    /* fig2b, wins, scatter1, and 3 per sample, in 3 formats */
-    cr_expect_eq(n_files, (3 + 3 * 4) * 3);
+    return n;
+}
 
+/* Rows of the body of the table with the given id. */
+static size_t table_rows(const char *page, const char *id)
+{
+    char open[128];
+    const char *t;
+    const char *body;
+    const char *end;
+    size_t n = 0;
+    snprintf(open, sizeof open, "<table id=\"%s\">", id);
+    t = strstr(page, open);
+    cr_assert_not_null(t, "no table %s", id);
+    body = strstr(t, "<tbody>");
+    end = strstr(t, "</table>");
+    cr_assert(body != NULL && end != NULL && body < end, "table %s has no "
+                                                         "body", id);
+    for (; (body = strstr(body, "<tr>")) != NULL && body < end; body += 4) {
+        n++;
+    }
+    return n;
+}
+
+/* The page through html5lib's strict parser (python3-html5lib): any parse
+ * error fails. */
+static void check_valid_html(const char *dir)
+{
+    char cmd[2048];
+    const char *out = NULL;
+    int rc;
+    snprintf(cmd, sizeof cmd,
+             "/usr/bin/python3 -c 'import sys, html5lib; "
+             "html5lib.HTMLParser(strict=True).parse(open(sys.argv[1], "
+             "\"rb\"))' '%s/report.html'",
+             dir);
+    rc = bf_test_run_sh(cmd, &out);
+    cr_assert_eq(rc, 0,
+                 "report.html is not valid HTML (or python3-html5lib is "
+                 "missing: scripts/install-deps.sh installs it):\n%s",
+                 out);
+}
+
+/* Rows of fits.csv whose ci_low column is filled: one per sample, model
+ * and fitted parameter of the analysis. */
+static size_t csv_interval_rows(const char *dir)
+{
+    const char *csv = bf_test_slurp(join(dir, "fits.csv"), NULL);
+    const char *line;
+    size_t col = 0;
+    size_t n = 0;
+    size_t c;
+    cr_assert_not_null(csv);
+    for (line = csv; strncmp(line, "ci_low,", 7) != 0; line++) {
+        cr_assert(*line != '\n', "fits.csv has no ci_low column");
+        col += *line == ',';
+    }
+    for (line = strchr(csv, '\n'); line != NULL && line[1] != '\0';
+         line = strchr(line + 1, '\n')) {
+        const char *f = line + 1;
+        for (c = 0; c < col; c++) {
+            f = strchr(f, ',') + 1;
+        }
+        n += *f != ',';
+    }
+    return n;
+}
+
+Test(report, writes_every_figure_valid_and_sized_as_the_page_says,
+     .timeout = 600)
+{
+    static const char *const extra[] = {"--per-sample", "--format",
+                                        "png,svg,pdf", NULL};
+    static const int samples[4] = {1, 9, 34, 44};
+    const char *dir = bf_test_tmpdir();
+    const char *err = NULL;
+    char cmd[1200];
+    char sum[65] = "";
+    char *page;
+    size_t i;
+    FILE *p;
+
+    cr_assert_eq(run_report(dir, "1,9,34,44", extra, &err), 0, "stderr:\n%s",
+                 err);
+    cr_expect_str_empty(err, "stderr is not a terminal: no progress line");
+    page = page_of(dir);
+    check_valid_html(dir);
+    check_references(dir, page);
+    /* fig2b, wins, scatter1, and 3 per sample (scatter, plane, polar); no
+     * analysis figure without the analysis; in 3 formats */
+    cr_expect_eq(check_figures(dir, page), (3 + 3 * 4) * 3);
+    for (i = 0; i < 4; i++) {
+        char base[64];
+        snprintf(base, sizeof base, "figures/plane_sample%d.png", samples[i]);
+        cr_expect(exists(join(dir, base)), "%s", base);
+    }
+    cr_expect(!exists(join(dir, "figures/delta_bic.png")));
+    /* the tables, as HTML tables with a row per sample */
+    cr_expect_eq(table_rows(page, "table2"), 4u);
+    cr_expect_eq(table_rows(page, "table3"), 4u);
+    cr_expect_not_null(strstr(page, "Not computed: run with "
+                                    "<code>--stats</code>"));
+    /* the page describes the data it was given */
+    cr_expect_not_null(strstr(page, "Format: CURET"));
+    cr_expect_not_null(strstr(page, "K = 198 of 205"));
+    cr_expect_not_null(strstr(page, "54, 97, 131, 161, 183, 196, 202"));
     /* provenance: version, the command and the data checksum, computed
      * here by the system's sha256sum */
     cr_expect_not_null(strstr(page, "brdffit " BF_VERSION_STRING));
@@ -187,9 +275,44 @@ Test(report, writes_every_figure_valid_in_three_formats_and_a_page_that_links_on
     pclose(p);
     cr_expect_not_null(strstr(page, sum), "abrdf.dat's SHA-256 %s missing",
                        sum);
-    /* conventions */
-    cr_expect_not_null(strstr(page, "K = 198"));
-    cr_expect_not_null(strstr(page, "54, 97, 131, 161, 183, 196, 202"));
+    free(page);
+}
+
+/* With --stats: the analysis figures (delta BIC, a forest plot per model
+ * with fitted parameters, a profile per sample) and tables (samples won
+ * per criterion, BIC per sample, the intervals with a row per fitted
+ * parameter of fits.csv), the per-sample figures in collapsed sections. */
+Test(report, stats_add_the_analysis_figures_and_tables, .timeout = 600)
+{
+    static const char *const stats[] = {"--stats", NULL};
+    static const char *const fitted[] = {"VH-G", "VH-E", "FC-G", "FC-E",
+                                         "LFTG"};
+    const char *dir = bf_test_tmpdir();
+    const char *err = NULL;
+    char *page;
+    size_t i;
+    cr_assert_eq(run_report(dir, "9,34,44", stats, &err), 0, "%s", err);
+    page = page_of(dir);
+    check_valid_html(dir);
+    check_references(dir, page);
+    /* 2 + 1 scatter + delta BIC + 5 forests + 3 x (plane, polar, profile),
+     * PNG and PDF (the default formats) */
+    cr_expect_eq(check_figures(dir, page), (2 + 1 + 1 + 5 + 3 * 3) * 2);
+    cr_expect(exists(join(dir, "figures/delta_bic.pdf")));
+    for (i = 0; i < 5; i++) {
+        char f[64];
+        snprintf(f, sizeof f, "figures/forest_%s.png", fitted[i]);
+        cr_expect(exists(join(dir, f)), "%s", f);
+    }
+    cr_expect(!exists(join(dir, "figures/forest_ON.png")),
+              "ON fits nothing under the paper's protocol");
+    cr_expect(exists(join(dir, "figures/profile_sample34.png")));
+    cr_expect_eq(table_rows(page, "wins-table"), 3u, "AIC, BIC, CV");
+    cr_expect_eq(table_rows(page, "bic-table"), 3u);
+    cr_expect_eq(table_rows(page, "intervals"), csv_interval_rows(dir));
+    cr_expect_eq(csv_interval_rows(dir), 3u * 5u);
+    cr_expect_not_null(strstr(page, "<details id=\"sample44\">"));
+    cr_expect_null(strstr(page, "Not computed"));
     free(page);
 }
 
@@ -205,42 +328,117 @@ static char *copy_of(const char *path, size_t *len)
     return c;
 }
 
-Test(report, gives_byte_identical_tables_page_and_png_svg_figures_when_run_twice,
-     .timeout = 600)
+/* Removes the line that starts with "<li>Command:" (the command line,
+ * which names the output folder and --threads) from the text. */
+static void drop_command(char *s, size_t *len)
 {
-    static const char *const extra[] = {"--models", "VH-E,FC-E", "--format",
-                                        "png,svg", "--log", NULL};
-    static const char *const files[] = {
-        "fits.csv", "table2.md", "table3.md", "report.html",
-        "figures/fig2b.png", "figures/fig2b.svg", "figures/scatter1.png",
-        "figures/scatter1.svg", "figures/plane_sample44.png",
-        "figures/polar_sample44.svg", "figures/wins.png"};
-    const char *dir = bf_test_tmpdir();
-    char *first[sizeof files / sizeof *files];
-    size_t len[sizeof files / sizeof *files];
-    size_t i;
-
-    cr_assert_eq(run_report(dir, "44", extra, NULL), 0);
-    for (i = 0; i < sizeof files / sizeof *files; i++) {
-        first[i] = copy_of(join(dir, files[i]), &len[i]);
-    }
-    cr_expect(!exists(join(dir, "figures/fig2b.pdf")), "--format: no pdf");
-    cr_assert_eq(run_report(dir, "44", extra, NULL), 0);
-    for (i = 0; i < sizeof files / sizeof *files; i++) {
-        size_t n;
-        char *again = copy_of(join(dir, files[i]), &n);
-        cr_expect(n == len[i] && memcmp(first[i], again, n) == 0,
-                  "%s differs between two identical runs", files[i]);
-        free(again);
-        free(first[i]);
+    char *c = strstr(s, "<li>Command:");
+    char *e = c != NULL ? strchr(c, '\n') : NULL;
+    if (e != NULL) {
+        memmove(c, e + 1, strlen(e + 1) + 1);
+        *len = strlen(s);
     }
 }
 
-Test(report, refuses_a_bad_format_or_incidence_before_writing_anything)
+/* Every file of a's figures/ and the tables and page (but for its command
+ * line) are the same bytes in b. */
+static void same_outputs(const char *a, const char *b)
+{
+    static const char *const files[] = {"fits.csv", "table2.md", "table3.md",
+                                        "report.html"};
+    DIR *d = opendir(join(a, "figures"));
+    struct dirent *de;
+    size_t n = 0;
+    size_t i;
+    cr_assert_not_null(d);
+    for (i = 0; i < 4 + 1000; i++) {
+        char name[600];
+        size_t la;
+        size_t lb;
+        char *x;
+        char *y;
+        if (i < 4) {
+            snprintf(name, sizeof name, "%s", files[i]);
+        } else {
+            while ((de = readdir(d)) != NULL && de->d_name[0] == '.') {
+            }
+            if (de == NULL) {
+                break;
+            }
+            snprintf(name, sizeof name, "figures/%s", de->d_name);
+            n++;
+        }
+        x = copy_of(join(a, name), &la);
+        y = copy_of(join(b, name), &lb);
+        if (i == 3) {
+            drop_command(x, &la);
+            drop_command(y, &lb);
+        }
+        cr_expect(la == lb && memcmp(x, y, la) == 0, "%s differs", name);
+        free(x);
+        free(y);
+    }
+    closedir(d);
+    cr_expect_gt(n, 10u, "figures compared");
+}
+
+Test(report, gives_the_same_files_for_one_and_two_drawing_processes,
+     .timeout = 600)
+{
+    static const char *const one[] = {"--stats", "--format", "png,svg,pdf",
+                                      "--threads", "1", NULL};
+    static const char *const two[] = {"--stats", "--format", "png,svg,pdf",
+                                      "--threads", "2", NULL};
+    char *a = strdup(bf_test_tmpdir());
+    char *b = strdup(bf_test_tmpdir());
+    const char *err = NULL;
+    cr_assert_eq(run_report(a, "1,44", one, &err), 0, "%s", err);
+    cr_assert_eq(run_report(b, "1,44", two, &err), 0, "%s", err);
+    same_outputs(a, b);
+    free(a);
+    free(b);
+}
+
+Test(report, gives_byte_identical_outputs_when_run_twice, .timeout = 600)
+{
+    static const char *const extra[] = {"--models", "VH-E,FC-E", "--format",
+                                        "png,svg,pdf", "--log", NULL};
+    char *a = strdup(bf_test_tmpdir());
+    char *b = strdup(bf_test_tmpdir());
+    cr_assert_eq(run_report(a, "44", extra, NULL), 0);
+    cr_assert_eq(run_report(b, "44", extra, NULL), 0);
+    same_outputs(a, b);
+    free(a);
+    free(b);
+}
+
+/* --size single draws every figure 3.5 in wide; --format svg alone
+ * shows the SVGs on the page. */
+Test(report, draws_single_column_figures_on_request)
+{
+    static const char *const extra[] = {"--size", "single", "--format", "svg",
+                                        "--models", "FC-E,ON", NULL};
+    const char *dir = bf_test_tmpdir();
+    char *page;
+    unsigned w;
+    unsigned h;
+    cr_assert_eq(run_report(dir, "44", extra, NULL), 0);
+    page = page_of(dir);
+    img_size(page, "fig2b", "svg", &w, &h);
+    cr_expect_eq(w, 252u * CSS_PER_PT);
+    img_size(page, "plane_sample44", "svg", &w, &h);
+    cr_expect_eq(w, 252u * CSS_PER_PT);
+    cr_expect(!exists(join(dir, "figures/fig2b.png")));
+    check_figures(dir, page);
+    free(page);
+}
+
+Test(report, refuses_a_bad_format_size_or_incidence_before_writing_anything)
 {
     static const char *const bad[][3] = {{"--format", "png,gif", NULL},
                                          {"--format", "", NULL},
                                          {"--format", "png,", NULL},
+                                         {"--size", "a4", NULL},
                                          {"--incidence", "95", NULL},
                                          {"--incidence", "10,20,30,40,50",
                                           NULL}};
@@ -280,46 +478,4 @@ Test(report, leaves_no_partial_output_when_the_figures_cannot_be_written,
                   "a failed run left %s", de->d_name);
     }
     closedir(d);
-}
-
-/* With --stats the page carries the model selection of `brdffit rank`: the
- * summary line of each criterion, whose counts add up to the samples, and
- * the per-sample BIC table; without it, a note says how to get it. */
-Test(report, stats_add_a_model_selection_section)
-{
-    static const char *const stats[] = {"--stats", "--format", "png", NULL};
-    static const char *const plain[] = {"--format", "png", NULL};
-    static const char *const crit[] = {"AIC:", "BIC:", "CV:"};
-    char with[512];
-    char without[512];
-    const char *err = NULL;
-    char *page;
-    size_t i;
-    snprintf(with, sizeof with, "%s/out", bf_test_tmpdir());
-    snprintf(without, sizeof without, "%s/out", bf_test_tmpdir());
-    cr_assert_eq(run_report(with, "9,34,44", stats, &err), 0, "%s", err);
-    page = strdup(bf_test_slurp(join(with, "report.html"), NULL));
-    for (i = 0; i < 3; i++) {
-        const char *li = strstr(page, crit[i]);
-        int counted = 0;
-        int n;
-        const char *p;
-        cr_assert_not_null(li, "no %s summary", crit[i]);
-        /* "BIC: FC-E best for 2 of 3 samples, VH-E 1" */
-        cr_assert_eq(sscanf(strstr(li, "best for"), "best for %d", &n), 1);
-        counted += n;
-        for (p = strstr(li, "samples"); *p != '<'; p++) {
-            if (*p == ' ' && p[1] >= '0' && p[1] <= '9') {
-                counted += atoi(p + 1);
-            }
-        }
-        cr_assert_eq(counted, 3, "%s counts %d of 3 samples", crit[i],
-                     counted);
-    }
-    cr_assert_not_null(strstr(page, "<h3>BIC per sample</h3>"));
-    free(page);
-    cr_assert_eq(run_report(without, "44", plain, &err), 0, "%s", err);
-    cr_assert_not_null(strstr(bf_test_slurp(join(without, "report.html"),
-                                            NULL),
-                              "Not computed: run with <code>--stats</code>"));
 }

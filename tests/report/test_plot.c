@@ -1,133 +1,282 @@
-/* test_plot.c: the figure writer (src/report/plot.c) -- each format gives
- * a valid file of the size asked for, invalid descriptions are refused
- * without writing, and an unwritable path is an I/O error. */
+/* test_plot.c: the figure writer (src/report/plot.c, plot_layout.c,
+ * plot_style.c, png.c, model_style.c) -- each format gives a valid file of
+ * the size bf_plot_size reports, without title or date metadata; markers
+ * are one path a series in SVG; the same description gives the same bytes
+ * whatever was drawn before; the style slots tell every registry model
+ * apart; invalid descriptions are refused without writing; an unwritable
+ * path is an I/O error. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <sys/stat.h>
 
 #include "cli_run.h"
 #include "formats.h"
+#include "model_style.h"
 #include "plot.h"
 #include "support.h"
 
-/* A figure of two panels: a line and points with a legend, and a polar
- * panel; width and height are odd on purpose. */
-static const double xs[5] = {0.1, 0.3, 0.45, 0.7, 0.9};
-static const double ys[5] = {0.2, NAN, 0.5, 0.65, 0.95};
+/* A figure of two panels: a line and points with a legend entry each, and
+ * a polar panel; its height comes from the width and the aspect. */
+static double xs[5] = {0.1, 0.3, 0.45, 0.7, 0.9};
+static double ys[5] = {0.2, NAN, 0.5, 0.65, 0.95};
+static double as[5] = {-1.2, -0.5, 0.0, 0.4, 1.3};
 
 static void describe(bf_plot_figure *fig, bf_plot_panel panel[2],
-                     bf_plot_series ser[2])
+                     bf_plot_series ser[3])
 {
-    memset(ser, 0, 2 * sizeof *ser);
+    memset(ser, 0, 3 * sizeof *ser);
+    ser[0].kind = BF_SERIES_LINE;
     ser[0].x = xs;
     ser[0].y = ys;
     ser[0].n = 5;
-    ser[0].style = BF_SERIES_LINEPOINTS;
-    ser[0].label = "line # with a hash";
+    ser[0].style = 1;
+    ser[0].mark_every = 2;
+    ser[0].label = "line # with a hash and L_{max}";
+    ser[1].kind = BF_SERIES_POINTS;
     ser[1].x = xs;
     ser[1].y = xs;
     ser[1].n = 5;
-    ser[1].style = BF_SERIES_POINTS;
-    ser[1].color = 3;
+    ser[1].style = BF_PLOT_INK;
+    ser[1].label = "points";
+    ser[2] = ser[0];
+    ser[2].x = as;
     memset(panel, 0, 2 * sizeof *panel);
-    panel[0].title = "box";
-    panel[0].xlabel = "x (1)";
-    panel[0].ylabel = "y (1)";
     panel[0].xmax = panel[0].ymax = 1.0;
     panel[0].diagonal = 1;
-    panel[0].legend = 4;
+    panel[0].xlabel = "x (1)";
+    panel[0].ylabel = "y (1)";
+    panel[0].note = "a note";
     panel[0].series = ser;
     panel[0].n_series = 2;
-    panel[1] = panel[0];
     panel[1].polar = 1;
-    panel[1].legend = 0;
+    panel[1].ymax = 1.0;
+    panel[1].series = &ser[2];
+    panel[1].n_series = 1;
     memset(fig, 0, sizeof *fig);
-    fig->width = 641;
-    fig->height = 357;
+    fig->width = BF_PLOT_SINGLE_COLUMN + 51; /* an odd width on purpose */
+    fig->aspect = 0.8;
     fig->nx = 2;
     fig->ny = 1;
-    fig->text_scale = 0.9;
+    fig->legend = BF_LEGEND_TOP;
     fig->panels = panel;
     fig->n_panels = 2;
 }
 
 static const char *path_in(const char *dir, const char *name)
 {
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    return path;
+    static char path[4][512];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
+    return path[k];
 }
 
 /* Draws the two-panel figure in format fmt into a fresh folder; returns
- * the file's path. */
-static const char *draw_in(bf_plot_format fmt, const char *name)
+ * the file's path and its size in points. */
+static const char *draw_in(bf_plot_format fmt, const char *name, unsigned *w,
+                           unsigned *h)
 {
     bf_plot_figure fig;
     bf_plot_panel panel[2];
-    bf_plot_series ser[2];
+    bf_plot_series ser[3];
     const char *path;
     describe(&fig, panel, ser);
+    cr_assert_eq(bf_plot_size(&fig, w, h), BF_OK);
     path = path_in(bf_test_tmpdir(), name);
     cr_assert_eq(bf_plot_write(&fig, fmt, path), BF_OK);
     return path;
 }
 
-Test(plot, writes_a_png_of_the_requested_pixel_size)
+Test(plot, writes_a_palette_png_of_150_pixels_per_inch_without_metadata)
 {
-    fmt_check_png(draw_in(BF_PLOT_PNG, "f.png"), 641, 357);
+    unsigned w;
+    unsigned h;
+    const char *path = draw_in(BF_PLOT_PNG, "f.png", &w, &h);
+    cr_assert_eq(w, BF_PLOT_SINGLE_COLUMN + 51);
+    /* 303 points at 150 dpi: 303 * 150 / 72 = 631.25 -> 631 */
+    fmt_check_png(path, 631, bf_plot_png_pixels(h));
+    cr_expect_eq(fmt_check_png_plain(path), 3, "colour type 3: a palette");
 }
 
-Test(plot, writes_a_well_formed_svg_of_the_requested_size_in_points)
+Test(plot, takes_the_height_from_the_width_and_the_aspect)
 {
-    fmt_check_svg(draw_in(BF_PLOT_SVG, "f.svg"), 641, 357);
+    bf_plot_figure fig;
+    bf_plot_panel panel[2];
+    bf_plot_series ser[3];
+    unsigned w;
+    unsigned h1;
+    unsigned h2;
+    describe(&fig, panel, ser);
+    cr_assert_eq(bf_plot_size(&fig, &w, &h1), BF_OK);
+    fig.panels = panel; /* box axes only: the aspect decides */
+    fig.n_panels = 1;
+    fig.nx = 1;
+    cr_assert_eq(bf_plot_size(&fig, &w, &h1), BF_OK);
+    fig.aspect = 1.6;
+    cr_assert_eq(bf_plot_size(&fig, &w, &h2), BF_OK);
+    /* axes twice as tall, the same margins: the height grows by 0.8 times
+     * the axes width, which is less than the figure's */
+    cr_expect_gt(h2, h1);
+    cr_expect_lt(h2 - h1, (unsigned)(0.8 * w) + 1);
+    fig.height = 400;
+    cr_assert_eq(bf_plot_size(&fig, &w, &h2), BF_OK);
+    cr_expect_eq(h2, 400u, "a given height is kept");
 }
 
-Test(plot, writes_a_one_page_pdf_of_the_requested_size_in_points)
+Test(plot, writes_a_well_formed_svg_in_points_without_a_title)
 {
-    fmt_check_pdf(draw_in(BF_PLOT_PDF, "f.pdf"), 641, 357);
+    unsigned w;
+    unsigned h;
+    const char *path = draw_in(BF_PLOT_SVG, "f.svg", &w, &h);
+    fmt_check_svg(path, w, h);
+    fmt_check_svg_plain(path);
 }
 
-Test(plot, draws_a_log_axis_and_named_ticks)
+Test(plot, writes_a_one_page_pdf_in_points_without_title_or_date)
 {
-    static const double lse[3] = {0.5, 4.0, 31.0};
-    static const double at[3] = {1, 2, 3};
-    static const char *const names[3] = {"34", "41", "23"};
+    unsigned w;
+    unsigned h;
+    const char *path = draw_in(BF_PLOT_PDF, "f.pdf", &w, &h);
+    fmt_check_pdf(path, w, h);
+    fmt_check_pdf_plain(path);
+}
+
+/* The markers and the dashes of a series are one path each in SVG: 600
+ * points (some 200 dashes) give as many paths as 6. */
+Test(plot, draws_all_markers_and_dashes_of_a_series_as_one_svg_path)
+{
+    static double x[600];
+    static double y[600];
     bf_plot_series s;
     bf_plot_panel p;
     bf_plot_figure fig;
     const char *dir = bf_test_tmpdir();
+    size_t few;
+    size_t many;
+    size_t i;
+    for (i = 0; i < 600; i++) {
+        x[i] = 0.05 + 0.9 * (double)i / 599.0;
+        y[i] = 0.5 + 0.4 * sin(7.3 * x[i]);
+    }
     memset(&s, 0, sizeof s);
-    s.x = at;
-    s.y = lse;
-    s.n = 3;
-    s.style = BF_SERIES_BARS;
+    s.kind = BF_SERIES_POINTS;
+    s.x = x;
+    s.y = y;
+    s.n = 6;
+    s.style = 5; /* an open marker (outer and inner outline); dash-dot-dot */
     memset(&p, 0, sizeof p);
-    p.xmin = 0.5;
-    p.xmax = 3.5;
-    p.ymin = 0.1;
-    p.ymax = 100.0;
-    p.logy = 1;
-    p.xtick_labels = names;
-    p.n_xticks = 3;
+    p.xmax = p.ymax = 1.0;
     p.series = &s;
     p.n_series = 1;
     memset(&fig, 0, sizeof fig);
     fig.width = 300;
-    fig.height = 200;
     fig.nx = fig.ny = 1;
-    fig.text_scale = 1.0;
     fig.panels = &p;
     fig.n_panels = 1;
-    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_PNG, path_in(dir, "l.png")),
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "a.svg")),
                  BF_OK);
-    fmt_check_png(path_in(dir, "l.png"), 300, 200);
+    s.n = 600;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "b.svg")),
+                 BF_OK);
+    few = fmt_check_svg_plain(path_in(dir, "a.svg"));
+    many = fmt_check_svg_plain(path_in(dir, "b.svg"));
+    cr_expect_eq(many, few, "600 markers: %zu paths, 6 markers: %zu", many,
+                 few);
+    s.kind = BF_SERIES_LINE; /* the same points as a dashed line */
+    s.n = 6;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "c.svg")),
+                 BF_OK);
+    s.n = 600;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG, path_in(dir, "d.svg")),
+                 BF_OK);
+    few = fmt_check_svg_plain(path_in(dir, "c.svg"));
+    many = fmt_check_svg_plain(path_in(dir, "d.svg"));
+    cr_expect_eq(many, few, "dashed line of 600 points: %zu paths, of 6: %zu",
+                 many, few);
+}
+
+/* Figures are drawn in any order by any process: a figure's bytes must
+ * not depend on what was drawn before. */
+Test(plot, gives_the_same_bytes_whatever_was_drawn_before)
+{
+    static const bf_plot_format fmts[3] = {BF_PLOT_PNG, BF_PLOT_SVG,
+                                           BF_PLOT_PDF};
+    bf_plot_figure fig;
+    bf_plot_panel panel[2];
+    bf_plot_series ser[3];
+    const char *dir = bf_test_tmpdir();
+    size_t f;
+    for (f = 0; f < 3; f++) {
+        char a[64];
+        char b[64];
+        char other[64];
+        size_t la;
+        size_t lb;
+        char *da;
+        char *db;
+        snprintf(a, sizeof a, "a.%s", bf_plot_format_ext(fmts[f]));
+        snprintf(b, sizeof b, "b.%s", bf_plot_format_ext(fmts[f]));
+        snprintf(other, sizeof other, "o.%s", bf_plot_format_ext(fmts[f]));
+        describe(&fig, panel, ser);
+        cr_assert_eq(bf_plot_write(&fig, fmts[f], path_in(dir, a)), BF_OK);
+        fig.legend = BF_LEGEND_RIGHT; /* something else in between */
+        panel[0].logy = 1;
+        panel[0].ymin = 0.01;
+        cr_assert_eq(bf_plot_write(&fig, fmts[(f + 1) % 3],
+                                   path_in(dir, other)),
+                     BF_OK);
+        describe(&fig, panel, ser);
+        cr_assert_eq(bf_plot_write(&fig, fmts[f], path_in(dir, b)), BF_OK);
+        da = fmt_read(path_in(dir, a), &la);
+        db = fmt_read(path_in(dir, b), &lb);
+        cr_expect(la == lb && memcmp(da, db, la) == 0,
+                  "%s differs when drawn after another figure", a);
+        free(da);
+        free(db);
+    }
+}
+
+/* Every model of the registry gets its own slot, and the slots differ:
+ * each has its own marker, and no two share both colour and dash; the
+ * paper's six (slots 0-5) differ in all three. */
+Test(plot, gives_every_registry_model_a_style_of_its_own)
+{
+    unsigned used = 0;
+    size_t i;
+    size_t j;
+    for (i = 0; i < bf_model_count(); i++) {
+        unsigned s = bf_report_model_style(bf_model_get(i));
+        cr_assert_lt(s, BF_PLOT_NSTYLES, "%s", bf_model_get(i)->name);
+        cr_expect(!((used >> s) & 1u), "%s shares slot %u",
+                  bf_model_get(i)->name, s);
+        used |= 1u << s;
+    }
+    for (i = 0; i < BF_PLOT_NSTYLES; i++) {
+        for (j = i + 1; j < BF_PLOT_NSTYLES; j++) {
+            unsigned a = (unsigned)i;
+            unsigned b = (unsigned)j;
+            cr_expect_str_neq(bf_plot_style_marker(a),
+                              bf_plot_style_marker(b),
+                              "slots %u and %u share a marker", a, b);
+            cr_expect(strcmp(bf_plot_style_hex(a), bf_plot_style_hex(b)) ||
+                          strcmp(bf_plot_style_dash(a),
+                                 bf_plot_style_dash(b)),
+                      "slots %u and %u share colour and dash", a, b);
+            if (j < 6) {
+                cr_expect_str_neq(bf_plot_style_hex(a), bf_plot_style_hex(b));
+                cr_expect_str_neq(bf_plot_style_dash(a),
+                                  bf_plot_style_dash(b));
+            }
+        }
+    }
+    cr_expect_null(bf_plot_style_hex(BF_PLOT_REF + 1));
 }
 
 Test(plot, refuses_invalid_descriptions_without_writing_a_file)
 {
     bf_plot_figure fig;
     bf_plot_panel panel[2];
-    bf_plot_series ser[2];
+    bf_plot_series ser[3];
     const char *dir = bf_test_tmpdir();
     const char *path = path_in(dir, "bad.png");
     struct stat sb;
@@ -136,7 +285,10 @@ Test(plot, refuses_invalid_descriptions_without_writing_a_file)
     fig.width = 0;
     cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
     describe(&fig, panel, ser);
-    fig.height = BF_PLOT_MAX_SIZE + 1;
+    fig.width = BF_PLOT_MAX_SIZE + 1;
+    cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
+    describe(&fig, panel, ser);
+    fig.width = 20; /* no room for the axes */
     cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
     describe(&fig, panel, ser);
     fig.nx = 1; /* two panels in a 1 x 1 grid */
@@ -151,6 +303,9 @@ Test(plot, refuses_invalid_descriptions_without_writing_a_file)
     ser[1].y = NULL;
     cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
     describe(&fig, panel, ser);
+    ser[1].style = BF_PLOT_REF + 1; /* no such slot */
+    cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
+    describe(&fig, panel, ser);
     cr_expect_eq(bf_plot_write(&fig, BF_PLOT_NFORMATS, path), BF_EINVAL);
     cr_expect_eq(bf_plot_write(NULL, BF_PLOT_PNG, path), BF_EINVAL);
     cr_assert_neq(stat(path, &sb), 0, "an invalid figure left a file");
@@ -160,17 +315,24 @@ Test(plot, reports_an_unwritable_path_as_an_io_error)
 {
     bf_plot_figure fig;
     bf_plot_panel panel[2];
-    bf_plot_series ser[2];
+    bf_plot_series ser[3];
+    int f;
     describe(&fig, panel, ser);
-    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_SVG,
-                               "/nonexistent/brdffit/f.svg"),
-                 BF_EIO);
+    for (f = 0; f < BF_PLOT_NFORMATS; f++) {
+        cr_expect_eq(bf_plot_write(&fig, (bf_plot_format)f,
+                                   "/nonexistent/brdffit/f"),
+                     BF_EIO, "%s", bf_plot_format_ext((bf_plot_format)f));
+    }
 }
 
-Test(plot, names_the_format_extensions)
+Test(plot, names_the_format_extensions_and_the_column_widths)
 {
     cr_assert_str_eq(bf_plot_format_ext(BF_PLOT_PNG), "png");
     cr_assert_str_eq(bf_plot_format_ext(BF_PLOT_SVG), "svg");
     cr_assert_str_eq(bf_plot_format_ext(BF_PLOT_PDF), "pdf");
     cr_assert_null(bf_plot_format_ext(BF_PLOT_NFORMATS));
+    /* 3.5 in and 7 in at 72 points per inch; 150 pixels per inch */
+    cr_assert_eq(BF_PLOT_SINGLE_COLUMN, 252u);
+    cr_assert_eq(BF_PLOT_DOUBLE_COLUMN, 504u);
+    cr_assert_eq(bf_plot_png_pixels(BF_PLOT_DOUBLE_COLUMN), 1050u);
 }

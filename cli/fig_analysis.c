@@ -1,0 +1,531 @@
+/* fig_analysis.c: the figures of the analysis beyond the paper
+ * (fig_internal.h, doc/methods.md §3-4), drawn when it ran -- per model,
+ * each sample's fitted parameter with its profile and bootstrap intervals
+ * (a forest plot); per sample, the profile of the objective along each
+ * fitted parameter with the 95% threshold; and the samples x models
+ * overview of delta BIC.
+ *
+ * References:
+ *   [1] R. E. Kass, A. E. Raftery, "Bayes Factors", JASA 90:773-795
+ *       (1995), §3.2: evidence categories of 2 ln B (0-2, 2-6, 6-10, > 10),
+ *       which delta BIC approximates. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fig_internal.h"
+#include "ranking.h"
+#include "model_style.h"
+
+/* chi2_1(0.95): the profile interval's threshold (doc/methods.md §3). */
+#define CHI2_95 3.841458820694124
+/* Height of one sample's row in the forest plots and the overview. */
+#define ROW_PT 10.5
+/* Room of the legend, the x numbers and labels of those figures. */
+#define FRAME_PT 64.0
+/* Profile panels: points per curve, the window around the interval (in
+ * half-widths of the interval), panels per row and their shape. */
+#define PROFILE_POINTS 41
+#define PROFILE_SPAN 2.5
+#define PROFILE_COLS 5
+#define PROFILE_YMAX 12.0
+#define PROFILE_ASPECT 0.75
+/* The bootstrap interval sits this far below the profile interval. */
+#define BOOT_OFFSET 0.3
+
+/* A parameter's label for an axis, its unit added unless dimensionless,
+ * Greek names written as letters and n_d with its subscript: "σ/T (G)",
+ * "σ (rad)". */
+static void param_label(const bf_param *p, char *buf, size_t len)
+{
+    static const char *const from[] = {"sigma", "rho", "theta", "n_d"};
+    static const char *const to[] = {"\xcf\x83", "\xcf\x81", "\xce\xb8",
+                                     "n_{d}"};
+    char tmp[64];
+    const char *s = p->label;
+    size_t j = 0;
+    while (*s != '\0' && j + 8 < sizeof tmp) {
+        size_t k;
+        for (k = 0; k < sizeof from / sizeof *from; k++) {
+            size_t n = strlen(from[k]);
+            if (strncmp(s, from[k], n) == 0) {
+                j += (size_t)snprintf(tmp + j, sizeof tmp - j, "%s", to[k]);
+                s += n;
+                break;
+            }
+        }
+        if (k == sizeof from / sizeof *from) {
+            tmp[j++] = *s++;
+        }
+    }
+    tmp[j] = '\0';
+    if (strcmp(p->unit, "1") == 0) {
+        snprintf(buf, len, "%s", tmp);
+    } else {
+        snprintf(buf, len, "%s (%s)", tmp, p->unit);
+    }
+}
+
+/* Free parameters of model m analysed for some sample. */
+static unsigned free_params(const bf_cli_study *st, size_t m)
+{
+    unsigned mask = 0;
+    size_t s;
+    for (s = 0; s < st->n_samples; s++) {
+        const bf_fit_stats *f = &st->stats[s * st->n_models + m];
+        if (f->done) {
+            mask |= f->free_mask;
+        }
+    }
+    return mask;
+}
+
+static size_t popcount(unsigned v)
+{
+    size_t n = 0;
+    for (; v != 0; v &= v - 1) {
+        n++;
+    }
+    return n;
+}
+
+/* Sample names of the rows, top to bottom in study order, at y = N - s. */
+static const char **sample_names(const bf_cli_study *st, bf_fig_desc *d)
+{
+    size_t N = st->n_samples;
+    char (*buf)[128] = bf_fig_alloc(d, N * sizeof *buf);
+    const char **names = bf_fig_alloc(d, N * sizeof *names);
+    size_t s;
+    if (buf == NULL || names == NULL) {
+        return NULL;
+    }
+    for (s = 0; s < N; s++) {
+        bf_fig_sample_label(st, s, buf[s], sizeof buf[s]);
+        names[N - 1 - s] = buf[s];
+    }
+    return names;
+}
+
+/* ==== forest plots ======================================================= */
+
+int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                  int full)
+{
+    const bf_cli_study *st = D->st;
+    size_t N = st->n_samples;
+    size_t m = e->index;
+    const bf_model_type *t = st->models[m];
+    unsigned mask = free_params(st, m);
+    size_t nj = popcount(mask);
+    const char **names = sample_names(st, d);
+    bf_plot_panel *panel = bf_fig_alloc(d, nj * sizeof *panel);
+    bf_plot_series *ser = bf_fig_alloc(d, 3 * nj * sizeof *ser);
+    double *v = bf_fig_alloc(d, 7 * N * nj * sizeof *v);
+    unsigned *open = bf_fig_alloc(d, N * nj * sizeof *open);
+    char (*xl)[128] = bf_fig_alloc(d, nj * sizeof *xl);
+    int boot = st->opts.n_boot >= 2;
+    size_t j;
+    size_t q = 0;
+    size_t s;
+
+    (void)full;
+    if (names == NULL || panel == NULL || ser == NULL || v == NULL ||
+        open == NULL || xl == NULL || nj == 0) {
+        return nj == 0 ? BF_EINVAL : BF_ENOMEM;
+    }
+    for (j = 0; j < t->p; j++) {
+        double *est = &v[7 * N * q];
+        double *lo = est + N;
+        double *hi = lo + N;
+        double *blo = hi + N;
+        double *bhi = blo + N;
+        double *y = bhi + N;
+        double *yb = y + N;
+        double xmin = HUGE_VAL;
+        double xmax = -HUGE_VAL;
+        bf_plot_series *sq = &ser[3 * q];
+        if (!((mask >> j) & 1u)) {
+            continue;
+        }
+        for (s = 0; s < N; s++) {
+            const bf_fit_stats *f = &st->stats[s * st->n_models + m];
+            int ok = f->done && ((f->free_mask >> j) & 1u);
+            est[s] = ok ? f->refined.param[j] : NAN;
+            lo[s] = ok ? f->ci_low[j] : NAN;
+            hi[s] = ok ? f->ci_high[j] : NAN;
+            blo[s] = ok ? f->boot_low[j] : NAN;
+            bhi[s] = ok ? f->boot_high[j] : NAN;
+            y[s] = (double)(N - s);
+            yb[s] = y[s] - BOOT_OFFSET;
+            open[q * N + s] = ok ? (f->ci_open >> (2 * j)) & 3u : 0u;
+            if (ok) {
+                xmin = fmin(xmin, fmin(est[s], isfinite(lo[s]) ? lo[s]
+                                                               : est[s]));
+                xmax = fmax(xmax, fmax(est[s], isfinite(hi[s]) ? hi[s]
+                                                               : est[s]));
+                if (boot && isfinite(blo[s]) && isfinite(bhi[s])) {
+                    xmin = fmin(xmin, blo[s]);
+                    xmax = fmax(xmax, bhi[s]);
+                }
+            }
+        }
+        if (!(xmax > xmin)) { /* one value: a window around it */
+            double w = isfinite(xmin) ? fmax(0.05 * fabs(xmin), 0.01) : 1.0;
+            xmin = isfinite(xmin) ? xmin - w : 0.0;
+            xmax = xmin + 2 * w;
+        }
+        sq[0].kind = BF_SERIES_INTERVALS;
+        sq[0].x = lo;
+        sq[0].x2 = hi;
+        sq[0].y = y;
+        sq[0].open = &open[q * N];
+        sq[0].n = N;
+        sq[0].style = bf_report_model_style(t);
+        sq[0].dash = BF_DASH_SOLID;
+        sq[0].weight = 1.3;
+        sq[0].label = "profile 95% interval";
+        sq[1] = sq[0];
+        sq[1].x = blo;
+        sq[1].x2 = bhi;
+        sq[1].y = yb;
+        sq[1].open = NULL;
+        sq[1].n = boot ? N : 0;
+        sq[1].dash = BF_DASH_DOTTED;
+        sq[1].weight = 0.9;
+        sq[1].label = boot ? "bootstrap 95% interval" : NULL;
+        sq[2].kind = BF_SERIES_POINTS;
+        sq[2].x = est;
+        sq[2].y = y;
+        sq[2].n = N;
+        sq[2].style = sq[0].style;
+        sq[2].label = "exact optimum";
+        param_label(&t->param[j], xl[q], sizeof xl[q]);
+        panel[q].xmin = xmin - 0.04 * (xmax - xmin);
+        panel[q].xmax = xmax + 0.04 * (xmax - xmin);
+        panel[q].ymin = 0.3;
+        panel[q].ymax = (double)N + 0.7;
+        panel[q].ytick_labels = names;
+        panel[q].n_yticks = N;
+        panel[q].xlabel = xl[q];
+        panel[q].series = sq;
+        panel[q].n_series = 3;
+        q++;
+    }
+    /* the sample names, then at most 200 points a parameter */
+    d->fig.width = (unsigned)fmin((double)D->o->width,
+                                  160.0 + 200.0 * (double)nj);
+    d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
+    d->fig.nx = nj;
+    d->fig.ny = 1;
+    d->fig.share_y = 1;
+    d->fig.legend = BF_LEGEND_TOP;
+    d->fig.panels = panel;
+    d->fig.n_panels = nj;
+    snprintf(e->base, sizeof e->base, "forest_%s", t->name);
+    snprintf(e->title, sizeof e->title,
+             "%s: fitted parameters and their 95%% intervals", t->name);
+    snprintf(e->caption, sizeof e->caption,
+             "For each of the %zu samples, %s's exact optimum (points; the "
+             "objective \"%s\" minimised by refinement of the grid optimum, "
+             "doc/methods.md §2) and its 95%% profile interval (solid: where "
+             "n ln(S/S_min) \xe2\x89\xa4 3.84, doc/methods.md §3)%s. An "
+             "interval that reaches the search range is cut there and drawn "
+             "without an end tick.",
+             N, t->name, bf_objective_name(st->opts.objective),
+             boot ? "; dotted below it, the percentile bootstrap interval "
+                    "over resampled configurations"
+                  : "");
+    snprintf(e->alt, sizeof e->alt,
+             "Forest plot: %s's fitted parameter%s with 95%% intervals for "
+             "%zu samples.",
+             t->name, nj == 1 ? "" : "s", N);
+    return BF_OK;
+}
+
+/* ==== delta BIC overview ================================================= */
+
+/* The evidence class of delta BIC [1]: 0 the best model, then (0, 2],
+ * (2, 6], (6, 10], > 10; -1 when not computed. */
+static int bic_class(double delta)
+{
+    if (!isfinite(delta)) {
+        return -1;
+    }
+    if (delta <= 0.0) {
+        return 0;
+    }
+    return delta <= 2.0 ? 1 : delta <= 6.0 ? 2 : delta <= 10.0 ? 3 : 4;
+}
+
+int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                     int full)
+{
+    static const char *const classes[BF_PLOT_NCLASSES] = {
+        "\xce\x94" "BIC = 0 (best)", "\xe2\x89\xa4 2", "2\xe2\x80\x93" "6",
+        "6\xe2\x80\x93" "10", "> 10"};
+    const bf_cli_study *st = D->st;
+    size_t N = st->n_samples;
+    size_t M = st->n_models;
+    const char **names = sample_names(st, d);
+    const char **models = bf_fig_alloc(d, M * sizeof *models);
+    int *cls = bf_fig_alloc(d, N * M * sizeof *cls);
+    const char **text = bf_fig_alloc(d, N * M * sizeof *text);
+    char (*buf)[16] = bf_fig_alloc(d, N * M * sizeof *buf);
+    bf_plot_cells *cells = bf_fig_alloc(d, sizeof *cells);
+    bf_plot_panel *p = bf_fig_alloc(d, sizeof *p);
+    double want = 110.0 + 52.0 * (double)M; /* names, then cells */
+    size_t s;
+    size_t m;
+
+    (void)full;
+    if (names == NULL || models == NULL || cls == NULL || text == NULL ||
+        buf == NULL || cells == NULL || p == NULL) {
+        return BF_ENOMEM;
+    }
+    for (m = 0; m < M; m++) {
+        models[m] = st->models[m]->name;
+    }
+    for (s = 0; s < N; s++) {
+        double best = HUGE_VAL;
+        size_t r = N - 1 - s; /* the first sample on top */
+        for (m = 0; m < M; m++) {
+            double b = bf_cli_rank_value(st, s * M + m, BF_CLI_BIC);
+            best = isfinite(b) ? fmin(best, b) : best;
+        }
+        for (m = 0; m < M; m++) {
+            double b = bf_cli_rank_value(st, s * M + m, BF_CLI_BIC);
+            double delta = b - best;
+            size_t c = r * M + m;
+            cls[c] = bic_class(delta);
+            if (!isfinite(delta)) {
+                snprintf(buf[c], sizeof buf[c], "\xe2\x80\x93");
+            } else if (delta == 0.0) {
+                snprintf(buf[c], sizeof buf[c], "0");
+            } else if (delta < 9.95) {
+                snprintf(buf[c], sizeof buf[c], "%.1f", delta);
+            } else {
+                snprintf(buf[c], sizeof buf[c], "%.0f", delta);
+            }
+            text[c] = buf[c];
+        }
+    }
+    cells->nx = M;
+    cells->ny = N;
+    cells->cls = cls;
+    cells->text = text;
+    cells->n_classes = BF_PLOT_NCLASSES;
+    cells->class_label = classes;
+    p->xmin = 0.5;
+    p->xmax = (double)M + 0.5;
+    p->ymin = 0.5;
+    p->ymax = (double)N + 0.5;
+    p->xtick_labels = models;
+    p->n_xticks = M;
+    p->ytick_labels = names;
+    p->n_yticks = N;
+    p->cells = cells;
+    d->fig.width = (unsigned)fmin((double)D->o->width, want);
+    d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
+    d->fig.nx = d->fig.ny = 1;
+    d->fig.legend = BF_LEGEND_TOP;
+    d->fig.panels = p;
+    d->fig.n_panels = 1;
+    snprintf(e->base, sizeof e->base, "delta_bic");
+    snprintf(e->title, sizeof e->title,
+             "Model selection at a glance: \xce\x94" "BIC per sample");
+    snprintf(e->caption, sizeof e->caption,
+             "For each sample (rows) and model (columns), BIC minus the "
+             "lowest BIC of that sample (Gaussian errors, the refined "
+             "optimum of the objective \"%s\"; doc/methods.md §4): 0 marks "
+             "the best model, and the shades follow Kass and Raftery's "
+             "evidence against a model (\xe2\x89\xa4 2 barely worth a "
+             "mention, 2\xe2\x80\x93" "6 positive, 6\xe2\x80\x93" "10 "
+             "strong, > 10 very strong); \xe2\x80\x93: not evaluated.",
+             bf_objective_name(st->opts.objective));
+    snprintf(e->alt, sizeof e->alt,
+             "Heat map: delta BIC of %zu models for %zu samples, darker for "
+             "models closer to the best.",
+             M, N);
+    return BF_OK;
+}
+
+/* ==== profiles =========================================================== */
+
+/* The problem of sample index s and model m as the analysis posed it: the
+ * model's free parameters over their search ranges, the others at the
+ * fitted row's values, under the run's objective. */
+static void problem_of(const bf_fig_data *D, size_t s, size_t m,
+                       bf_problem *pb)
+{
+    const bf_study_row *row = bf_fig_row(D->st, s, m);
+    const bf_fig_sample *r = &D->smp[s];
+    bf_problem_init(pb, row->type, row->fit.param, r->K, r->geom, r->data);
+    pb->objective = D->st->opts.objective;
+}
+
+int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                   int full)
+{
+    const bf_cli_study *st = D->st;
+    size_t s = e->index;
+    size_t M = st->n_models;
+    size_t np = 0;
+    size_t m;
+    size_t j;
+    size_t q = 0;
+    bf_plot_panel *panel;
+    bf_plot_series *ser;
+    double *v;
+    char (*xl)[128];
+    unsigned *open;
+    char who[256];
+    char key[64];
+    size_t rows;
+    static const double thr_y[2] = {CHI2_95, CHI2_95};
+
+    for (m = 0; m < M; m++) {
+        const bf_fit_stats *f = &st->stats[s * M + m];
+        np += f->done ? popcount(f->free_mask) : 0;
+    }
+    panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
+    ser = bf_fig_alloc(d, 4 * (np + 1) * sizeof *ser);
+    v = bf_fig_alloc(d, (2 * PROFILE_POINTS + 8) * (np + 1) * sizeof *v);
+    xl = bf_fig_alloc(d, (np + 1) * sizeof *xl);
+    open = bf_fig_alloc(d, (np + 1) * sizeof *open);
+    if (panel == NULL || ser == NULL || v == NULL || xl == NULL ||
+        open == NULL) {
+        return BF_ENOMEM;
+    }
+    bf_fig_sample_label(st, e->index, who, sizeof who);
+    for (m = 0; m < M; m++) {
+        const bf_fit_stats *f = &st->stats[s * M + m];
+        const bf_model_type *t = bf_fig_row(st, s, m)->type;
+        bf_problem pb;
+        if (!f->done || f->free_mask == 0) {
+            continue;
+        }
+        problem_of(D, s, m, &pb);
+        for (j = 0; j < t->p; j++) {
+            double *theta = &v[(2 * PROFILE_POINTS + 8) * q];
+            double *dev = theta + PROFILE_POINTS;
+            double *ci = dev + PROFILE_POINTS; /* low, high; y of both */
+            double *thr_x = ci + 4;
+            double est = f->refined.param[j];
+            double lo = f->ci_low[j];
+            double hi = f->ci_high[j];
+            double step = t->param[j].grid_n > 0 ? t->param[j].grid_step
+                                                 : (pb.hi[j] - pb.lo[j]) /
+                                                       100.0;
+            double x0;
+            double x1;
+            size_t k;
+            bf_plot_series *sq = &ser[4 * q];
+            if (!((f->free_mask >> j) & 1u)) {
+                continue;
+            }
+            /* the window: the interval widened PROFILE_SPAN times on each
+             * side (at least 3 grid steps), within the search range */
+            x0 = est - PROFILE_SPAN * fmax(isfinite(lo) ? est - lo : 0.0,
+                                           3 * step);
+            x1 = est + PROFILE_SPAN * fmax(isfinite(hi) ? hi - est : 0.0,
+                                           3 * step);
+            x0 = fmax(x0, pb.lo[j]);
+            x1 = fmin(x1, pb.hi[j]);
+            if (!(x1 > x0)) {
+                x0 = pb.lo[j];
+                x1 = pb.hi[j];
+            }
+            for (k = 0; k < PROFILE_POINTS; k++) {
+                theta[k] = x0 + (x1 - x0) * (double)k / (PROFILE_POINTS - 1);
+                dev[k] = NAN;
+            }
+            if (full) {
+                int rc = bf_fit_profile_curve(&pb, &f->refined, j,
+                                              PROFILE_POINTS, theta, dev);
+                if (rc == BF_ENOMEM) {
+                    return rc;
+                }
+            }
+            ci[0] = lo;
+            ci[1] = hi;
+            ci[2] = ci[3] = CHI2_95;
+            thr_x[0] = x0;
+            thr_x[1] = x1;
+            sq[0].kind = BF_SERIES_LINE;  /* the threshold */
+            sq[0].x = thr_x;
+            sq[0].y = thr_y;
+            sq[0].n = 2;
+            sq[0].style = BF_PLOT_REF;
+            sq[0].weight = 0.8;
+            sq[0].label = "95% threshold, \xcf\x87\xc2\xb2\xe2\x82\x81 = 3.84";
+            sq[1].kind = BF_SERIES_LINE;  /* the profile */
+            sq[1].x = theta;
+            sq[1].y = dev;
+            sq[1].n = PROFILE_POINTS;
+            sq[1].style = bf_report_model_style(t);
+            sq[1].dash = BF_DASH_SOLID;
+            open[q] = (f->ci_open >> (2 * j)) & 3u;
+            sq[2].kind = BF_SERIES_INTERVALS; /* the interval */
+            sq[2].open = &open[q];
+            sq[2].x = &ci[0];
+            sq[2].x2 = &ci[1];
+            sq[2].y = &ci[2];
+            sq[2].n = 1;
+            sq[2].style = sq[1].style;
+            sq[2].dash = BF_DASH_SOLID;
+            sq[2].weight = 2.0;
+            sq[3].kind = BF_SERIES_POINTS; /* the optimum */
+            sq[3].x = &f->refined.param[j];
+            sq[3].y = &thr_x[2];
+            thr_x[2] = 0.0;
+            sq[3].n = 1;
+            sq[3].style = sq[1].style;
+            param_label(&t->param[j], xl[q], sizeof xl[q]);
+            panel[q].xmin = x0;
+            panel[q].xmax = x1;
+            panel[q].ymin = -0.8;
+            panel[q].ymax = PROFILE_YMAX;
+            panel[q].ytick = 4.0;
+            panel[q].note = t->name;
+            panel[q].xlabel = xl[q];
+            panel[q].series = sq;
+            panel[q].n_series = 4;
+            q++;
+        }
+    }
+    if (q == 0) { /* nothing fitted for this sample: an empty panel */
+        panel[0].xmin = 0.0;
+        panel[0].xmax = 1.0;
+        panel[0].ymin = 0.0;
+        panel[0].ymax = PROFILE_YMAX;
+        panel[0].note = "no fitted parameter";
+        q = 1;
+    }
+    d->fig.width = D->o->width;
+    d->fig.aspect = PROFILE_ASPECT;
+    rows = (q + PROFILE_COLS - 1) / PROFILE_COLS; /* balanced rows */
+    d->fig.nx = (q + rows - 1) / rows;
+    d->fig.ny = rows;
+    d->fig.share_y = 1;
+    d->fig.ylabel = "n ln(S/S_{min})";
+    d->fig.legend = BF_LEGEND_TOP;
+    d->fig.panels = panel;
+    d->fig.n_panels = q;
+    snprintf(e->base, sizeof e->base, "profile_%s",
+             bf_fig_target_key(st, s, key, sizeof key));
+    snprintf(e->title, sizeof e->title, "%.160s: profiles of the objective",
+             who);
+    snprintf(e->caption, sizeof e->caption,
+             "For each fitted parameter of each model, the profile "
+             "n ln(S_p/S_min) of the objective \"%s\" (S_p minimised over "
+             "the model's other free parameters, n = K = %zu configurations; "
+             "doc/methods.md §3) around the exact optimum (point); the 95%% "
+             "profile interval is where the curve lies below the dashed "
+             "threshold 3.84 (thick segment).",
+             bf_objective_name(st->opts.objective), D->smp[s].K);
+    snprintf(e->alt, sizeof e->alt,
+             "%zu line plots: profile of the objective along each fitted "
+             "parameter of %s, with the 95%% threshold.",
+             q, who);
+    return BF_OK;
+}

@@ -1,0 +1,82 @@
+/* fig_internal.h: what the report's figure files share -- the data every
+ * figure draws from (per-sample normalised radiances, the models of the
+ * scatter and plane figures), a figure description with the memory it
+ * points into, and one describe function per figure kind. figures.c
+ * prepares the data and draws; fig_paper.c (Figures 2(b), 3-6, wins),
+ * fig_plane.c (plane of incidence) and fig_analysis.c (intervals,
+ * profiles, delta BIC) describe. Private to cli/. */
+#ifndef BF_CLI_FIG_INTERNAL_H
+#define BF_CLI_FIG_INTERNAL_H
+
+#include "figures.h"
+
+/* Most models in one figure (the registry has 11). */
+#define BF_FIG_MAX_MODELS 16
+/* The plane-of-incidence tolerance and the curves' angular step. */
+#define BF_FIG_DEG (M_PI / 180.0)
+
+/* One sample's (target's) normalised measured and predicted radiance on
+ * its K used configurations (SPEC §2). */
+typedef struct {
+    size_t K;
+    bf_geom *geom;       /* the K used configurations (Beckmann's frame) */
+    double *data;        /* K measured values */
+    double *pred;        /* n_models x K predictions (model-major) */
+    int *ok;             /* model evaluated for this sample */
+} bf_fig_sample;
+
+/* Everything the figures draw from. */
+typedef struct {
+    const bf_cli_study *st;
+    const bf_fig_opts *o;
+    bf_fig_sample *smp;           /* one per sample */
+    size_t idx[BF_FIG_MAX_MODELS]; /* models of the scatter and plane
+                                     figures (indices into st->models) */
+    size_t nm;
+} bf_fig_data;
+
+/* A figure description and the memory it points into. */
+#define BF_FIG_MAX_MEM 48
+typedef struct {
+    bf_plot_figure fig;
+    void *mem[BF_FIG_MAX_MEM];
+    size_t n_mem;
+} bf_fig_desc;
+
+/* Zeroed memory owned by d (freed by bf_fig_desc_free); NULL when out of
+ * memory. */
+void *bf_fig_alloc(bf_fig_desc *d, size_t size);
+void bf_fig_desc_free(bf_fig_desc *d);
+
+/* The study row of sample index s and model index m. */
+const bf_study_row *bf_fig_row(const bf_cli_study *st, size_t s, size_t m);
+/* The list "ON, LFTG, VH-E" of the models idx[0..n) into buf. */
+const char *bf_fig_model_list(const bf_cli_study *st, const size_t *idx,
+                              size_t n, char *buf, size_t len);
+
+/* Describe functions: each fills e's base, title, caption and alt text
+ * and d->fig. With full = 0 only what the texts and the figure's size need
+ * (no curve is computed). Return BF_OK or a BF_E* code. */
+int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+               int full);
+int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                int full);
+int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                   int full);
+int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                 int full);
+int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                  int full);
+int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                     int full);
+int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                   int full);
+
+/* Samples per scatter figure (Figures 3-6 hold six each, as the paper). */
+#define BF_FIG_SCATTER_SAMPLES 6
+
+/* Whether model m has free parameters analysed for some sample (it gets
+ * a forest plot). */
+int bf_fig_has_forest(const bf_cli_study *st, size_t m);
+
+#endif

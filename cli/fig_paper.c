@@ -1,0 +1,395 @@
+/* fig_paper.c: the figures of the paper's protocol (fig_internal.h) --
+ * Figure 2(b) (LSE of each model against the samples sorted by fitted
+ * FC-E slope), Figures 3-6 (predicted against measured normalised
+ * radiance) and the count of samples each model fits best.
+ *
+ * References:
+ *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann
+ *       Model": Figure 2(b), Figures 3-6. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fig_internal.h"
+#include "model_style.h"
+
+/* Scatter axes: [0, 1] with room so that markers at 0 and 1 are whole. */
+#define SCATTER_LO (-0.05)
+#define SCATTER_HI 1.05
+#define SCATTER_MARKER 0.62 /* marker size factor: 198 points a panel */
+/* Figure 2(b)'s shape (axes height / width). */
+#define LSE_ASPECT 0.42
+
+/* ==== Figure 2(b) ======================================================== */
+
+typedef struct {
+    double key;
+    int sample;
+    size_t s;
+} sort_item;
+
+static int cmp_item(const void *a, const void *b)
+{
+    const sort_item *x = a;
+    const sort_item *y = b;
+    if (x->key != y->key) {
+        return x->key < y->key ? -1 : 1;
+    }
+    return (x->sample > y->sample) - (x->sample < y->sample);
+}
+
+/* Sample indices sorted by increasing fitted FC-E slope; by sample number
+ * when FC-E is not in the run (or not fitted for every sample). Returns
+ * 1 when sorted by slope, 0 by number, -1 when out of memory. */
+static int order_by_slope(const bf_cli_study *st, size_t *order)
+{
+    long fc = -1;
+    int jm = -1;
+    sort_item *it = malloc(st->n_samples * sizeof *it + 1);
+    size_t s;
+    size_t m;
+    int by_slope;
+    for (m = 0; m < st->n_models; m++) {
+        if (strcmp(st->models[m]->name, "FC-E") == 0) {
+            fc = (long)m;
+            jm = bf_model_param_index(st->models[m], "m");
+        }
+    }
+    if (it == NULL) {
+        return -1;
+    }
+    by_slope = jm >= 0;
+    for (s = 0; s < st->n_samples && by_slope; s++) {
+        by_slope = bf_fig_row(st, s, (size_t)fc)->status == BF_OK;
+    }
+    for (s = 0; s < st->n_samples; s++) {
+        it[s].sample = st->samples[s];
+        it[s].s = s;
+        it[s].key = by_slope ? bf_fig_row(st, s, (size_t)fc)->fit.param[jm]
+                             : (double)st->samples[s];
+    }
+    qsort(it, st->n_samples, sizeof *it, cmp_item);
+    for (s = 0; s < st->n_samples; s++) {
+        order[s] = it[s].s;
+    }
+    free(it);
+    return by_slope;
+}
+
+/* The upper end of an axis from 0 showing hi, with headroom frac. */
+static double axis_top(double hi, double frac)
+{
+    double top = hi * (1.0 + frac);
+    double mag = pow(10.0, floor(log10(top)));
+    return ceil(top / mag * 2.0) / 2.0 * mag;
+}
+
+int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+               int full)
+{
+    const bf_cli_study *st = D->st;
+    size_t N = st->n_samples;
+    size_t M = st->n_models;
+    size_t *order = bf_fig_alloc(d, N * sizeof *order);
+    double *x = bf_fig_alloc(d, N * sizeof *x);
+    double *y = bf_fig_alloc(d, N * M * sizeof *y);
+    char (*num)[16] = bf_fig_alloc(d, N * sizeof *num);
+    const char **ticks = bf_fig_alloc(d, N * sizeof *ticks);
+    bf_plot_series *ser = bf_fig_alloc(d, M * sizeof *ser);
+    bf_plot_panel *p = bf_fig_alloc(d, sizeof *p);
+    char models[512];
+    char ktext[48];
+    double lo = HUGE_VAL;
+    double hi = 0.0;
+    size_t i;
+    size_t m;
+    int by_slope;
+
+    (void)full;
+    if (order == NULL || x == NULL || y == NULL || num == NULL ||
+        ticks == NULL || ser == NULL || p == NULL ||
+        (by_slope = order_by_slope(st, order)) < 0) {
+        return BF_ENOMEM;
+    }
+    for (i = 0; i < N; i++) {
+        x[i] = (double)(i + 1);
+        snprintf(num[i], sizeof num[i], "%d", st->samples[order[i]]);
+        ticks[i] = num[i];
+    }
+    for (m = 0; m < M; m++) {
+        for (i = 0; i < N; i++) {
+            const bf_study_row *r = bf_fig_row(st, order[i], m);
+            double v = r->status == BF_OK ? r->fit.lse : NAN;
+            y[m * N + i] = v;
+            if (isfinite(v) && v > 0.0) {
+                lo = fmin(lo, v);
+                hi = fmax(hi, v);
+            }
+        }
+        ser[m].kind = BF_SERIES_LINE;
+        ser[m].x = x;
+        ser[m].y = &y[m * N];
+        ser[m].n = N;
+        ser[m].style = bf_report_model_style(st->models[m]);
+        ser[m].mark_every = 1;
+        ser[m].label = st->models[m]->name;
+    }
+    if (!(hi > 0.0)) {
+        lo = 0.1;
+        hi = 1.0;
+    }
+    p->xmin = 0.5;
+    p->xmax = (double)N + 0.5;
+    p->logy = D->o->log_lse;
+    p->ymin = p->logy ? pow(10.0, floor(log10(lo))) : 0.0;
+    p->ymax = p->logy ? pow(10.0, ceil(log10(hi))) : axis_top(hi, 0.05);
+    p->xtick_labels = ticks;
+    p->n_xticks = N;
+    p->series = ser;
+    p->n_series = M;
+    d->fig.width = D->o->width;
+    d->fig.aspect = LSE_ASPECT;
+    d->fig.nx = d->fig.ny = 1;
+    d->fig.xlabel = by_slope ? "sample (by increasing fitted FC-E slope)"
+                             : "sample";
+    d->fig.ylabel = p->logy ? "LSE (log scale)" : "LSE";
+    d->fig.legend = BF_LEGEND_TOP;
+    d->fig.panels = p;
+    d->fig.n_panels = 1;
+
+    models[0] = '\0';
+    for (m = 0; m < M; m++) {
+        size_t used = strlen(models);
+        snprintf(models + used, sizeof models - used, "%s%s", m ? ", " : "",
+                 st->models[m]->name);
+    }
+    snprintf(e->base, sizeof e->base, "fig2b");
+    snprintf(e->title, sizeof e->title, "Figure 2(b): LSE of each model, "
+             "samples %s", by_slope ? "sorted by fitted FC-E slope"
+                                    : "by number");
+    snprintf(e->caption, sizeof e->caption,
+             "LSE (the sum over the %s used configurations of the "
+             "squared difference between the model's and the measured "
+             "radiance, each divided by its maximum over those "
+             "configurations) of %s for each of the %zu samples; the x axis "
+             "lists the sample numbers %s%s.",
+             bf_fig_k_text(st, ktext, sizeof ktext), models, N,
+             by_slope ? "in order of increasing fitted FC-E slope m, as in "
+                        "the paper's Figure 2(b)"
+                      : "in increasing order (FC-E is not in the run)",
+             p->logy ? "; logarithmic LSE axis" : "");
+    snprintf(e->alt, sizeof e->alt,
+             "Line chart: LSE of %zu models (%.400s) for %zu samples%s.", M,
+             models, N, by_slope ? " sorted by FC-E slope" : "");
+    return BF_OK;
+}
+
+/* ==== samples won ======================================================== */
+
+/* A step for integer counts up to hi giving at most 6 ticks. */
+static double count_step(double hi)
+{
+    static const double steps[] = {1, 2, 5, 10, 20, 25, 50, 100, 200, 500};
+    size_t i;
+    for (i = 0; i < sizeof steps / sizeof *steps; i++) {
+        if (hi / steps[i] <= 6.0) {
+            return steps[i];
+        }
+    }
+    return 1000.0;
+}
+
+int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                int full)
+{
+    const bf_cli_study *st = D->st;
+    size_t M = st->n_models;
+    double *x = bf_fig_alloc(d, M * sizeof *x);
+    double *y = bf_fig_alloc(d, M * sizeof *y);
+    const char **names = bf_fig_alloc(d, M * sizeof *names);
+    bf_plot_series *ser = bf_fig_alloc(d, M * sizeof *ser);
+    bf_plot_panel *p = bf_fig_alloc(d, sizeof *p);
+    double hi = 1.0;
+    size_t s;
+    size_t m;
+
+    (void)full;
+    if (x == NULL || y == NULL || names == NULL || ser == NULL || p == NULL) {
+        return BF_ENOMEM;
+    }
+    for (s = 0; s < st->n_samples; s++) {
+        double best = HUGE_VAL;
+        for (m = 0; m < M; m++) {
+            const bf_study_row *r = bf_fig_row(st, s, m);
+            if (r->status == BF_OK && r->fit.lse < best) {
+                best = r->fit.lse;
+            }
+        }
+        for (m = 0; m < M; m++) {
+            const bf_study_row *r = bf_fig_row(st, s, m);
+            if (r->status == BF_OK && r->fit.lse == best) {
+                y[m] += 1.0; /* ties count for every tied model */
+            }
+        }
+    }
+    for (m = 0; m < M; m++) {
+        x[m] = (double)(m + 1);
+        names[m] = st->models[m]->name;
+        hi = fmax(hi, y[m]);
+        ser[m].kind = BF_SERIES_BARS;
+        ser[m].x = &x[m];
+        ser[m].y = &y[m];
+        ser[m].n = 1;
+        ser[m].style = bf_report_model_style(st->models[m]);
+    }
+    p->xmin = 0.4;
+    p->xmax = (double)M + 0.6;
+    p->ymin = 0.0;
+    p->ytick = count_step(hi);
+    p->ymax = ceil(hi * 1.18 / p->ytick) * p->ytick; /* room for the counts */
+    p->xtick_labels = names;
+    p->n_xticks = M;
+    p->series = ser;
+    p->n_series = M;
+    /* a bar a model: no wider than it needs */
+    d->fig.width = (unsigned)fmin((double)D->o->width, 90.0 + 42.0 * (double)M);
+    d->fig.aspect = 0.6;
+    d->fig.nx = d->fig.ny = 1;
+    d->fig.ylabel = "samples fitted best";
+    d->fig.panels = p;
+    d->fig.n_panels = 1;
+    snprintf(e->base, sizeof e->base, "wins");
+    snprintf(e->title, sizeof e->title, "Samples fitted best by each model");
+    snprintf(e->caption, sizeof e->caption,
+             "For each model, the number of the %zu samples on which it has "
+             "the lowest LSE among the models evaluated for that sample (a "
+             "tie counts for every tied model).",
+             st->n_samples);
+    snprintf(e->alt, sizeof e->alt,
+             "Bar chart: number of samples each of %zu models fits with the "
+             "lowest LSE.",
+             M);
+    return BF_OK;
+}
+
+/* ==== Figures 3-6: predicted against measured ============================ */
+
+int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+                   int full)
+{
+    const bf_cli_study *st = D->st;
+    int one = e->kind == BF_FIG_SAMPLE;
+    size_t s0 = one ? e->index : e->index * BF_FIG_SCATTER_SAMPLES;
+    size_t ns = one ? 1 : st->n_samples - s0;
+    size_t nm = D->nm;
+    size_t groups = (st->n_samples + BF_FIG_SCATTER_SAMPLES - 1) /
+                    BF_FIG_SCATTER_SAMPLES;
+    bf_plot_panel *panel;
+    bf_plot_series *ser;
+    char (*notes)[32];
+    char (*slabel)[256];
+    const char **cols;
+    const char **rows;
+    char models[256];
+    char key[64];
+    char ktext[48];
+    size_t a;
+    size_t b;
+
+    (void)full;
+    ns = ns > BF_FIG_SCATTER_SAMPLES ? BF_FIG_SCATTER_SAMPLES : ns;
+    panel = bf_fig_alloc(d, ns * nm * sizeof *panel);
+    ser = bf_fig_alloc(d, ns * nm * sizeof *ser);
+    notes = bf_fig_alloc(d, ns * nm * sizeof *notes);
+    slabel = bf_fig_alloc(d, ns * sizeof *slabel);
+    cols = bf_fig_alloc(d, (ns > nm ? ns : nm) * sizeof *cols);
+    rows = bf_fig_alloc(d, nm * sizeof *rows);
+    if (panel == NULL || ser == NULL || notes == NULL || slabel == NULL ||
+        cols == NULL || rows == NULL) {
+        return BF_ENOMEM;
+    }
+    /* a group: one column per sample, one row per model; one sample: one
+     * row, a column per model */
+    for (a = 0; a < ns; a++) {
+        size_t s = s0 + a;
+        const bf_fig_sample *r = &D->smp[s];
+        bf_fig_sample_label(st, s, slabel[a], sizeof slabel[a]);
+        for (b = 0; b < nm; b++) {
+            size_t m = D->idx[b];
+            size_t p = one ? b : b * ns + a;
+            const bf_study_row *row = bf_fig_row(st, s, m);
+            if (row->status == BF_OK) {
+                snprintf(notes[p], sizeof notes[p], "LSE %.2f", row->fit.lse);
+            } else {
+                snprintf(notes[p], sizeof notes[p], "not evaluated");
+            }
+            ser[p].kind = BF_SERIES_POINTS;
+            ser[p].x = r->data;
+            ser[p].y = &r->pred[m * r->K];
+            ser[p].n = r->ok[m] ? r->K : 0;
+            ser[p].style = bf_report_model_style(st->models[m]);
+            ser[p].weight = SCATTER_MARKER;
+            panel[p].xmin = panel[p].ymin = SCATTER_LO;
+            panel[p].xmax = panel[p].ymax = SCATTER_HI;
+            panel[p].xtick = panel[p].ytick = 0.5;
+            panel[p].diagonal = 1;
+            panel[p].note = notes[p];
+            panel[p].series = &ser[p];
+            panel[p].n_series = 1;
+        }
+    }
+    for (b = 0; b < nm; b++) {
+        rows[b] = st->models[D->idx[b]]->name;
+    }
+    d->fig.width = D->o->width;
+    d->fig.aspect = 1.0;
+    d->fig.nx = one ? nm : ns;
+    d->fig.ny = one ? 1 : nm;
+    d->fig.share_x = d->fig.share_y = 1;
+    d->fig.xlabel = "measured L/L_{max}";
+    d->fig.ylabel = "predicted L/L_{max}";
+    if (one) {
+        d->fig.col_labels = rows;
+    } else {
+        for (a = 0; a < ns; a++) {
+            cols[a] = slabel[a];
+        }
+        d->fig.col_labels = cols;
+        d->fig.row_labels = rows;
+    }
+    d->fig.panels = panel;
+    d->fig.n_panels = ns * nm;
+
+    bf_fig_model_list(st, D->idx, nm, models, sizeof models);
+    if (one) {
+        snprintf(ktext, sizeof ktext, "K = %zu", D->smp[s0].K);
+    } else {
+        bf_fig_k_text(st, ktext, sizeof ktext);
+    }
+    if (one) {
+        snprintf(e->base, sizeof e->base, "scatter_%s",
+                 bf_fig_target_key(st, s0, key, sizeof key));
+        snprintf(e->title, sizeof e->title, "%s: predicted against measured",
+                 slabel[0]);
+    } else {
+        snprintf(e->base, sizeof e->base, "scatter%zu", e->index + 1);
+        snprintf(e->title, sizeof e->title,
+                 "Figures 3–6, part %zu of %zu: predicted against measured",
+                 e->index + 1, groups);
+    }
+    snprintf(e->caption, sizeof e->caption,
+             "Predicted against measured radiance on the %s used "
+             "configurations%s, one %s per model (%s); measured and "
+             "predicted radiance are each divided by their maximum over the "
+             "K configurations (SPEC §2), the models at their fitted "
+             "parameters; the grey diagonal is perfect agreement, and each "
+             "panel gives the model's LSE.",
+             ktext,
+             one ? "" : ", one column per sample",
+             one ? "column" : "row", models);
+    snprintf(e->alt, sizeof e->alt,
+             "Grid of %zu scatter plots: predicted against measured "
+             "normalised radiance of %zu sample%s for the models %s.",
+             ns * nm, ns, ns == 1 ? "" : "s", models);
+    return BF_OK;
+}

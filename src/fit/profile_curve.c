@@ -1,0 +1,103 @@
+/* profile_curve.c: the profile of a fit's objective along one parameter, as a
+ * curve -- what the profile interval (uncertainty.c, doc/methods.md §3)
+ * thresholds, for drawing it.
+ *
+ * [1] Y. Pawitan, "In All Likelihood", OUP 2001, §9.2 (profile likelihood).
+ *
+ * Equation (doc/methods.md §3, Gaussian errors of unknown variance):
+ *   D(theta_j) = n ln(S_p(theta_j) / S_min),  S_p(theta_j) = min over the
+ *   other free parameters of S, n the sum of the weights;
+ *   the 95% interval is { theta_j : D <= chi2_1(0.95) = 3.841 }.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* S_p at theta: pb with parameter j held there (sub has j fixed), the other
+ * free parameters minimised from start, which gets their optimum. */
+static int profile_value(bf_problem *sub, size_t j, double theta,
+                         double *start, double *work, double *s)
+{
+    bf_fit_result r;
+    int rc;
+    sub->fixed[j] = theta;
+    start[j] = theta;
+    if (sub->free_mask == 0) {
+        return bf_problem_value(sub, sub->fixed, work, s);
+    }
+    rc = bf_fit_minimise(sub, start, &r);
+    if (rc != BF_OK && rc != BF_ENOCONV) {
+        return rc;
+    }
+    memcpy(start, r.param, BF_MAX_PARAMS * sizeof *start);
+    *s = r.lse;
+    return BF_OK;
+}
+
+int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
+                         size_t j, size_t n, const double *theta,
+                         double *dev)
+{
+    bf_problem sub;
+    double start[BF_MAX_PARAMS];
+    double *work;
+    double s_min;
+    double n_w = 0.0;
+    size_t mid = 0;
+    size_t i;
+    size_t k;
+    int side;
+    int rc;
+
+    if (pb == NULL || best == NULL || pb->type == NULL || j >= pb->type->p ||
+        !((pb->free_mask >> j) & 1u) || (n > 0 && (theta == NULL ||
+                                                   dev == NULL))) {
+        return BF_EINVAL;
+    }
+    for (i = 0; i < n; i++) {
+        if (!(theta[i] >= pb->lo[j] && theta[i] <= pb->hi[j]) ||
+            (i > 0 && !(theta[i] > theta[i - 1]))) {
+            return BF_EINVAL; /* outside the search range, or not increasing */
+        }
+    }
+    work = malloc(2 * pb->n * sizeof *work + 1);
+    if (work == NULL) {
+        return BF_ENOMEM;
+    }
+    for (k = 0; k < pb->n; k++) {
+        n_w += pb->weight != NULL ? pb->weight[k] : 1.0;
+    }
+    rc = bf_problem_value(pb, best->param, work, &s_min);
+    if (rc != BF_OK) {
+        free(work);
+        return rc;
+    }
+    s_min = fmax(s_min, DBL_MIN); /* an exact fit */
+    sub = *pb;
+    sub.free_mask &= ~(1u << j);
+    while (mid < n && theta[mid] < best->param[j]) {
+        mid++;
+    }
+    /* outward from the optimum, each point warm-started from its inner
+     * neighbour (the nuisance optimum moves smoothly with theta) */
+    for (side = 0; side < 2; side++) {
+        memcpy(sub.fixed, best->param, sizeof sub.fixed);
+        memcpy(start, best->param, sizeof start);
+        for (k = 0; side == 0 ? k < n - mid : k < mid; k++) {
+            size_t at = side == 0 ? mid + k : mid - 1 - k;
+            double s;
+            int e = profile_value(&sub, j, theta[at], start, work, &s);
+            if (e == BF_ENOMEM) {
+                free(work);
+                return e;
+            }
+            /* S_p >= S_min up to the minimiser's tolerance: D >= 0 */
+            dev[at] = e == BF_OK ? n_w * log(fmax(s, s_min) / s_min) : NAN;
+        }
+    }
+    free(work);
+    return BF_OK;
+}

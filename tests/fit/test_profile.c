@@ -1,0 +1,263 @@
+/* test_profile.c: what the report's figures draw from the library --
+ * bf_fit_profile_curve (doc/methods.md §3) against the objective evaluated
+ * directly and against the profile interval's ends, bf_fit_curve (SPEC §2)
+ * against the model evaluated and normalised by hand, and the plane of
+ * incidence (bf_geom_in_plane, bf_geom_plane_angle) against CURET's
+ * in-plane configurations. On the real CURET data. */
+#include <criterion/criterion.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "support.h"
+
+/* chi2_1(0.95), the 95% profile threshold (doc/methods.md §3). */
+#define CHI2_95 3.841458820694124
+/* The interval's ends are found to 1e-7 in the parameter; the deviance
+ * there is 3.841 to within slope * 1e-7 and the minimiser's tolerance. */
+#define TOL_END 1e-3
+
+static void setup(void)
+{
+    gsl_set_error_handler_off();
+}
+
+TestSuite(profile, .init = setup);
+
+/* Sample 44 (Linen) on the 198 non-specular configurations: geometry and
+ * normalised radiance. */
+static size_t linen(bf_geom *geom, double *data)
+{
+    bf_table *t = bf_test_load_table();
+    bf_brdf *b = bf_test_load_abrdf();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    long row = bf_brdf_find(b, 44);
+    size_t k;
+    cr_assert_geq(row, 0);
+    for (k = 0; k < n; k++) {
+        geom[k] = bf_table_geom(t, sel[k]);
+    }
+    cr_assert_eq(bf_data_radiance(t, bf_brdf_values(b, (size_t)row), n, sel,
+                                  data),
+                 BF_OK);
+    bf_brdf_free(b);
+    bf_table_free(t);
+    return n;
+}
+
+/* The exact optimum of pb (grid on curves, then refinement). */
+static void optimum(const bf_problem *pb, bf_fit_result *best)
+{
+    int st;
+    bf_curves *c = bf_curves_alloc(pb, &st);
+    bf_fit_result g;
+    cr_assert_not_null(c);
+    cr_assert_eq(bf_curves_best(c, pb, &g), BF_OK);
+    cr_assert_eq(bf_fit_refine(pb, &g, best), BF_OK);
+    bf_curves_free(c);
+}
+
+/* With one free parameter the profile is the objective itself:
+ * dev = K ln(S(theta) / S_min), S from bf_problem_value. */
+Test(profile, is_k_ln_of_the_objective_ratio_with_one_free_parameter)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    double work[2 * BF_CURET_NCONF];
+    double theta[9];
+    double dev[9];
+    size_t n = linen(geom, data);
+    bf_problem pb;
+    bf_fit_result best;
+    double s_min;
+    size_t i;
+    cr_assert_eq(bf_problem_init(&pb, bf_model_vh_e, NULL, n, geom, data),
+                 BF_OK);
+    optimum(&pb, &best);
+    cr_assert_eq(bf_problem_value(&pb, best.param, work, &s_min), BF_OK);
+    for (i = 0; i < 9; i++) { /* around the optimum, 1.26 for Linen */
+        theta[i] = 0.6 + 0.17 * (double)i;
+    }
+    cr_assert_eq(bf_fit_profile_curve(&pb, &best, 0, 9, theta, dev), BF_OK);
+    for (i = 0; i < 9; i++) {
+        double p[BF_MAX_PARAMS];
+        double s;
+        memcpy(p, best.param, sizeof p);
+        p[0] = theta[i];
+        cr_assert_eq(bf_problem_value(&pb, p, work, &s), BF_OK);
+        bf_assert_rel(dev[i], (double)n * log(s / s_min), TOL2);
+        cr_expect_geq(dev[i], 0.0);
+    }
+}
+
+/* The curve crosses the 95% threshold where bf_fit_profile_ci puts the
+ * interval's ends -- with n free in FC-E the other parameter is
+ * re-minimised at every point (two different code paths, one equation). */
+Test(profile, crosses_the_threshold_at_the_profile_interval_ends)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    bf_model_variant v;
+    size_t n = linen(geom, data);
+    bf_problem pb;
+    bf_fit_result best;
+    size_t closed = 0;
+    size_t j;
+    bf_model_variant_init(&v, bf_model_fc_e);
+    cr_assert_eq(bf_model_variant_fit(&v, "n", BF_FREE_N_LO, BF_FREE_N_HI,
+                                      BF_FREE_N_STEP),
+                 BF_OK);
+    cr_assert_eq(bf_problem_init(&pb, &v.type, NULL, n, geom, data), BF_OK);
+    optimum(&pb, &best);
+    for (j = 0; j < v.type.p; j++) {
+        double lo;
+        double hi;
+        unsigned open;
+        double ends[3];
+        double dev[3];
+        if (!((pb.free_mask >> j) & 1u)) {
+            continue;
+        }
+        cr_assert_eq(bf_fit_profile_ci(&pb, &best, j, 0.95, &lo, &hi, &open),
+                     BF_OK);
+        ends[0] = lo;
+        ends[1] = best.param[j];
+        ends[2] = hi;
+        cr_assert_eq(bf_fit_profile_curve(&pb, &best, j, 3, ends, dev),
+                     BF_OK);
+        bf_assert_abs(dev[1], 0.0, TOL_END);
+        if (!(open & 1u)) { /* an end at the search range is no crossing */
+            bf_assert_abs(dev[0], CHI2_95, TOL_END);
+            closed++;
+        }
+        if (!(open & 2u)) {
+            bf_assert_abs(dev[2], CHI2_95, TOL_END);
+            closed++;
+        }
+    }
+    cr_assert_geq(closed, 3u, "m's two ends and at least one of n's");
+}
+
+Test(profile, refuses_values_outside_the_search_range_or_unordered)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    size_t n = linen(geom, data);
+    bf_problem pb;
+    bf_fit_result best;
+    double out[2];
+    double above[2] = {1.0, 1e3};
+    double down[2] = {1.2, 1.1};
+    cr_assert_eq(bf_problem_init(&pb, bf_model_vh_e, NULL, n, geom, data),
+                 BF_OK);
+    optimum(&pb, &best);
+    cr_expect_eq(bf_fit_profile_curve(&pb, &best, 0, 2, above, out),
+                 BF_EINVAL);
+    cr_expect_eq(bf_fit_profile_curve(&pb, &best, 0, 2, down, out),
+                 BF_EINVAL);
+    cr_expect_eq(bf_fit_profile_curve(&pb, &best, 1, 2, down, out),
+                 BF_EINVAL, "VH-E has no parameter 1");
+}
+
+/* bf_fit_curve: the model at any configurations divided by its maximum
+ * over the used ones; at the used ones it is the fit's normalised curve,
+ * whose maximum is 1. */
+Test(profile, normalises_a_curve_by_its_maximum_over_the_used_configurations)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    double work[BF_CURET_NCONF];
+    double raw[BF_CURET_NCONF];
+    double out[BF_CURET_NCONF];
+    bf_geom at[3];
+    double at_raw[3];
+    double at_out[3];
+    const double param[1] = {0.83}; /* LFTG n_d */
+    size_t n = linen(geom, data);
+    double mx = 0.0;
+    size_t k;
+    cr_assert_eq(bf_model_eval(bf_model_lftg, param, n, geom, raw), BF_OK);
+    for (k = 0; k < n; k++) {
+        mx = fmax(mx, raw[k]);
+    }
+    cr_assert_eq(bf_fit_curve(bf_model_lftg, param, n, geom, n, geom, work,
+                              out),
+                 BF_OK);
+    for (k = 0; k < n; k++) {
+        bf_assert_rel(out[k], raw[k] / mx, TOL0);
+    }
+    at[0] = bf_geom_in_plane(0.4213, -1.3);
+    at[1] = bf_geom_in_plane(0.4213, 0.0);
+    at[2] = bf_geom_in_plane(1.2, 0.7);
+    cr_assert_eq(bf_model_eval(bf_model_lftg, param, 3, at, at_raw), BF_OK);
+    cr_assert_eq(bf_fit_curve(bf_model_lftg, param, n, geom, 3, at, work,
+                              at_out),
+                 BF_OK);
+    for (k = 0; k < 3; k++) {
+        bf_assert_rel(at_out[k], at_raw[k] / mx, TOL0);
+    }
+}
+
+Test(profile, refuses_a_curve_without_used_configurations)
+{
+    bf_geom g[1];
+    double work[1];
+    double out[1];
+    const double param[1] = {0.5};
+    g[0] = bf_geom_in_plane(0.3, 0.2);
+    cr_expect_eq(bf_fit_curve(bf_model_lftg, param, 0, g, 1, g, work, out),
+                 BF_EINVAL);
+    cr_expect_eq(bf_fit_curve(bf_model_lftg, param, 1, g, 1, NULL, work,
+                              out),
+                 BF_EINVAL);
+}
+
+/* CURET's in-plane configurations (viewing azimuth 0 or pi from the light
+ * in Beckmann's frame) map to their signed viewing angle, and
+ * bf_geom_in_plane gives the configuration back. */
+Test(profile, finds_curet_configurations_in_the_plane_of_incidence)
+{
+    bf_table *t = bf_test_load_table();
+    size_t in_plane = 0;
+    size_t k;
+    for (k = 0; k < bf_table_size(t); k++) {
+        bf_geom g = bf_table_geom(t, k);
+        double off;
+        double s = bf_geom_plane_angle(&g, &off);
+        bf_geom back;
+        if (off > 1e-9) {
+            continue;
+        }
+        in_plane++;
+        bf_assert_abs(fabs(s), g.theta_s, TOL1);
+        back = bf_geom_in_plane(g.theta_i, s);
+        bf_assert_abs(back.theta_s, g.theta_s, TOL1);
+        /* the same direction: forward (cos phi_s > 0) keeps its side */
+        cr_expect_eq(cos(back.phi_s) > 0.0, cos(g.phi_s) > 0.0 || s == 0.0,
+                     "configuration %zu", k + 1);
+    }
+    /* CURET measures the plane of incidence at many of its 205
+     * configurations (at least the 7 specular ones lie in it) */
+    cr_expect_geq(in_plane, 7u);
+    bf_table_free(t);
+}
+
+Test(profile, puts_signed_angles_on_the_forward_and_backward_sides)
+{
+    double off;
+    bf_geom f = bf_geom_in_plane(0.3, 0.9);
+    bf_geom b = bf_geom_in_plane(0.3, -0.9);
+    bf_assert_abs(bf_geom_plane_angle(&f, &off), 0.9, TOL0);
+    bf_assert_abs(off, 0.0, TOL0);
+    bf_assert_abs(bf_geom_plane_angle(&b, &off), -0.9, TOL0);
+    bf_assert_abs(f.phi_s, 0.0, TOL0);     /* forward: SPEC §1.2 */
+    bf_assert_abs(b.phi_s, M_PI, TOL0);
+    bf_assert_abs(f.phi_i, M_PI, TOL0);
+    /* a direction 0.4 rad out of the plane, seen from straight above the
+     * plane's normal: off-plane angle asin(sin ts |sin ps|) */
+    f.phi_s = 0.4;
+    (void)bf_geom_plane_angle(&f, &off);
+    bf_assert_abs(off, asin(sin(0.9) * sin(0.4)), TOL1);
+}
