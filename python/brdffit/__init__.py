@@ -8,7 +8,7 @@ every number comes from the library. See python/README.md section
     brdffit.models()                       # the registry
     brdffit.evaluate("FC-E", {"m": 0.3}, theta_i, phi_i, theta_o, phi_o)
     ds = brdffit.load("../shared/data/curet")
-    r = brdffit.fit(ds, "FC-E", material=5)
+    r = brdffit.fit(ds, "FC-E", material=5, fit="exact")
 """
 
 from ._version import VERSION as __version__
@@ -24,9 +24,18 @@ from .models import Model, Parameter, evaluate, model, models
 __all__ = [
     "BrdffitError", "ConvergenceError", "DomainError", "DomainWarning",
     "InvalidArgumentError", "LoadError", "NotFoundError", "OutOfMemoryError",
-    "ParseError", "Dataset", "Material", "load", "FitResult", "fit", "Model", "Parameter", "evaluate", "model", "models",
-    "library_candidates", "library_path", "library_version",
+    "ParseError", "Dataset", "Material", "load", "FitResult", "fit",
+    "Model", "Parameter", "evaluate",
+    "model", "models", "objectives", "library_candidates", "library_path",
+    "library_version",
 ]
+
+
+def objectives():
+    """The names of the objectives fit(), compare() and rank() accept
+    (the library's bf_objective_name: "max", the paper's LSE, first)."""
+    from ._study import OBJECTIVES
+    return list(OBJECTIVES)
 
 
 def library_version():
