@@ -55,6 +55,50 @@ const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
     return buf;
 }
 
+/* Byte length of the first n characters of UTF-8 text t (fewer if t is
+ * shorter). */
+static size_t utf8_prefix(const char *t, size_t n)
+{
+    size_t i = 0;
+    while (t[i] != '\0' && n > 0) {
+        i++;
+        while (((unsigned char)t[i] & 0xC0u) == 0x80u) {
+            i++; /* continuation bytes */
+        }
+        n--;
+    }
+    return i;
+}
+
+const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+                               size_t len)
+{
+    char title[256];
+    size_t cut;
+    bf_cli_sample_title(st, s, title, sizeof title);
+    if (title[0] == '\0') {
+        snprintf(buf, len, "sample %d", st->samples[s]);
+        return buf;
+    }
+    cut = utf8_prefix(title, BF_FIG_TICK_CHARS);
+    if (title[cut] != '\0') { /* longer: cut at a space, add an ellipsis */
+        size_t sp = cut;
+        while (sp > cut / 2 && title[sp] != ' ') {
+            sp--;
+        }
+        cut = title[sp] == ' ' ? sp : cut;
+        while (cut > 0 && (title[cut - 1] == ' ' || title[cut - 1] == ',' ||
+                           title[cut - 1] == ';')) {
+            cut--;
+        }
+        snprintf(buf, len, "%.*s\xe2\x80\xa6 (%d)", (int)cut, title,
+                 st->samples[s]);
+    } else {
+        snprintf(buf, len, "%s (%d)", title, st->samples[s]);
+    }
+    return buf;
+}
+
 const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
                               size_t len)
 {

@@ -103,6 +103,14 @@ void bf_figures_free(bf_fig_set *set);
  * s, into buf. */
 const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
                                 size_t len);
+/* Longest name (characters) a figure shows on an axis or above a panel. */
+#define BF_FIG_TICK_CHARS 24
+/* bf_fig_sample_label for text inside a figure (axis ticks, panel
+ * columns): a name longer than BF_FIG_TICK_CHARS characters is cut at a
+ * space and ends in an ellipsis ("Krylon spray enamel 7205... (4)"); the
+ * page's captions and tables keep the whole name. */
+const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+                               size_t len);
 /* The key of target s in file names and page anchors: "sample16", or
  * "sample16_R" when the study fits single channels (characters other than
  * letters, digits, '.', '-' written as '_'). */

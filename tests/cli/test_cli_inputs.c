@@ -188,8 +188,17 @@ Test(inputs, every_cornell_file_runs_through_compare_report_and_rank)
     argv[a + 1] = "VH-E,FC-E,LFTG,LAMBERT";
     argv[a + 2] = "--format";
     argv[a + 3] = "png";
-    argv[a + 4] = NULL;
+    argv[a + 4] = "--stats"; /* the analysis' figures too: the materials'
+                                long names must fit their axes */
+    argv[a + 5] = NULL;
     cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "%s", err);
+    {
+        char fig[PATH_LEN + 32];
+        snprintf(fig, sizeof fig, "%s/figures/delta_bic.png", out);
+        cr_assert_not_null(bf_test_slurp(fig, NULL), "%s", fig);
+        snprintf(fig, sizeof fig, "%s/figures/forest_FC-E.png", out);
+        cr_assert_not_null(bf_test_slurp(fig, NULL), "%s", fig);
+    }
     cr_assert_not_null(bf_test_slurp(strcat(out, "/report.html"), NULL));
     argv[0] = "rank";
     snprintf(out, sizeof out, "%s/rank", dir);
