@@ -334,7 +334,7 @@ Test(inputs, cornell_as_brdf_csv_and_astm_gives_identical_fits)
         cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "%s: %s", src[f],
                      err);
         {
-            char path[PATH_LEN];
+            char path[PATH_LEN + 16];
             snprintf(path, sizeof path, "%s/fits.csv", out[f]);
             t = bf_test_slurp(path, NULL);
             cr_assert_not_null(t);
