@@ -9,7 +9,8 @@
 #   make test   build and run every test, plain and with ASan+UBSan
 #   make bench  run the speed benchmarks, bench_study and bench_merl (never
 #               part of the tests; the numpy baselines run when
-#               /usr/bin/python3 has numpy)
+#               /usr/bin/python3 has numpy, the numpy/scipy peer of the
+#               analysis when it has scipy too)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
@@ -110,7 +111,8 @@ valgrind: build
 bench: build
 	@scripts/install-deps.sh bench
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_study --data "$(CURET)" --reference "$(REFERENCE)" \
-	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py
+	    --cli $(BUILD)/brdffit --numpy bench/numpy_baseline.py \
+	    --peer ../shared/peers/rank_baseline.py
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_merl --data "$(CURET)" \
 	    --numpy bench/numpy_cells.py
 

@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -85,7 +86,12 @@ static void spec_init(const inputs_t *in, bf_study_spec *spec)
     spec->n_threads = 1;
 }
 
-/* Median time of reps runs of the study spec (seconds). */
+/* The fastest of the runs time_study last timed (seconds): on a machine
+ * shared with other work, the run least disturbed by it. */
+static double last_min;
+
+/* Median time of reps runs of the study spec (seconds); last_min gets the
+ * fastest. */
 static double time_study(const bf_study_spec *spec, int reps)
 {
     bf_study_row *rows = calloc(spec->n_targets * spec->n_models + 1,
@@ -105,10 +111,14 @@ static double time_study(const bf_study_spec *spec, int reps)
         t[i] = bf_bench_now() - t0;
     }
     med = bf_bench_median(t, reps);
+    last_min = t[0]; /* sorted by bf_bench_median() */
     free(rows);
     free(t);
     return med;
 }
+
+/* CPU time (user + system) of the last child timed by time_process. */
+static double last_cpu;
 
 /* Runs argv as a child process with its output discarded; returns the
  * wall time, or -1 when it did not exit with status 0. */
@@ -117,6 +127,7 @@ static double time_process(char *const *argv)
     double t0;
     int status = 0;
     pid_t pid;
+    struct rusage ru;
     fflush(stdout); /* the child must not repeat buffered output */
     fflush(stderr);
     t0 = bf_bench_now();
@@ -135,6 +146,17 @@ static double time_process(char *const *argv)
     if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) ||
         WEXITSTATUS(status) != 0) {
         return -1.0;
+    }
+    /* the children's CPU so far, minus what earlier children used */
+    getrusage(RUSAGE_CHILDREN, &ru);
+    {
+        static double before;
+        double all = (double)ru.ru_utime.tv_sec +
+                     1e-6 * (double)ru.ru_utime.tv_usec +
+                     (double)ru.ru_stime.tv_sec +
+                     1e-6 * (double)ru.ru_stime.tv_usec;
+        last_cpu = all - before;
+        before = all;
     }
     return bf_bench_now() - t0;
 }
@@ -187,6 +209,7 @@ typedef struct {
     double div;
     double sqrt;
     int avx512;
+    int bits; /* vector width of the kernels' clone (0: baseline) */
 } machine_t;
 
 static void cpu_model(char *buf, size_t len)
@@ -247,18 +270,23 @@ static machine_t machine(void)
     printf("| build | %s; C flags: %s |\n", BF_BUILD_TYPE, BF_C_FLAGS);
     printf("| kernels (src/fit/kernels.c) | -O3 -fno-math-errno, "
            "target_clones x86-64-v4 / x86-64-v3 / default |\n");
-    if (mc.avx512) {
-        mc.fma = bf_bench_lanes_per_second(BF_BENCH_FMA) / mc.hz;
-        mc.add = bf_bench_lanes_per_second(BF_BENCH_ADD) / mc.hz;
-        mc.div = bf_bench_lanes_per_second(BF_BENCH_DIV) / mc.hz;
-        mc.sqrt = bf_bench_lanes_per_second(BF_BENCH_SQRT) / mc.hz;
-        printf("| 512-bit FMA throughput | %.1f double lanes/cycle |\n",
-               mc.fma);
-        printf("| 512-bit add throughput | %.1f lanes/cycle |\n", mc.add);
-        printf("| 512-bit division throughput | %.2f lanes/cycle |\n",
-               mc.div);
-        printf("| 512-bit square root throughput | %.2f lanes/cycle |\n",
-               mc.sqrt);
+    mc.bits = mc.avx512 ? 512
+              : (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+                  ? 256
+                  : 0;
+    if (mc.bits > 0) { /* the width the kernels' clone uses */
+        mc.fma = bf_bench_lanes_per_second(BF_BENCH_FMA, mc.bits) / mc.hz;
+        mc.add = bf_bench_lanes_per_second(BF_BENCH_ADD, mc.bits) / mc.hz;
+        mc.div = bf_bench_lanes_per_second(BF_BENCH_DIV, mc.bits) / mc.hz;
+        mc.sqrt = bf_bench_lanes_per_second(BF_BENCH_SQRT, mc.bits) / mc.hz;
+        printf("| %d-bit FMA throughput | %.1f double lanes/cycle |\n",
+               mc.bits, mc.fma);
+        printf("| %d-bit add throughput | %.1f lanes/cycle |\n", mc.bits,
+               mc.add);
+        printf("| %d-bit division throughput | %.2f lanes/cycle |\n",
+               mc.bits, mc.div);
+        printf("| %d-bit square root throughput | %.2f lanes/cycle |\n",
+               mc.bits, mc.sqrt);
     }
     printf("\n");
     return mc;
@@ -601,6 +629,89 @@ static double numpy_compute(const char *script, const char *data,
     return ms < 0.0 ? -1.0 : 1e-3 * ms;
 }
 
+/* ==== the analysis beyond the paper (issue 11) =========================== */
+
+/* The issue's figures before the engine (same machine): rank with its 9
+ * default models 196 s, without WNO-R 30 s (0.84x the numpy/scipy peer's
+ * 24.7 s), compare --fit exact --bootstrap 1000 --models all 341 s for ONE
+ * sample (so about 61 x 341 s = 5.8 h for all). */
+#define NOW_RANK 196.0
+#define NOW_RANK8 30.0
+#define NOW_PEER_RATIO 0.84
+#define NOW_BOOT_ALL (61.0 * 341.0)
+
+static void analysis(const char *cli, const char *peer, const char *dir,
+                     int reps)
+{
+    char tmpl[] = "/tmp/bench_analysis.XXXXXX";
+    char peer_out[4096];
+    double t_rank[16];
+    double c_rank[16];
+    double t_rank8[16];
+    double c_rank8[16];
+    double t_peer[16];
+    double c_peer[16];
+    double t_boot;
+    double c_boot;
+    int have_peer = peer != NULL && access("/usr/bin/python3", X_OK) == 0;
+    int r;
+    if (mkdtemp(tmpl) == NULL) {
+        die("temporary folder", NULL);
+    }
+    snprintf(peer_out, sizeof peer_out, "%s/peer.csv", tmpl);
+    for (r = 0; r < reps && r < 16; r++) { /* alternating runs */
+        char *a9[] = {arg(cli), arg("rank"), arg("--data"), arg(dir),
+                      arg("--out"), tmpl, arg("-q"), NULL};
+        char *a8[] = {arg(cli), arg("rank"), arg("--data"), arg(dir),
+                      arg("--models"),
+                      arg("VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO"),
+                      arg("--out"), tmpl, arg("-q"), NULL};
+        char *ap[] = {arg("/usr/bin/python3"), arg(peer), arg("--data"),
+                      arg(dir), arg("--out"), peer_out, NULL};
+        t_rank[r] = time_process(a9);
+        c_rank[r] = last_cpu;
+        t_rank8[r] = time_process(a8);
+        c_rank8[r] = last_cpu;
+        t_peer[r] = have_peer ? time_process(ap) : -1.0;
+        c_peer[r] = last_cpu;
+    }
+    {
+        char *ab[] = {arg(cli), arg("compare"), arg("--data"), arg(dir),
+                      arg("--fit"), arg("exact"), arg("--bootstrap"),
+                      arg("1000"), arg("--samples"), arg("all"),
+                      arg("--models"), arg("all"), arg("--out"), tmpl,
+                      arg("-q"), NULL};
+        t_boot = time_process(ab);
+        c_boot = last_cpu;
+    }
+    printf("## The analysis beyond the paper (issue 11; whole processes, "
+           "all cores, median of %d alternating runs)\n\n", r);
+    printf("| run | wall | CPU | before (issue 11) | ratio |\n"
+           "|---|---|---|---|---|\n");
+    printf("| `brdffit rank` (61 samples, 9 default models) | %.2f s | "
+           "%.2f s | %.0f s | %.0fx faster |\n",
+           bf_bench_median(t_rank, r), bf_bench_median(c_rank, r), NOW_RANK,
+           NOW_RANK / bf_bench_median(t_rank, r));
+    printf("| `brdffit rank` without WNO-R (8 models) | %.2f s | %.2f s | "
+           "%.0f s | %.0fx faster |\n",
+           bf_bench_median(t_rank8, r), bf_bench_median(c_rank8, r), NOW_RANK8,
+           NOW_RANK8 / bf_bench_median(t_rank8, r));
+    if (have_peer && bf_bench_median(t_peer, r) > 0.0) {
+        printf("| numpy/scipy peer (`rank_baseline.py`, the same 8 models) "
+               "| %.2f s | %.2f s | | brdffit %.1fx faster (before: "
+               "%.2fx) |\n",
+               bf_bench_median(t_peer, r), bf_bench_median(c_peer, r),
+               bf_bench_median(t_peer, r) / bf_bench_median(t_rank8, r), NOW_PEER_RATIO);
+    }
+    if (t_boot > 0.0) {
+        printf("| `compare --fit exact --bootstrap 1000 --samples all "
+               "--models all` (1 run) | %.1f s | %.1f s | about %.0f s | "
+               "%.0fx faster |\n",
+               t_boot, c_boot, NOW_BOOT_ALL, NOW_BOOT_ALL / t_boot);
+    }
+    printf("\n");
+}
+
 /* ==== main =============================================================== */
 
 int main(int argc, char **argv)
@@ -609,6 +720,7 @@ int main(int argc, char **argv)
     const char *refdir = NULL;
     const char *cli = NULL;
     const char *numpy = NULL;
+    const char *peer = NULL;
     reps_t reps = {51, 21, 21, 3, 11, 5};
     char path[4096];
     char on_path[4096];
@@ -618,6 +730,7 @@ int main(int argc, char **argv)
     bf_study_spec spec;
     machine_t mc;
     double t_paper;
+    double t_paper_min;
     double t_paper2;
     double t_proc = -1.0;
     double t_proc2 = -1.0;
@@ -635,11 +748,14 @@ int main(int argc, char **argv)
             cli = argv[++a];
         } else if (strcmp(argv[a], "--numpy") == 0 && a + 1 < argc) {
             numpy = argv[++a];
+        } else if (strcmp(argv[a], "--peer") == 0 && a + 1 < argc) {
+            peer = argv[++a];
         } else if (strcmp(argv[a], "--quick") == 0) {
             reps = (reps_t){5, 3, 3, 1, 3, 1};
         } else {
             fprintf(stderr, "usage: bench_study [--data DIR] [--reference "
-                            "DIR] [--cli PATH] [--numpy SCRIPT] [--quick]\n");
+                            "DIR] [--cli PATH] [--numpy SCRIPT] [--peer "
+                            "SCRIPT] [--quick]\n");
             return 2;
         }
     }
@@ -694,6 +810,7 @@ int main(int argc, char **argv)
     /* the paper protocol */
     spec_init(&in, &spec);
     t_paper = time_study(&spec, reps.study);
+    t_paper_min = last_min;
     spec.n_threads = 2;
     t_paper2 = time_study(&spec, reps.study);
     if (cli != NULL && mkdtemp(tmpl) != NULL) {
@@ -744,7 +861,7 @@ int main(int argc, char **argv)
     printf("\n");
 
     /* the floor */
-    if (mc.avx512) {
+    if (mc.bits > 0) {
         ops_t ops;
         double fl = floor_seconds(&mc, in.n_sel, 501, BF_STUDY_NSAMPLES,
                                   &ops);
@@ -754,13 +871,15 @@ int main(int argc, char **argv)
                "%.3g divisions, %.3g square roots (double lanes).\n\n",
                ops.fma, ops.add, ops.div, ops.sqrt);
         printf("| FMA pipes | add pipes | divider | floor | measured "
-               "(1 thread) | measured / floor |\n");
-        printf("|---|---|---|---|---|---|\n");
-        printf("| %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.2f "
-               "|\n\n",
+               "(1 thread, median) | fastest run | median / floor | "
+               "fastest / floor |\n");
+        printf("|---|---|---|---|---|---|---|---|\n");
+        printf("| %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.3f ms "
+               "| %.2f | %.2f |\n\n",
                1e3 * ops.fma / mc.fma / mc.hz, 1e3 * ops.add / mc.add / mc.hz,
                1e3 * ((ops.div / mc.div) + (ops.sqrt / mc.sqrt)) / mc.hz,
-               1e3 * fl, 1e3 * t_paper, t_paper / fl);
+               1e3 * fl, 1e3 * t_paper, 1e3 * t_paper_min, t_paper / fl,
+               t_paper_min / fl);
     }
 
     /* all 61 samples x all models; bootstrap */
@@ -802,6 +921,9 @@ int main(int argc, char **argv)
     }
 
     scaling(&in, &reps);
+    if (cli != NULL) {
+        analysis(cli, peer, dir, reps.process > 5 ? 3 : 1);
+    }
     printf("Threads: the paper protocol's fit compute on 2 threads is "
            "%.2fx faster than on 1 (the machine has %d cores).\n",
            t_paper / t_paper2, mc.cores);

@@ -1,8 +1,10 @@
 /* machine.c: measures what one core of this machine can do -- its clock and
- * the throughput of 512-bit fused multiply-adds, adds, divisions and square
- * roots -- for the floor of bench_study (the lower bound of the paper
+ * the throughput of fused multiply-adds, adds, divisions and square roots
+ * on 512-bit (AVX-512) or 256-bit (AVX2) vectors, the widths the kernels'
+ * clones use -- for the floor of bench_study (the lower bound of the paper
  * protocol's time). Compiled with -mavx512f -mfma (bench/CMakeLists.txt);
- * bench_study calls it only when the CPU has AVX-512.
+ * bench_study calls the 512-bit loops only when the CPU has AVX-512, the
+ * 256-bit ones (target attribute avx2,fma) only when it has AVX2.
  *
  * Each loop keeps enough independent chains in flight to hide latency, so
  * its time is set by throughput. Results are per cycle, from the clock
@@ -88,6 +90,40 @@ double bf_bench_clock_hz(void)
         return 8.0 * CHAINS * (double)reps / dt;                           \
     }
 
+/* The same on 256-bit registers (AVX2 + FMA), 4 lanes each. */
+#define THROUGHPUT_LOOP256(name, OP)                                       \
+    __attribute__((target("avx2,fma"))) static double name(long reps)     \
+    {                                                                      \
+        __m256d a[CHAINS];                                                 \
+        const __m256d m = _mm256_set1_pd(0.999999999);                     \
+        const __m256d c = _mm256_set1_pd(1e-9);                            \
+        const __m256d two = _mm256_set1_pd(2.0);                           \
+        double sink[4];                                                    \
+        double t0;                                                         \
+        double dt;                                                         \
+        long r;                                                            \
+        int i;                                                             \
+        for (i = 0; i < CHAINS; i++) {                                     \
+            a[i] = _mm256_set1_pd(1.0 + (0.01 * i));                       \
+        }                                                                  \
+        t0 = now();                                                        \
+        for (r = 0; r < reps; r++) {                                       \
+            for (i = 0; i < CHAINS; i++) {                                 \
+                a[i] = OP;                                                 \
+            }                                                              \
+        }                                                                  \
+        dt = now() - t0;                                                   \
+        for (i = 1; i < CHAINS; i++) {                                     \
+            a[0] = _mm256_add_pd(a[0], a[i]);                              \
+        }                                                                  \
+        _mm256_storeu_pd(sink, a[0]);                                      \
+        bf_bench_sink += sink[0];                                          \
+        (void)m;                                                           \
+        (void)c;                                                           \
+        (void)two;                                                         \
+        return 4.0 * CHAINS * (double)reps / dt;                           \
+    }
+
 /* Where the loops store their result (never read). */
 static volatile double bf_bench_sink;
 
@@ -95,8 +131,12 @@ THROUGHPUT_LOOP(run_fma, _mm512_fmadd_pd(a[i], m, c))
 THROUGHPUT_LOOP(run_add, _mm512_add_pd(a[i], c))
 THROUGHPUT_LOOP(run_div, _mm512_div_pd(two, a[i])) /* a, 2/a, a, ... */
 THROUGHPUT_LOOP(run_sqrt, _mm512_sqrt_pd(a[i]))    /* tends to 1 */
+THROUGHPUT_LOOP256(run_fma256, _mm256_fmadd_pd(a[i], m, c))
+THROUGHPUT_LOOP256(run_add256, _mm256_add_pd(a[i], c))
+THROUGHPUT_LOOP256(run_div256, _mm256_div_pd(two, a[i]))
+THROUGHPUT_LOOP256(run_sqrt256, _mm256_sqrt_pd(a[i]))
 
-double bf_bench_lanes_per_second(int kind)
+double bf_bench_lanes_per_second(int kind, int bits)
 {
     double best = 0.0;
     int t;
@@ -104,16 +144,16 @@ double bf_bench_lanes_per_second(int kind)
         double rate;
         switch (kind) {
         case BF_BENCH_FMA:
-            rate = run_fma(200000);
+            rate = bits == 512 ? run_fma(200000) : run_fma256(200000);
             break;
         case BF_BENCH_ADD:
-            rate = run_add(200000);
+            rate = bits == 512 ? run_add(200000) : run_add256(200000);
             break;
         case BF_BENCH_DIV:
-            rate = run_div(20000);
+            rate = bits == 512 ? run_div(20000) : run_div256(20000);
             break;
         default:
-            rate = run_sqrt(20000);
+            rate = bits == 512 ? run_sqrt(20000) : run_sqrt256(20000);
             break;
         }
         if (rate > best) {

@@ -155,6 +155,22 @@ int bf_out_commit(bf_out *o);
 void bf_out_abort(bf_out *o);
 
 /* Subcommands. */
+/* The progress line of a long run (cli/progress.c): on stderr when it is
+ * a terminal and not quiet, once the run has lasted a second, with the time
+ * left at the mean rate; bf_cli_progress_cb is a bf_progress_fn (ctx: the
+ * bf_cli_progress). */
+typedef struct {
+    const char *what;
+    int enabled;
+    int shown;
+    double t0;
+    double last;
+} bf_cli_progress;
+void bf_cli_progress_init(bf_cli_progress *p, const char *what, int quiet);
+void bf_cli_progress_cb(void *ctx, size_t done, size_t total);
+/* Ends the line (a final "done in ..."), when one was shown. */
+void bf_cli_progress_end(bf_cli_progress *p);
+
 int bf_cmd_compare(int argc, char **argv);
 int bf_cmd_convert(int argc, char **argv);
 int bf_cmd_info(int argc, char **argv);

@@ -4,7 +4,7 @@
  * table2.md and table3.md atomically into the output folder. */
 #include <string.h>
 
-#include "study.h"
+#include "tables.h"
 
 static void usage(FILE *fp)
 {

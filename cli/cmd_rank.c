@@ -1,19 +1,19 @@
 /* cmd_rank.c: `brdffit rank` -- model selection per sample: fits every
  * model to every sample (by default all samples of the data, --fit exact),
  * ranks the models of each sample by AIC, BIC and cross-validated error
- * (doc/methods.md §4-5), prints the ranking and a summary over samples and
- * writes ranking.csv and ranking.md atomically into the output folder. */
-#include <math.h>
-#include <stdlib.h>
+ * (doc/methods.md §4-5), prints the ranking, the best model's parameters
+ * and a summary over samples, and writes ranking.csv (the library's
+ * bf_ranking_csv_write) and ranking.md atomically into the output folder. */
 #include <string.h>
 
-#include "study.h"
+#include "ranking.h"
+#include "tables.h"
 #include "texttable.h"
 
-/* The models rank compares by default: the paper's six, the Lambert
- * baseline and the two Wolff-Nayar-Oren models. */
-#define RANK_MODELS "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO,WNO-R"
-
+/* rank's defaults: every sample of the data, the exact fit, the paper's
+ * six models, the Lambert baseline and the two Wolff-Nayar-Oren models. */
+static const bf_cli_defaults rank_defaults = {
+    "all", "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO,WNO-R", 1, 1};
 
 static void usage(FILE *fp)
 {
@@ -21,18 +21,20 @@ static void usage(FILE *fp)
 "Usage: brdffit rank [OPTIONS]\n"
 "\n"
 "Ranks reflectance models per sample by AIC, BIC and K-fold\n"
-"cross-validated error (doc/methods.md), after fitting each model (by\n"
-"default with --fit exact, on every sample of the data, models\n"
-RANK_MODELS ").\n"
-"Prints the ranking and a summary over samples ('FC-E best for 32 of 61\n"
-"samples, ...') and writes ranking.csv and ranking.md into the output\n"
-"folder.\n"
+"cross-validated error (doc/methods.md), after fitting each model.\n"
+"Prints the ranking, the best model of each sample with its fitted\n"
+"parameters and 95% profile intervals, and a summary over samples ('FC-E\n"
+"best for 32 of 61 samples, ...'); writes ranking.csv (criteria, ranks,\n"
+"parameters and intervals of every model) and ranking.md into the output\n"
+"folder. A tie (values within a relative 1e-9) goes to the model with\n"
+"fewer parameters; a fit that reduces to a smaller model (ON at sigma = 0\n"
+"is LAMBERT) wins for that model.\n"
 "\n"
 "Options:\n"
-"  --criterion C     aic, bic (default) or cv: the one the table and the\n"
-"                    summary lead with (ranking.csv has all three)\n",
+"  --criterion C     aic, bic or cv: the one the tables and the summary\n"
+"                    lead with (ranking.csv has all three; default bic)\n",
         fp);
-    bf_cli_opts_usage(fp);
+    bf_cli_opts_usage_defaults(fp, &rank_defaults);
     bf_cli_exit_usage(fp);
 }
 
@@ -40,59 +42,22 @@ enum { O_CRITERION = 512 };
 
 static int handle(int val, const char *arg, void *ctx)
 {
-    int *crit = ctx;
-    size_t c;
+    bf_criterion *crit = ctx;
     if (val != O_CRITERION) {
         return BF_EXIT_SOFTWARE;
     }
-    for (c = 0; c < BF_CLI_NCRIT; c++) {
-        char lower[8];
-        size_t i;
-        for (i = 0; bf_cli_crit_names[c][i] != '\0'; i++) {
-            lower[i] = (char)(bf_cli_crit_names[c][i] - 'A' + 'a');
-        }
-        lower[i] = '\0';
-        if (strcmp(arg, lower) == 0) {
-            *crit = (int)c;
-            return 0;
-        }
+    if (bf_criterion_find(arg, crit) != BF_OK) {
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, "rank ",
+                                 "--criterion: '%s' is not aic, bic or cv",
+                                 arg);
     }
-    return bf_cli_usage_fail(BF_EXIT_BADVALUE, "rank ", "--criterion: '%s' is not aic, bic "
-                              "or cv", arg);
+    return 0;
 }
 
-/* Criterion c of a row, NaN when the row has no value. */
-static void write_csv(const bf_cli_study *st, FILE *fp)
+static void write_md(const bf_cli_study *st, const bf_tt *t,
+                     const bf_tt *best, int crit, FILE *fp)
 {
-    size_t s;
     size_t m;
-    fputs("sample,name,channel,model,objective,fit,k,n,objective_value,aic,bic,cv,"
-          "rank_aic,rank_bic,rank_cv\n",
-          fp);
-    for (s = 0; s < st->n_samples; s++) {
-        for (m = 0; m < st->n_models; m++) {
-            size_t i = s * st->n_models + m;
-            const bf_fit_stats *f = &st->stats[i];
-            if (st->rows[i].status != BF_OK || !f->done) {
-                continue;
-            }
-            bf_cli_csv_sample(fp, st, s);
-            fprintf(fp, ",%s,%s,%s,%zu,%zu,%.10g,%.10g,%.10g,",
-                    st->models[m]->name, bf_objective_name(f->objective),
-                    st->opts.exact ? "exact" : "paper", f->k, f->n,
-                    st->rows[i].fit.lse, f->aic, f->bic);
-            if (isfinite(f->cv)) {
-                fprintf(fp, "%.10g", f->cv);
-            }
-            fprintf(fp, ",%zu,%zu,%zu\n", bf_cli_rank_of(st, s, m, BF_CLI_AIC),
-                    bf_cli_rank_of(st, s, m, BF_CLI_BIC), bf_cli_rank_of(st, s, m, BF_CLI_CV));
-        }
-    }
-}
-
-static void write_md(const bf_cli_study *st, const bf_tt *t, int crit,
-                     FILE *fp)
-{
     int c;
     fputs("# Model ranking\n\n", fp);
     bf_cli_study_describe(st, fp);
@@ -104,9 +69,26 @@ static void write_md(const bf_cli_study *st, const bf_tt *t, int crit,
         fputs("- ", fp);
         bf_cli_rank_summary(st, c, fp);
     }
+    fprintf(fp, "\nBest model by %s and its fitted parameters:\n\n",
+            bf_cli_crit_names[crit]);
+    bf_tt_print(best, fp);
+    fputs("\n## Fitted parameters of every model\n\n"
+          "value [95% profile interval] {bootstrap interval, when run}; "
+          "flags as in fits.csv (README \"Output files\").\n",
+          fp);
+    for (m = 0; m < st->n_models; m++) {
+        bf_tt *p = bf_cli_params_table(st, m);
+        if (p == NULL) {
+            continue; /* nothing fitted */
+        }
+        fprintf(fp, "\n### %s\n\n", st->models[m]->name);
+        bf_tt_print(p, fp);
+        bf_tt_free(p);
+    }
 }
 
-static int write_files(const bf_cli_study *st, const bf_tt *t, int crit)
+static int write_files(const bf_cli_study *st, const bf_tt *t,
+                       const bf_tt *best, int crit)
 {
     bf_out csv;
     bf_out md;
@@ -123,8 +105,14 @@ static int write_files(const bf_cli_study *st, const bf_tt *t, int crit)
         bf_out_abort(&csv);
         return rc;
     }
-    write_csv(st, csv.fp);
-    write_md(st, t, crit, md.fp);
+    if (bf_ranking_csv_write(csv.fp, &st->spec, st->rows, st->stats,
+                             &st->analysis) != BF_OK) {
+        bf_cli_err("internal error: ranking.csv could not be written");
+        bf_out_abort(&csv);
+        bf_out_abort(&md);
+        return BF_EXIT_SOFTWARE;
+    }
+    write_md(st, t, best, crit, md.fp);
     rc = bf_out_commit(&csv);
     if (rc != BF_EXIT_OK) {
         bf_out_abort(&md);
@@ -138,45 +126,39 @@ int bf_cmd_rank(int argc, char **argv)
     static const struct option longopts[] = {
         {"criterion", required_argument, NULL, O_CRITERION},
         {NULL, 0, NULL, 0}};
-    int crit = BF_CLI_BIC;
+    bf_criterion crit = BF_CRIT_BIC;
     bf_cli_extra extra = {longopts, handle, &crit};
     bf_cli_study st;
     bf_tt *t = NULL;
+    bf_tt *best = NULL;
     int rc;
 
     memset(&st, 0, sizeof st);
     st.cmd = "rank";
-    rc = bf_cli_opts_parse(st.cmd, argc, argv, usage, &extra, &st.opts);
+    rc = bf_cli_opts_parse_defaults(st.cmd, argc, argv, usage, &extra,
+                                    &rank_defaults, &st.opts);
     if (rc != 0) {
         return rc < 0 ? BF_EXIT_OK : rc;
     }
-    if (!st.opts.samples_given) {
-        st.opts.samples = "all"; /* every sample of the data */
-    }
-    if (st.opts.models == NULL) {
-        st.opts.models = RANK_MODELS;
-    }
-    if (!st.opts.fit_given) {
-        st.opts.exact = 1;
-    }
     st.opts.stats = 1; /* the ranking needs AIC, BIC and CV */
-    if (crit == BF_CLI_CV && st.opts.folds < 2) {
-        return bf_cli_usage_fail(BF_EXIT_CONFLICT, "rank ", "--criterion cv needs --folds "
-                                  ">= 2");
+    if (crit == BF_CRIT_CV && st.opts.folds < 2) {
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, "rank ",
+                                 "--criterion cv needs --folds >= 2");
     }
     rc = bf_cli_study_prepare(&st);
     if (rc == BF_EXIT_OK) {
         rc = bf_cli_study_run(&st);
     }
     if (rc == BF_EXIT_OK) {
-        t = bf_cli_rank_table(&st, crit);
-        if (t == NULL) {
+        t = bf_cli_rank_table(&st, (int)crit);
+        best = bf_cli_best_table(&st, (int)crit);
+        if (t == NULL || best == NULL) {
             bf_cli_err("out of memory");
             rc = BF_EXIT_SOFTWARE;
         }
     }
     if (rc == BF_EXIT_OK) {
-        rc = write_files(&st, t, crit);
+        rc = write_files(&st, t, best, (int)crit);
     }
     if (rc == BF_EXIT_OK && !st.opts.quiet) {
         int c;
@@ -184,14 +166,19 @@ int bf_cmd_rank(int argc, char **argv)
         printf("%s per sample (lower is better; * the best)\n\n",
                bf_cli_crit_names[crit]);
         bf_tt_print(t, stdout);
+        printf("\nBest model by %s and its fitted parameters\n\n",
+               bf_cli_crit_names[crit]);
+        bf_tt_print(best, stdout);
         printf("\nSummary over samples:\n");
         for (c = 0; c < BF_CLI_NCRIT; c++) {
             bf_cli_rank_summary(&st, c, stdout);
         }
-        printf("\nWritten: %s/ranking.csv, %s/ranking.md\n",
+        printf("\nWritten: %s/ranking.csv (parameters and intervals of "
+               "every model), %s/ranking.md\n",
                st.opts.out_dir, st.opts.out_dir);
     }
     bf_tt_free(t);
+    bf_tt_free(best);
     bf_cli_study_free(&st);
     return rc;
 }

@@ -11,7 +11,7 @@
 
 #include "figures.h"
 #include "report_html.h"
-#include "study.h"
+#include "tables.h"
 
 #define DEG (M_PI / 180.0)
 

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "fig_internal.h"
+#include "ranking.h"
 #include "model_style.h"
 
 /* chi2_1(0.95): the profile interval's threshold (doc/methods.md §3). */

@@ -1,75 +1,110 @@
-/* ranking.c: model selection per sample (doc/methods.md §4-5) -- the
- * criterion values, ranks and best models of a study run with its analysis,
- * the per-sample table and the summary over samples. Shared by `brdffit
- * rank` (ranking.csv, ranking.md) and `brdffit report --stats`. */
+/* ranking.c: model selection per sample as the CLI prints it
+ * (doc/methods.md §4-5) -- criterion values, ranks and best models from
+ * the library (bf_rank, bf_study_wins), the per-sample tables (criteria,
+ * fitted parameters with their intervals) and the summary over samples.
+ * Shared by `brdffit rank` (ranking.md, standard output) and `brdffit
+ * report --stats`. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "study.h"
+#include "ranking.h"
 #include "texttable.h"
 
 const char *const bf_cli_crit_names[BF_CLI_NCRIT] = {"AIC", "BIC", "CV"};
 
 double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c)
 {
-    const bf_fit_stats *s = &st->stats[i];
-    if (st->rows[i].status != BF_OK || !s->done) {
+    if (st->rows[i].status != BF_OK) {
         return NAN;
     }
-    return c == BF_CLI_AIC ? s->aic : (c == BF_CLI_BIC ? s->bic : s->cv);
+    return bf_criterion_value(&st->stats[i], (bf_criterion)c);
 }
 
-/* Rank (1 = best) of model m of sample s by criterion c; 0 when it has no
- * value. Ties share the better rank. */
-size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
+/* bf_rank of sample s into rank (n_models entries; NULL: not wanted);
+ * returns the best model or SIZE_MAX. */
+static size_t rank_sample(const bf_cli_study *st, size_t s, int c,
+                          size_t *rank)
 {
-    size_t base = s * st->n_models;
-    double v = bf_cli_rank_value(st, base + m, c);
-    size_t rank = 1;
-    size_t q;
-    if (!isfinite(v)) {
-        return 0;
+    size_t *r = rank != NULL ? rank
+                             : malloc((st->n_models + 1) * sizeof *r);
+    size_t best = SIZE_MAX;
+    if (r != NULL) {
+        bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c,
+                r, &best);
     }
-    for (q = 0; q < st->n_models; q++) {
-        double w = bf_cli_rank_value(st, base + q, c);
-        rank += isfinite(w) && w < v;
-    }
-    return rank;
-}
-
-/* Index of the best model of sample s by c, or SIZE_MAX. Among models
- * tied for rank 1 (ON at sigma = 0 is LAMBERT exactly) the one with fewer
- * parameters wins, then the first listed. */
-size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c)
-{
-    size_t best = (size_t)-1;
-    size_t m;
-    for (m = 0; m < st->n_models; m++) {
-        if (bf_cli_rank_of(st, s, m, c) == 1 &&
-            (best == (size_t)-1 ||
-             st->stats[s * st->n_models + m].k <
-                 st->stats[s * st->n_models + best].k)) {
-            best = m;
-        }
+    if (rank == NULL) {
+        free(r);
     }
     return best;
 }
 
-/* The per-sample table: criterion values of every model, * on the best,
- * and the best model by each criterion. */
-bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
+size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
 {
-    bf_tt *t = bf_tt_alloc(2 + st->n_models + BF_CLI_NCRIT);
-    size_t s;
-    size_t m;
-    int c;
-    if (t == NULL) {
-        return NULL;
+    size_t *rank = malloc((st->n_models + 1) * sizeof *rank);
+    size_t r = 0;
+    if (rank != NULL && isfinite(bf_cli_rank_value(st, s * st->n_models + m,
+                                                   c))) {
+        rank_sample(st, s, c, rank);
+        r = rank[m];
     }
+    free(rank);
+    return r;
+}
+
+size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c)
+{
+    return rank_sample(st, s, c, NULL);
+}
+
+/* "No." and "Sample" columns, right-aligned number. */
+static void sample_headers(bf_tt *t)
+{
     bf_tt_header(t, 0, "No.");
     bf_tt_header(t, 1, "Sample");
     bf_tt_right(t, 0);
+}
+
+static void sample_cells(bf_tt *t, const bf_cli_study *st, size_t s)
+{
+    char title[512];
+    bf_cli_sample_title(st, s, title, sizeof title);
+    bf_tt_set(t, 0, "%d", st->samples[s]);
+    bf_tt_set(t, 1, "%s", title);
+}
+
+/* The best model b of sample s as the tables name it: "FC-E", or
+ * "ON = LAMBERT" for a fit that reduces to another model (its win counts
+ * for that one, bf_rank_winner). */
+static const char *best_name(const bf_cli_study *st, size_t s, size_t b,
+                             char *buf, size_t len)
+{
+    const char *w;
+    if (b == SIZE_MAX) {
+        return "-";
+    }
+    w = bf_rank_winner(st->models, &st->stats[s * st->n_models], b);
+    if (strcmp(w, st->models[b]->name) == 0) {
+        return w;
+    }
+    snprintf(buf, len, "%s = %s", st->models[b]->name, w);
+    return buf;
+}
+
+bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
+{
+    bf_tt *t = bf_tt_alloc(2 + st->n_models + BF_CLI_NCRIT);
+    size_t *rank = malloc((st->n_models + 1) * sizeof *rank);
+    size_t s;
+    size_t m;
+    int c;
+    if (t == NULL || rank == NULL) {
+        bf_tt_free(t);
+        free(rank);
+        return NULL;
+    }
+    sample_headers(t);
     for (m = 0; m < st->n_models; m++) {
         bf_tt_header(t, 2 + m, st->models[m]->name);
         bf_tt_right(t, 2 + m);
@@ -82,65 +117,163 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
     for (s = 0; s < st->n_samples; s++) {
         if (bf_tt_add_row(t) != 0) {
             bf_tt_free(t);
+            free(rank);
             return NULL;
         }
-        bf_tt_set(t, 0, "%d", st->samples[s]);
-        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, s));
+        sample_cells(t, st, s);
+        rank_sample(st, s, crit, rank);
         for (m = 0; m < st->n_models; m++) {
             double v = bf_cli_rank_value(st, s * st->n_models + m, crit);
             if (isfinite(v)) {
-                bf_tt_set(t, 2 + m, "%.1f%s", v,
-                          bf_cli_rank_of(st, s, m, crit) == 1 ? "*" : "");
+                bf_tt_set(t, 2 + m, "%.1f%s", v, rank[m] == 1 ? "*" : "");
             } else {
                 bf_tt_set(t, 2 + m, "-");
             }
         }
         for (c = 0; c < BF_CLI_NCRIT; c++) {
-            size_t b = bf_cli_rank_best(st, s, c);
+            char name[128];
             bf_tt_set(t, 2 + st->n_models + (size_t)c, "%s",
-                      b == (size_t)-1 ? "-" : st->models[b]->name);
+                      best_name(st, s, rank_sample(st, s, c, NULL), name,
+                                sizeof name));
         }
+    }
+    free(rank);
+    return t;
+}
+
+/* "1.2345 [1.20, 1.30]" (profile interval), with " {1.21, 1.29}" for the
+ * bootstrap interval when there is one; "-" without a value. */
+static void param_cell(bf_tt *t, size_t col, const bf_fit_stats *f,
+                       const bf_study_row *r, size_t j)
+{
+    char boot[96] = "";
+    if (r->status != BF_OK || !f->done) {
+        bf_tt_set(t, col, "-");
+        return;
+    }
+    if (isfinite(f->boot_low[j]) && isfinite(f->boot_high[j])) {
+        snprintf(boot, sizeof boot, " {%.4g, %.4g}", f->boot_low[j],
+                 f->boot_high[j]);
+    }
+    bf_tt_set(t, col, "%.4g [%.4g, %.4g]%s", r->fit.param[j], f->ci_low[j],
+              f->ci_high[j], boot);
+}
+
+/* Fitted parameters of model type, in order, into idx; returns count. */
+static size_t fitted_params(const bf_model_type *type, size_t *idx)
+{
+    size_t n = 0;
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        if (type->param[j].fitted) {
+            idx[n++] = j;
+        }
+    }
+    return n;
+}
+
+bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m)
+{
+    const bf_model_type *type = st->models[m];
+    size_t idx[BF_MAX_PARAMS];
+    size_t np = fitted_params(type, idx);
+    bf_tt *t;
+    size_t s;
+    size_t q;
+    if (np == 0 || (t = bf_tt_alloc(3 + np)) == NULL) {
+        return NULL;
+    }
+    sample_headers(t);
+    for (q = 0; q < np; q++) {
+        bf_tt_header(t, 2 + q, type->param[idx[q]].label);
+    }
+    bf_tt_header(t, 2 + np, "flags");
+    for (s = 0; s < st->n_samples; s++) {
+        size_t i = s * st->n_models + m;
+        char flags[512];
+        if (bf_tt_add_row(t) != 0) {
+            bf_tt_free(t);
+            return NULL;
+        }
+        sample_cells(t, st, s);
+        for (q = 0; q < np; q++) {
+            param_cell(t, 2 + q, &st->stats[i], &st->rows[i], idx[q]);
+        }
+        bf_fit_flags_format(type, &st->stats[i], flags, sizeof flags);
+        bf_tt_set(t, 2 + np, "%s", flags);
     }
     return t;
 }
 
-/* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first). */
-void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
+bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
 {
-    size_t *wins = calloc(st->n_models + 1, sizeof *wins);
+    bf_tt *t = bf_tt_alloc(4);
     size_t s;
-    size_t m;
-    size_t printed = 0;
-    if (wins == NULL) {
-        return;
+    size_t q;
+    if (t == NULL) {
+        return NULL;
     }
+    sample_headers(t);
+    bf_tt_header(t, 2, "best");
+    bf_tt_header(t, 3, "fitted parameters [95% profile interval]");
     for (s = 0; s < st->n_samples; s++) {
-        size_t b = bf_cli_rank_best(st, s, c);
-        if (b != (size_t)-1) {
-            wins[b]++;
+        size_t b = rank_sample(st, s, crit, NULL);
+        size_t idx[BF_MAX_PARAMS];
+        char cell[512] = "";
+        char name[128];
+        size_t at = 0;
+        size_t np;
+        size_t i;
+        if (bf_tt_add_row(t) != 0) {
+            bf_tt_free(t);
+            return NULL;
         }
+        sample_cells(t, st, s);
+        if (b == SIZE_MAX) {
+            bf_tt_set(t, 2, "-");
+            continue;
+        }
+        i = s * st->n_models + b;
+        bf_tt_set(t, 2, "%s", best_name(st, s, b, name, sizeof name));
+        np = fitted_params(st->models[b], idx);
+        for (q = 0; q < np && at < sizeof cell; q++) {
+            const bf_fit_stats *f = &st->stats[i];
+            at += (size_t)snprintf(cell + at, sizeof cell - at,
+                                   "%s%s %.4g [%.4g, %.4g]",
+                                   q > 0 ? "; " : "",
+                                   st->models[b]->param[idx[q]].name,
+                                   st->rows[i].fit.param[idx[q]],
+                                   f->ci_low[idx[q]], f->ci_high[idx[q]]);
+        }
+        bf_tt_set(t, 3, "%s", np == 0 ? "(none)" : cell);
     }
-    fprintf(fp, "%s:", bf_cli_crit_names[c]);
-    while (printed < st->n_models) {
-        size_t best = 0;
-        for (m = 1; m < st->n_models; m++) {
-            if (wins[m] > wins[best]) {
-                best = m;
-            }
-        }
-        if (wins[best] == 0) {
-            break;
-        }
-        if (printed == 0) {
-            fprintf(fp, " %s best for %zu of %zu samples", st->models[best]->name,
-                    wins[best], st->n_samples);
-        } else {
-            fprintf(fp, ", %s %zu", st->models[best]->name, wins[best]);
-        }
-        wins[best] = 0;
-        printed++;
-    }
-    fputs(printed == 0 ? " no model could be ranked\n" : "\n", fp);
-    free(wins);
+    return t;
 }
 
+/* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first;
+ * bf_study_wins: a fit that reduces to another model counts for that
+ * model, never for the larger one). */
+void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
+{
+    const char **names = calloc(2 * st->n_models + 1, sizeof *names);
+    size_t *wins = calloc(2 * st->n_models + 1, sizeof *wins);
+    size_t n = 0;
+    size_t i;
+    if (names != NULL && wins != NULL &&
+        bf_study_wins(&st->spec, st->stats, (bf_criterion)c, names, wins,
+                      &n) != BF_OK) {
+        n = 0;
+    }
+    fprintf(fp, "%s:", bf_cli_crit_names[c]);
+    for (i = 0; i < n; i++) {
+        if (i == 0) {
+            fprintf(fp, " %s best for %zu of %zu samples", names[i], wins[i],
+                    st->n_samples);
+        } else {
+            fprintf(fp, ", %s %zu", names[i], wins[i]);
+        }
+    }
+    fputs(n == 0 ? " no model could be ranked\n" : "\n", fp);
+    free(wins);
+    free(names);
+}

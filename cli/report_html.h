@@ -11,8 +11,9 @@
 #include <stdio.h>
 
 #include "figures.h"
+#include "ranking.h"
 #include "sha256.h"
-#include "study.h"
+#include "tables.h"
 
 /* An input file and its checksum. */
 typedef struct {

@@ -147,6 +147,17 @@ double bf_fresnel_fc2(double theta_i, double theta_s, double n);
 
 #define BF_MAX_PARAMS 4
 
+/* Where a parameter that a fit holds fixed takes its value for one
+ * material of a study (bf_study_spec): the model type says it, so the
+ * study never guesses from parameter names. */
+typedef enum {
+    BF_INPUT_DEFAULT = 0, /* bf_param.value */
+    BF_INPUT_INDEX,       /* the material's refractive index: the study's
+                             n_file, else its n_default (SPEC §4.2) */
+    BF_INPUT_ON           /* column input_col of the study's on_params
+                             (SPEC §5: rho 0, sigma 1) */
+} bf_input;
+
 /* One parameter of a model. */
 typedef struct {
     const char *name;   /* short name: "m", "n", "n_d", "rho", "sigma" */
@@ -158,22 +169,50 @@ typedef struct {
     double grid_lo;     /* paper grid: grid_lo + grid_step * i, */
     double grid_step;   /*   i = 0 .. grid_n - 1 (SPEC §7.4) */
     size_t grid_n;      /* 0 when the parameter has no grid */
+    bf_input input;     /* where a fixed value comes from (not fitted) */
+    size_t input_col;   /* BF_INPUT_ON: the column of on_params */
+    double free_lo;     /* the exact fit (doc/methods.md §6) frees this */
+    double free_hi;     /*   input over the grid free_lo, free_lo + */
+    double free_step;   /*   free_step, ... <= free_hi; 0: never freed */
 } bf_param;
 
 /* Evaluates a model at n configurations. param holds type->p values, already
  * checked to lie in the domain. Writes n radiances (up to scale) to out.
+ * work is the caller's scratch memory of type->work_size bytes (NULL when
+ * that is 0), aligned for double; its content on entry does not matter,
+ * so one buffer serves any number of calls and no call allocates.
  * Returns BF_OK or BF_EDOM (out then holds NaN where undefined). */
 typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
-                          double *out);
+                          double *out, void *work);
 
-/* A model family: a constant type object (cf. gsl_rng_type). */
+/* The engine's evaluation of a registry model (library-internal, see
+ * src/fit/engine.h): geometry-only terms precomputed once per
+ * configuration set, values for any parameters from them through a
+ * vectorised loop, a caller workspace. Opaque here. */
+typedef struct bf_kernel bf_kernel;
+
+/* A model family: a constant type object (cf. gsl_rng_type). Adding a
+ * model to the library is one file defining its type object (with its
+ * kernel) and one line in the registry (src/models/registry.c). */
 typedef struct {
     const char *name;        /* registry name, e.g. "FC-E" */
     const char *title;       /* one-line description */
     const char *reference;   /* equations implemented, e.g. "paper (P2),(P6)" */
     size_t p;                /* number of parameters (<= BF_MAX_PARAMS) */
     const bf_param *param;   /* p parameter descriptions */
-    bf_eval_fn eval;         /* evaluation function */
+    bf_eval_fn eval;         /* evaluation function (the reference path) */
+    size_t work_size;        /* bytes of workspace eval needs (0: none) */
+    const bf_kernel *kernel; /* the engine's evaluation; NULL for a type
+                                made outside the library (eval is used) */
+    unsigned style;          /* plot style slot (colour and marker of the
+                                figures): distinct for every registry
+                                model, the paper's models the lowest */
+    const char *reduces_to;  /* the registry model this one is exactly when
+                                parameter reduces_param equals reduces_at
+                                (ON at sigma = 0 is LAMBERT, WNO-R at
+                                sigma = 0 is WNO), or NULL */
+    size_t reduces_param;
+    double reduces_at;
 } bf_model_type;
 
 extern const bf_model_type *const bf_model_bk_g;   /* BK-G  SPEC §3.1 */
@@ -204,7 +243,8 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
 /* Evaluates type at n configurations after checking every parameter against
  * its domain (BF_EINVAL when out of range or not finite) and every geometry
  * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
- * Returns BF_ENOMEM (all NaN) when WNO-R cannot allocate its quadrature.
+ * Returns BF_ENOMEM (all NaN) when the model's workspace cannot be
+ * allocated.
  * Returns BF_EDOM when the model is undefined at a configuration, with NaN
  * there and the other values filled: BK-G, BK-E at theta_i = pi/2 (F_BK
  * diverges, SPEC §3.3). Every other model is finite and >= 0 on the whole
@@ -216,6 +256,13 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
  * exactly grazing (cos = 0), so the grazing limits are taken exactly. */
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
                   const bf_geom *geom, double *out);
+
+/* The same with the caller's workspace of type->work_size bytes (NULL when
+ * that is 0): bf_model_eval allocates it for the call when the model needs
+ * one (WNO-R), this never allocates. Same checks and codes. */
+int bf_model_eval_work(const bf_model_type *type, const double *param,
+                       size_t n, const bf_geom *geom, double *out,
+                       void *work);
 
 /* ======================================================================
  * --- data: CURET configuration table and BRDF files (SPEC §2) ---
@@ -722,6 +769,10 @@ typedef struct {
     double lse;                  /* sum of squared residuals (SPEC §7.3) */
     unsigned bound_hit;          /* bit j set: fitted param j on a grid bound */
     size_t n_eval;               /* model evaluations used */
+    unsigned flat;               /* bit j set: the objective does not depend
+                                    on free parameter j at param (ON's rho
+                                    at sigma = 0), so the refinement held
+                                    it (bf_fit_refine) */
 } bf_fit_result;
 
 /* Reusable workspace for fits on up to n configurations. */
@@ -1005,6 +1056,22 @@ void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
 int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
                          double hi, double step);
 
+/* Makes parameter name fitted over [lo, hi] with its own grid step (its
+ * paper grid's, or (hi - lo) / 100 for a parameter without a grid): the
+ * policy of a user's search range (--range NAME=LO:HI). BF_ENOTFOUND when
+ * v has no such parameter; BF_EINVAL as bf_model_variant_fit (outside
+ * [min, max], lo >= hi, more than BF_VARIANT_MAX_GRID points). */
+int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
+                           double hi);
+
+/* The exact fit's policy (doc/methods.md §6): frees every input parameter
+ * of v that has an exact-fit range (bf_param.free_lo < free_hi: FC's n
+ * over [BF_FREE_N_LO, BF_FREE_N_HI], ON's rho over [0.05, 1] and sigma over
+ * [0, 1.57]), fitted over the grid free_lo, free_lo + free_step, ...,
+ * except inputs of the kinds in keep (bit 1u << BF_INPUT_INDEX: the user
+ * gave n, so n stays the input). Returns the number of parameters freed. */
+size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+
 /* Ranges that --fit exact frees by default (doc/methods.md §6). */
 #define BF_FREE_N_LO 1.2
 #define BF_FREE_N_HI 2.5
@@ -1093,6 +1160,12 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
  * --- the study beyond the paper (doc/methods.md) ---
  * ====================================================================== */
 
+/* Progress of a long computation: done of total units of work (one
+ * (target, model) pair each) are finished. Called from the thread that
+ * finished one, never from two threads at once; done grows by one per
+ * call, the last call has done == total. */
+typedef void (*bf_progress_fn)(void *ctx, size_t done, size_t total);
+
 /* What bf_study_analyse computes for each (target, model). */
 typedef struct {
     bf_objective objective; /* what is minimised */
@@ -1101,7 +1174,34 @@ typedef struct {
     size_t n_boot;          /* bootstrap replicates, 0 for none */
     size_t folds;           /* cross-validation folds, 0 for none */
     unsigned long seed;     /* of the bootstrap and the folds */
+    bf_progress_fn progress; /* NULL: none */
+    void *progress_ctx;
 } bf_analysis_opts;
+
+/* Fills o with the defaults of the analysis (the CLI's): objective max
+ * (the paper's), exact 0, level 0.95, no bootstrap, 10 folds, seed 1, no
+ * progress callback. */
+void bf_analysis_opts_init(bf_analysis_opts *o);
+
+/* What the analysis of one pair says about its fit (bf_fit_stats.flags). */
+enum {
+    BF_STAT_NOCONV = 1u << 0,  /* the refinement stopped at its iteration
+                                  limit (BF_REFINE_MAXITER): the optimum is
+                                  the best point found, not converged */
+    BF_STAT_REDUCED = 1u << 1, /* the optimum is on the face where the model
+                                  is another one (type->reduces_to: ON at
+                                  sigma = 0 is LAMBERT) */
+    BF_STAT_CLAMPED = 1u << 2, /* the model's formula was clamped at the
+                                  optimum (ON at 0 on n_clamped
+                                  configurations, doc/methods.md §8) */
+    BF_STAT_CI_FAIL = 1u << 3, /* a profile interval could not be found
+                                  (its ends are NaN) */
+    BF_STAT_BOOT_FAIL = 1u << 4, /* the bootstrap could not be done */
+    BF_STAT_BOOT_SPLIT = 1u << 5 /* a parameter's replicate estimates fall
+                                   into separate groups (optima in
+                                   different basins): its percentile
+                                   interval spans them (boot_split) */
+};
 
 /* The analysis of one (sample, model) pair. Fields of parameters that are
  * not free are NaN. */
@@ -1121,6 +1221,12 @@ typedef struct {
     size_t k;                       /* parameters counted by AIC/BIC */
     double aic, bic;                /* of the refined optimum */
     double cv;                      /* cross-validated error, NaN if none */
+    unsigned flags;                 /* BF_STAT_* */
+    size_t n_clamped;               /* BF_STAT_CLAMPED: configurations */
+    const char *reduces_to;         /* BF_STAT_REDUCED: the model it is
+                                       (static storage), else NULL */
+    unsigned boot_split;            /* bit j: parameter j's replicates
+                                       split (BF_STAT_BOOT_SPLIT) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1133,6 +1239,114 @@ typedef struct {
  * as bf_study_run. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+
+/* ======================================================================
+ * --- model selection: ranks, ties, the best model (doc/methods.md §5) ---
+ * ====================================================================== */
+
+/* The criteria a ranking can use. */
+typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
+#define BF_NCRIT 3
+
+/* "AIC", "BIC", "CV" (static storage), NULL for an unknown value. */
+const char *bf_criterion_name(bf_criterion c);
+/* Finds a criterion by name, case-insensitive ("bic"); BF_ENOTFOUND. */
+int bf_criterion_find(const char *name, bf_criterion *c);
+
+/* The value of criterion c in st (NaN when st was not analysed or the
+ * value was not computed: no folds). */
+double bf_criterion_value(const bf_fit_stats *st, bf_criterion c);
+
+/* Relative tolerance of a tie between two criterion values. */
+#define BF_TIE_REL 1e-9
+
+/* 1 when a and b are tied for criterion c on n configurations: |a - b| <=
+ * BF_TIE_REL * scale, scale max(|a|, |b|) for CV and n for AIC and BIC
+ * (n ln(RSS/n) moves by n e for a relative change e of RSS), so a tie is
+ * the same relative difference of the residual sums for every criterion.
+ * ON at sigma = 0 and LAMBERT differ only by rounding: they tie. */
+int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
+
+/* Ranks the n_models analyses of one target by c: rank[m] = 1 + the
+ * number of models with a lower value not tied with m's (ties share the
+ * rank), 0 when m has no value; *best = the model of rank 1 with the
+ * fewest parameters (k), the first listed among equals, or SIZE_MAX when
+ * none has a value. */
+void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
+             size_t *rank, size_t *best);
+
+/* The name a win of model best counts for (static storage): the model's,
+ * or the model it reduces to when its fit is on that face
+ * (BF_STAT_REDUCED: ON at sigma = 0 wins for LAMBERT); NULL when best is
+ * SIZE_MAX. models and stats: the target's n_models entries. */
+const char *bf_rank_winner(const bf_model_type *const *models,
+                           const bf_fit_stats *stats, size_t best);
+
+/* bf_rank for every target of a study analysed with bf_study_analyse
+ * (stats: n_targets x n_models, target-major): rank (n_targets x
+ * n_models) and best (n_targets; SIZE_MAX for a target no model could be
+ * ranked on), either may be NULL. BF_EINVAL for a NULL spec or stats,
+ * BF_ENOMEM. */
+int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, size_t *rank, size_t *best);
+
+/* The wins of each model over the study's targets by criterion c (the
+ * best model of each target, bf_study_rank; a win counts for the model
+ * bf_rank_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
+ * entries of names (static storage) and wins, most wins first, equal
+ * counts in the order of the first win. names and wins need room for
+ * 2 * spec->n_models entries. Targets without a best model are not
+ * counted. BF_EINVAL for NULL arguments, BF_ENOMEM. */
+int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, const char **names, size_t *wins,
+                  size_t *n_names);
+
+/* ======================================================================
+ * --- output files: fits.csv and ranking.csv (README "Output files") ---
+ * ====================================================================== */
+
+/* What the analysis says about a fit, as words separated by spaces into
+ * buf (len bytes, always terminated; "" for none): reduces_to=MODEL,
+ * not_identified=PARAM (a flat direction of the refinement),
+ * clamped=COUNT (ON clamped at 0 on COUNT configurations), not_converged,
+ * interval_failed, bootstrap_failed, bootstrap_split=PARAM (doc/methods.md
+ * §2, §3, §8). type: the row's model. Returns the length of the full text
+ * (as snprintf). */
+size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
+                           char *buf, size_t len);
+
+/* Writes fits.csv for a study: a header line, then one line per (target,
+ * model, fitted parameter) in target-major order, a model without fitted
+ * parameters on one line with parameter, unit and value empty; rows whose
+ * status is not BF_OK are left out. Columns: sample, name, channel,
+ * model, parameter, unit, value, lse, bound_hit, k (configurations used),
+ * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
+ * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
+ * n_params, aic, bic, cv, flags (bf_fit_flags_format). rows: from
+ * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
+ * (the analysis columns empty); opts: the analysis's, or NULL (objective
+ * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields
+ * quoted as RFC 4180 when needed. BF_EINVAL for NULL fp, spec or rows;
+ * BF_EIO when the stream reports a write error. */
+int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      const bf_analysis_opts *opts);
+
+/* Writes ranking.csv for an analysed study: a header line, then one line
+ * per (target, model) that was analysed. Columns: sample, name, channel,
+ * model, objective, fit, k (parameters counted), n (configurations),
+ * objective_value (the fit's objective), aic, bic, cv, rank_aic, rank_bic,
+ * rank_cv (bf_study_rank), best_aic, best_bic, best_cv (1 on the target's
+ * best model after the tie-break), counts_as (the model its wins count for,
+ * bf_rank_winner), flags (bf_fit_flags_format), then for each of the
+ * study's P fitted-parameter slots (P = the most fitted parameters of any
+ * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_boot_low,
+ * pJ_boot_high (J = 1..P: the model's J-th fitted parameter, its value,
+ * profile and bootstrap interval; empty beyond the model's own). Formats
+ * and errors as bf_fits_csv_write; stats is required. */
+int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
+                         const bf_study_row *rows, const bf_fit_stats *stats,
+                         const bf_analysis_opts *opts);
 
 #ifdef __cplusplus
 }

@@ -3,7 +3,8 @@
 # that are missing (idempotent). Runs apt-get as root, or through sudo.
 #
 #   scripts/install-deps.sh          build + test dependencies
-#   scripts/install-deps.sh bench    also the benchmark's numpy baseline
+#   scripts/install-deps.sh bench    also the benchmark's numpy baseline and
+#                                    the numpy/scipy peer of the analysis
 #   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
 #   scripts/install-deps.sh valgrind also valgrind (make valgrind)
 set -eu
@@ -20,7 +21,8 @@ plplot-driver-cairo fonts-dejavu-core zlib1g-dev python3-html5lib curl \
 python3-numpy python3-cffi python3-pytest python3-pip"
 for group in "$@"; do
     case $group in
-    bench) PACKAGES="$PACKAGES python3-numpy" ;; # bench/numpy_baseline.py
+    # bench/numpy_baseline.py; ../shared/peers/rank_baseline.py (scipy)
+    bench) PACKAGES="$PACKAGES python3-numpy python3-scipy" ;;
     fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
     valgrind) PACKAGES="$PACKAGES valgrind" ;;
     *) echo "install-deps: unknown group '$group' (bench, fuzz, valgrind)" >&2

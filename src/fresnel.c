@@ -69,16 +69,7 @@ double bf_fresnel(double alpha_i, double r)
 double bf__fresnel_fc2_sc(double si, double ci, double ss, double cs,
                           double n)
 {
-    double s2 = ss / n;                        /* sin of the internal angle */
-    double c2 = sqrt((1.0 - s2) * (1.0 + s2)); /* its cosine */
-    double t_in = 1.0 - bf__fresnel_sc(si, ci, n); /* into the body */
-    double t_out;                                  /* out of it */
-    if (n == 1.0) {
-        t_out = 1.0; /* no interface */
-    } else {
-        t_out = 1.0 - fresnel_sct(s2, c2, cs, 1.0 / n); /* f(., 1/n) */
-    }
-    return t_in * t_out * ci; /* (P6), SPEC §4.2 */
+    return bf__fc2_inline(si, ci, ss, cs, n); /* (P6), SPEC §4.2 */
 }
 
 /* Public entry point of SPEC §4.2. Returns NaN for n < 1, non-finite

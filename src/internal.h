@@ -296,6 +296,30 @@ static inline double bf__fresnel_s2ct(double s2, double c, double ct,
     return 0.5 * (a * a) * (1.0 + (b * b)); /* (P4) with the 1/2, SPEC §4.1 */
 }
 
+/* F_FC^2 of (P6), SPEC §4.2, from the sines and cosines of theta_i and
+ * theta_s (si, ci, ss, cs) for n >= 1, branch-free so that the kernels
+ * vectorise it: [1 - f(theta_i, n)] [1 - f(asin(sin theta_s / n), 1/n)]
+ * cos theta_i, f of SPEC §4.1 through bf__fresnel_s2ct with cos alpha_t =
+ * sqrt((1 - st)(1 + st)), st = sin alpha_t (Snell, (P5)). n = 1 is no
+ * interface (f = 0). Both sides of every select are computed, the
+ * discarded one may be NaN. bf__fresnel_fc2_sc is this function. */
+static inline double bf__fc2_inline(double si, double ci, double ss,
+                                    double cs, double n)
+{
+    double s2 = ss / n;                        /* sin of the internal angle */
+    double c2 = sqrt((1.0 - s2) * (1.0 + s2)); /* its cosine */
+    double st = si / n;                        /* Snell (P5): sin alpha_t */
+    double ct = sqrt((1.0 - st) * (1.0 + st)); /* cos alpha_t */
+    double f_in = bf__fresnel_s2ct(si * si, ci, ct, n);
+    double f_out = bf__fresnel_s2ct(s2 * s2, c2, cs, 1.0 / n); /* f(., 1/n) */
+    double t_in;
+    double t_out;
+    f_in = (st >= 1.0) ? 1.0 : f_in; /* at the critical angle (n = 1 only) */
+    t_in = (n == 1.0) ? 1.0 : 1.0 - f_in;  /* into the body */
+    t_out = (n == 1.0) ? 1.0 : 1.0 - f_out; /* out of it */
+    return t_in * t_out * ci; /* (P6), SPEC §4.2 */
+}
+
 /* Unpolarised Fresnel reflectance f of SPEC §4.1 from the sine s and cosine
  * c (both >= 0) of the angle of arrival, relative index r > 0. Defined in
  * src/fresnel.c; called by bf_fresnel, bf_fresnel_fc2 and the FC models,
@@ -338,12 +362,8 @@ int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t);
 void bf__geom_trig(const bf_geom *g, bf__trig_t *tr);
 int bf__bk_terms_trig(int factor, double n, const bf__trig_t *tr,
                       bf__bk_terms_t *t);
-/* 1 and the member when type is one of the BK family (by its eval). */
-int bf__bk_kind(const bf_model_type *type, int *factor, int *corr);
 /* cos ti cos ts, the base of LFTG's power (P7) (src/models/lafortune.c). */
 double bf__lftg_base(const bf_geom *g);
-/* 1 when type is LFTG (by its eval). */
-int bf__is_lftg(const bf_model_type *type);
 
 /* Geometry-only terms of Oren-Nayar (SPEC §5) at one configuration. */
 typedef struct {
@@ -366,38 +386,46 @@ typedef struct {
     double rho_pi;
 } bf__on_coef_t;
 
-/* src/models/oren_nayar.c: the terms, the coefficients, the value, and
- * whether type is ON (by its eval). */
+/* src/models/oren_nayar.c: the terms, the coefficients, the value. */
 void bf__on_terms(const bf_geom *g, bf__on_terms_t *t);
 void bf__on_coef(double rho, double sigma, bf__on_coef_t *c);
 double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c);
-int bf__is_on(const bf_model_type *type);
+
+/* The 4-point Gauss-Legendre abscissae and weights WNO-R's rule uses on
+ * each panel (src/models/wno_r.c; 2 positive abscissae, GSL's layout);
+ * exposed for the test that they are GSL's. */
+void bf__wnor_gl4(const double **x, const double **w);
 
 /* ======================================================================
  * --- fitting (src/fit) ---
  * ====================================================================== */
 
-/* Which parameters a grid search varies, and the values of the others. */
+/* The one grid layout of the library: which parameters a grid search
+ * varies, over which points, and the values of the others. Free parameter
+ * i (in index order) takes the values lo[i] + step[i] t, t < count[i]. */
 typedef struct {
     double base[BF_MAX_PARAMS]; /* fixed values; free ones overwritten */
     size_t free[BF_MAX_PARAMS]; /* indices of the free parameters */
     size_t n_free;              /* number of free parameters */
-    size_t points;              /* product of the free grids' sizes */
+    double lo[BF_MAX_PARAMS];   /* grid of free parameter i */
+    double step[BF_MAX_PARAMS];
+    size_t count[BF_MAX_PARAMS];
+    size_t points;              /* product of the counts */
     unsigned mask;              /* bit j: parameter j is free */
 } bf__grid_layout_t;
 
-/* Checks type/fixed/free_mask and fills g (src/fit/grid.c). */
+/* Checks type/fixed/free_mask and fills g with the paper's grids of the
+ * free parameters (src/fit/grid.c; bf__grid_layout_range in
+ * src/fit/engine.h for other ranges). */
 int bf__grid_layout(const bf_model_type *type, const double *fixed,
                     unsigned free_mask, bf__grid_layout_t *g);
-/* Parameter vector of grid point idx; returns its bound flags. */
-unsigned bf__grid_point(const bf_model_type *type, const bf__grid_layout_t *g,
-                        size_t idx, double *param);
+/* The one grid enumerator: parameter vector of grid point idx (mixed
+ * radix, the first free parameter varying slowest); returns its bound
+ * flags (bit j: parameter j on an end of its grid). */
+unsigned bf__grid_point(const bf__grid_layout_t *g, size_t idx,
+                        double *param);
 /* sum_k (curve_k - data_k)^2 in index order (SPEC §7.3). */
 double bf__sum_sq_diff(size_t n, const double *curve, const double *data);
-/* Model curve at param, normalised (SPEC §2); BF_EDOM when undefined. */
-int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
-                    const bf_geom *geom, double *curve);
-
 
 /* Fixed parameter values of type for target t of spec
  * (src/fit/targets.c): defaults, n from the n file or n_default, ON's
@@ -429,15 +457,6 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
                      bf_error *err);
 void bf__study_groups_free(bf__groups_t *gs);
 
-/* Objective of pb on a normalised model curve (src/fit/objective.c);
- * scratch holds pb->n doubles. The max objective without weights sums
- * exactly as bf__sum_sq_diff, so grid optima agree bit for bit. */
-double bf__objective_curve(const bf_problem *pb, const double *curve,
-                           double *scratch);
-/* Residuals r_k of pb on a normalised model curve. */
-void bf__objective_residuals(const bf_problem *pb, const double *curve,
-                             double *resid);
-
 /* --- the study path's kernels (src/fit/kernels.c) --- */
 
 /* Grid points per scoring block; a precomputed grid's columns (grid points
@@ -447,24 +466,6 @@ void bf__objective_residuals(const bf_problem *pb, const double *curve,
  * of a power of two would map every row to the same cache set. */
 #define BF__ROW_PAD 8
 
-/* Transposed normalised curves curves[k * stride + g], g < cols, of every
- * grid point by a vectorised kernel (BK family with m free, LFTG with n_d
- * free). Returns 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
-int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, size_t cols,
-                    size_t stride, double *curves, unsigned char *ok);
-/* The study path without stored curves: the normalised curves of each
- * block of grid points are computed (same kernels, same bits as
- * bf__curves_fast) and scored against every sample at once (same sums as
- * bf__score_all), keeping per sample the smallest LSE of the defined
- * points and its first index (as bf__argmin; SIZE_MAX when none). trig
- * (n values of bf__geom_trig) or NULL. Returns
- * 1 when done, 0 when type has no kernel, -BF_ENOMEM. */
-int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
-                    size_t n_samples,
-                    const double *const *data, double *best_lse,
-                    size_t *best);
 /* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
  * [-708, 0], 0 below); exposed for the tests. */
 double bf__exp_nonpos(double x);
@@ -478,37 +479,12 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
 double bf__argmin(size_t points, const double *restrict lse,
                   const unsigned char *restrict ok, size_t *best);
 
-/* --- precomputed grids (src/fit/grid.c), for the study driver --- */
-
-/* bf_grid_alloc (the study's threads each build their own grids). */
-bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
-                        unsigned free_mask, size_t n, const bf_geom *geom,
-                        int *status);
-/* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
-size_t bf__grid_cols(const bf_grid *gr);
-/* Scores n_samples samples at once: lse must hold n_samples * cols. */
-void bf__grid_score(const bf_grid *gr, size_t n_samples,
-                    const double *const *data, double *lse);
-/* The result of a grid search whose best point is best (SIZE_MAX: none,
- * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
- * bf_fit_grid reports them. */
-int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
-                    size_t best, double best_lse, bf_fit_result *result);
-/* The best grid point of one row of LSE values (ties keep the first),
- * as bf_grid_fit reports it. */
-int bf__grid_best(const bf_grid *gr, const double *lse,
-                  bf_fit_result *result);
-
-/* Models with no fitted parameter (ON, LAMBERT), evaluated once per sample
- * at its fixed inputs, bit for bit as bf_fit_grid (src/fit/grid.c). */
-typedef struct bf__fixed_model bf__fixed_model;
 /* 1 when no parameter of type is fitted by the paper's protocol. */
 int bf__fits_nothing(const bf_model_type *type);
-/* geom is borrowed until bf__fixed_free. NULL when out of memory. */
-bf__fixed_model *bf__fixed_alloc(const bf_model_type *type, size_t n,
-                                 const bf_geom *geom);
-int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
-                  const double *data, bf_fit_result *result);
-void bf__fixed_free(bf__fixed_model *fm);
+
+/* BF_OK when every configuration lies on the closed hemisphere (zeniths
+ * in [0, pi/2], finite azimuths), else BF_EINVAL (src/models/registry.c;
+ * the public entry points check once, the engine assumes it). */
+int bf__geom_check(size_t n, const bf_geom *geom);
 
 #endif

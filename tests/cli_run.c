@@ -1,8 +1,10 @@
 /* cli_run.c: runs the brdffit binary from tests (see cli_run.h). */
 #include "cli_run.h"
+#include "support.h"
 
 #include <criterion/criterion.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -129,4 +131,103 @@ const char *bf_test_slurp(const char *path, size_t *len)
         *len = n;
     }
     return buf;
+}
+
+/* ==== CSV outputs, found by header name ================================== */
+
+#define CSV_MAX_FIELDS 64
+#define CSV_MAX_LINES 4096
+static char *csv_cells[CSV_MAX_LINES][CSV_MAX_FIELDS];
+static size_t csv_lines;
+static size_t csv_cols;
+static char csv_text[4u << 20];
+
+size_t bf_test_csv_load(const char *dir, const char *name)
+{
+    char path[1024];
+    const char *text;
+    char *save = NULL;
+    char *line;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    text = bf_test_slurp(path, NULL);
+    cr_assert_not_null(text, "%s missing", path);
+    cr_assert_lt(strlen(text), sizeof csv_text);
+    strcpy(csv_text, text);
+    csv_lines = 0;
+    for (line = strtok_r(csv_text, "\n", &save); line != NULL;
+         line = strtok_r(NULL, "\n", &save)) {
+        size_t nf = 0;
+        char *p = line;
+        cr_assert_lt(csv_lines, CSV_MAX_LINES);
+        while (nf < CSV_MAX_FIELDS) { /* the tests' files quote nothing */
+            char *e = strchr(p, ',');
+            csv_cells[csv_lines][nf++] = p;
+            if (e == NULL) {
+                break;
+            }
+            *e = '\0';
+            p = e + 1;
+        }
+        if (csv_lines == 0) {
+            csv_cols = nf;
+        }
+        cr_assert_eq(nf, csv_cols, "%s line %zu", name, csv_lines + 1);
+        csv_lines++;
+    }
+    return csv_lines;
+}
+
+size_t bf_test_csv_col(const char *name)
+{
+    size_t c;
+    for (c = 0; c < csv_cols; c++) {
+        if (strcmp(csv_cells[0][c], name) == 0) {
+            return c;
+        }
+    }
+    cr_assert_fail("no column '%s'", name);
+    return 0;
+}
+
+const char *bf_test_csv_cell(size_t row, const char *name)
+{
+    cr_assert_lt(row, csv_lines);
+    return csv_cells[row][bf_test_csv_col(name)];
+}
+
+double bf_test_csv_num(size_t row, const char *name)
+{
+    const char *s = bf_test_csv_cell(row, name);
+    return s[0] != '\0' ? strtod(s, NULL) : NAN;
+}
+
+size_t bf_test_csv_find(const char *sample, const char *model,
+                        const char *param)
+{
+    size_t r;
+    for (r = 1; r < csv_lines; r++) {
+        if ((sample == NULL ||
+             strcmp(csv_cells[r][bf_test_csv_col("sample")], sample) == 0) &&
+            strcmp(csv_cells[r][bf_test_csv_col("model")], model) == 0 &&
+            (param == NULL ||
+             strcmp(csv_cells[r][bf_test_csv_col("parameter")], param) == 0)) {
+            return r;
+        }
+    }
+    cr_assert_fail("no row for sample %s, %s %s", sample ? sample : "*",
+                   model, param ? param : "");
+    return 0;
+}
+
+int bf_test_run_curet(const char **argv)
+{
+    static char data[4096];
+    size_t i;
+    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
+    for (i = 0; argv[i] != NULL; i++) {
+        if (strcmp(argv[i], "DATA") == 0) {
+            argv[i] = data;
+        }
+    }
+    return bf_test_run_cli(argv, NULL, NULL);
 }

@@ -11,6 +11,10 @@
 int bf_test_run_cli(const char *const *argv, const char **out,
                     const char **err);
 
+/* bf_test_run_cli with every argument "DATA" replaced by the CURET
+ * folder (bf_test_curet_path): argv is changed in place. */
+int bf_test_run_curet(const char **argv);
+
 /* Runs the shell command cmd (/bin/sh -c) with standard output and error
  * captured together into the static buffer returned through out (may be
  * NULL; shared with bf_test_run_cli's stdout buffer). Returns the exit
@@ -22,5 +26,17 @@ const char *bf_test_tmpdir(void);
 
 /* Reads a whole file into a static buffer; NULL when it does not exist. */
 const char *bf_test_slurp(const char *path, size_t *len);
+
+/* A CSV output of the CLI (dir/name), read whole into static storage (no
+ * quoted fields); returns its number of lines (header included). Its
+ * cells are found by header name: bf_test_csv_cell (borrowed until the
+ * next load), bf_test_csv_num (NaN for an empty cell); bf_test_csv_find
+ * gives the row of (sample, model, parameter), NULL matching any. */
+size_t bf_test_csv_load(const char *dir, const char *name);
+size_t bf_test_csv_col(const char *name);
+const char *bf_test_csv_cell(size_t row, const char *name);
+double bf_test_csv_num(size_t row, const char *name);
+size_t bf_test_csv_find(const char *sample, const char *model,
+                        const char *param);
 
 #endif

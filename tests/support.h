@@ -17,6 +17,21 @@
 #define TOL4 (16384.0 * DBL_EPSILON)
 #define TOL_FIT 1e-6
 
+/* 1 in a build with AddressSanitizer (make test-asan), whose code runs
+ * tens of times slower: the few tests whose claim needs many repetitions
+ * (interval coverage) or the plain path on every sample (WNO-R's grid)
+ * make it there on fewer; the plain build makes the full claim. */
+#if defined(__SANITIZE_ADDRESS__)
+#define BF_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define BF_TEST_SANITIZED 1
+#endif
+#endif
+#ifndef BF_TEST_SANITIZED
+#define BF_TEST_SANITIZED 0
+#endif
+
 /* Asserts |obtained - expected| <= tol * max(|expected|, 1e-300) and prints
  * expected, obtained, relative difference and tolerance when it fails. */
 #define bf_assert_rel(obtained, expected, tol) \

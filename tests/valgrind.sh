@@ -18,6 +18,11 @@
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
+# test_coverage repeats hundreds of analyses per model (interval
+# coverage), test_before analyses all 61 samples x 10 models, and
+# cli_analysis/results_do_not_depend_on_the_thread_count runs the CLI's
+# analysis six times: their code paths run under valgrind in test_writers,
+# test_policy, test_rank and the rest of test_cli_analysis.
 # main_job/runs_from_a_bare_clone... runs `make run` on the 24 study samples
 # through make and sh (valgrind follows every child, every figure
 # process); the report code runs under valgrind in test_cmd_report, the
@@ -37,6 +42,9 @@ build=$1
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     test_uncertainty
+    test_coverage
+    test_before
+    cli_analysis/results_do_not_depend_on_the_thread_count
     grid/study_path_finds_the_plain_optimum_on_all_61_samples
     test_refine
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere

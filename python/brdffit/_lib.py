@@ -52,6 +52,7 @@ typedef struct {
 
 /* --- models --- */
 #define BF_MAX_PARAMS 4
+typedef enum { BF_INPUT_DEFAULT = 0, BF_INPUT_INDEX, BF_INPUT_ON } bf_input;
 typedef struct {
     const char *name;
     const char *label;
@@ -62,9 +63,15 @@ typedef struct {
     double grid_lo;
     double grid_step;
     size_t grid_n;
+    bf_input input;
+    size_t input_col;
+    double free_lo;
+    double free_hi;
+    double free_step;
 } bf_param;
 typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
-                          double *out);
+                          double *out, void *work);
+typedef struct bf_kernel bf_kernel;
 typedef struct {
     const char *name;
     const char *title;
@@ -72,12 +79,19 @@ typedef struct {
     size_t p;
     const bf_param *param;
     bf_eval_fn eval;
+    size_t work_size;
+    const bf_kernel *kernel;
+    unsigned style;
+    const char *reduces_to;
+    size_t reduces_param;
+    double reduces_at;
 } bf_model_type;
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);
 const bf_model_type *bf_model_find(const char *name);
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
                   const bf_geom *geom, double *out);
+int bf_model_param_index(const bf_model_type *type, const char *name);
 
 /* --- per-sample tables (ON parameters, refractive index) --- */
 typedef struct bf_sample_table bf_sample_table;
@@ -162,6 +176,7 @@ typedef struct {
     double lse;
     unsigned bound_hit;
     size_t n_eval;
+    unsigned flat;
 } bf_fit_result;
 typedef enum { BF_OBJ_MAX = 0, BF_OBJ_SCALE, BF_OBJ_COSW, BF_OBJ_LOG }
     bf_objective;
@@ -204,6 +219,7 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
                  bf_error *err);
 #define BF_STUDY_NSAMPLES 24
 extern const int bf_study_samples[24];
+typedef void (*bf_progress_fn)(void *ctx, size_t done, size_t total);
 typedef struct {
     bf_objective objective;
     int exact;
@@ -211,7 +227,12 @@ typedef struct {
     size_t n_boot;
     size_t folds;
     unsigned long seed;
+    bf_progress_fn progress;
+    void *progress_ctx;
 } bf_analysis_opts;
+void bf_analysis_opts_init(bf_analysis_opts *o);
+enum { BF_STAT_NOCONV = 1, BF_STAT_REDUCED = 2, BF_STAT_CLAMPED = 4,
+       BF_STAT_CI_FAIL = 8, BF_STAT_BOOT_FAIL = 16, BF_STAT_BOOT_SPLIT = 32 };
 typedef struct {
     int done;
     bf_objective objective;
@@ -227,9 +248,48 @@ typedef struct {
     size_t k;
     double aic, bic;
     double cv;
+    unsigned flags;
+    size_t n_clamped;
+    const char *reduces_to;
+    unsigned boot_split;
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+
+/* --- the exact fit's policy, ranking, output files --- */
+typedef struct {
+    bf_model_type type;
+    bf_param param[4];
+} bf_model_variant;
+void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
+int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
+                         double hi, double step);
+int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
+                           double hi);
+size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
+#define BF_NCRIT 3
+const char *bf_criterion_name(bf_criterion c);
+int bf_criterion_find(const char *name, bf_criterion *c);
+double bf_criterion_value(const bf_fit_stats *st, bf_criterion c);
+int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
+void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
+             size_t *rank, size_t *best);
+const char *bf_rank_winner(const bf_model_type *const *models,
+                           const bf_fit_stats *stats, size_t best);
+int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, size_t *rank, size_t *best);
+int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
+                  bf_criterion c, const char **names, size_t *wins,
+                  size_t *n_names);
+size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
+                           char *buf, size_t len);
+int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      const bf_analysis_opts *opts);
+int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
+                         const bf_study_row *rows, const bf_fit_stats *stats,
+                         const bf_analysis_opts *opts);
 
 /* --- GSL (a dependency of libbrdffit): its default handler aborts --- */
 typedef void gsl_error_handler_t(const char *reason, const char *file,
@@ -252,6 +312,7 @@ CONE_DEFAULT = -1.0  # BF_CONE_DEFAULT
 DEFAULT_N = 1.7  # BF_DEFAULT_N
 FREE_N_LO = 1.2  # BF_FREE_N_LO
 FREE_N_HI = 2.5  # BF_FREE_N_HI
+TIE_REL = 1e-9  # BF_TIE_REL
 SONAME = "libbrdffit.so.0"  # SOVERSION = PROJECT_VERSION_MAJOR
 
 ffi = FFI()

@@ -7,7 +7,7 @@ BIC, cross-validation; doc/methods.md).
 import math
 
 from ._errors import InvalidArgumentError, NotFoundError
-from ._lib import CHANNEL_MEAN
+from ._lib import CHANNEL_MEAN, ffi, lib
 from ._study import Spec
 from .models import _find
 
@@ -59,6 +59,9 @@ class FitResult:
         aic, bic: of the refined optimum (NaN when the fit is exact: a zero
             residual).
         cv: the cross-validated error (NaN with folds=0).
+        flags: what the analysis says about the fit, as fits.csv's flags
+            column (bf_fit_flags_format: "reduces_to=LAMBERT
+            not_identified=rho", "clamped=3", ...; "" for nothing).
       Without the analysis these are None.
     """
 
@@ -90,7 +93,7 @@ class FitResult:
         self.grid = self.refined = self.grid_objective = None
         self.refined_objective = self.intervals = self.intervals_open = None
         self.bootstrap = self.n_params = self.aic = self.bic = None
-        self.cv = None
+        self.cv = self.flags = None
         if stats is not None:
             self._stats(m, stats[0], mask)
 
@@ -116,6 +119,9 @@ class FitResult:
         self.aic = float(st.aic)
         self.bic = float(st.bic)
         self.cv = float(st.cv)
+        buf = ffi.new("char[]", 512)
+        lib.bf_fit_flags_format(m._type, ffi.addressof(st), buf, 512)
+        self.flags = ffi.string(buf).decode()
 
     @property
     def residuals(self):

@@ -43,7 +43,8 @@ def expected_row(r, param):
            "grid_lse": g(r.grid_objective),
            "refined_lse": g(r.refined_objective),
            "boot_low": "", "boot_high": "", "n_params": str(r.n_params),
-           "aic": g(r.aic), "bic": g(r.bic), "cv": g(r.cv)}
+           "aic": g(r.aic), "bic": g(r.bic), "cv": g(r.cv),
+           "flags": r.flags}
     if param is None:
         row.update(parameter="", unit="", value="", bound_hit="0",
                    grid_value="", refined_value="", ci_low="", ci_high="",

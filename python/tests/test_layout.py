@@ -28,6 +28,7 @@ PY_CONSTANTS = {
     "DEFAULT_N": ("%.17g", "(double)BF_DEFAULT_N"),
     "FREE_N_LO": ("%.17g", "(double)BF_FREE_N_LO"),
     "FREE_N_HI": ("%.17g", "(double)BF_FREE_N_HI"),
+    "TIE_REL": ("%.17g", "(double)BF_TIE_REL"),
 }
 
 

@@ -1,62 +1,246 @@
-/* curves.c: normalised model curves at every grid point of a problem, so
- * that grid optima under any objective, weights or data -- one per sample,
- * per bootstrap replicate, per cross-validation fold -- cost no model
- * evaluation (doc/methods.md §2).
+/* curves.c: grid optima of a fitting problem under any objective and any
+ * number of weight vectors against stored normalised curves -- one per
+ * sample, per bootstrap replicate, per cross-validation fold -- at no model
+ * evaluation (doc/methods.md §2), and the public bf_curves built on them.
  *
  * [1] SPEC §7.4: grid x = lo + step * i; with the paper's ranges the points
- *     and curves are those of bf_fit_grid, bit for bit.
+ *     are those of bf_fit_grid.
  */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 struct bf_curves {
-    const bf_model_type *type;
-    unsigned mask;                  /* free parameters */
-    double base[BF_MAX_PARAMS];     /* fixed values */
-    size_t free[BF_MAX_PARAMS];     /* free parameter indices */
-    size_t n_free;
-    double lo[BF_MAX_PARAMS];       /* grid of free parameter i: */
-    double step[BF_MAX_PARAMS];     /*   lo + step * t, t < count */
-    size_t count[BF_MAX_PARAMS];
-    size_t points;
-    size_t n;                       /* configurations */
-    double *curves;                 /* points x n, row-major */
-    unsigned char *ok;              /* 1 where the curve is defined */
+    bf__cset cs;
+    bf__prep pm;
+    bf_grid *gr;
+    unsigned mask; /* free parameters */
 };
 
-/* Parameter vector of point idx (first free parameter slowest, as
- * bf__grid_point) and its grid-bound flags. */
-static unsigned point(const bf_curves *c, size_t idx, double *param)
+/* The objective of pb (weights w) at every grid point, the slow way: one
+ * curve at a time through bf__objective (the scale and log objectives). */
+static int optima_by_point(const bf_grid *gr, const bf_problem *pb,
+                           const double *cti, size_t n_w,
+                           const double *const *w, double *lse)
 {
-    unsigned bound = 0;
-    size_t f = c->n_free;
-    memcpy(param, c->base, sizeof c->base);
-    while (f-- > 0) {
-        size_t t = idx % c->count[f];
-        idx /= c->count[f];
-        param[c->free[f]] = c->lo[f] + c->step[f] * (double)t; /* SPEC §7.4 */
-        if (t == 0 || t + 1 == c->count[f]) {
-            bound |= 1u << c->free[f];
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    size_t cols = bf__grid_cols(gr);
+    double *curve = malloc(3 * pb->n * sizeof *curve);
+    double *scratch;
+    double *log_d;
+    size_t g;
+    size_t b;
+    size_t k;
+    if (curve == NULL) {
+        return BF_ENOMEM;
+    }
+    scratch = curve + pb->n;
+    log_d = scratch + pb->n;
+    for (k = 0; k < pb->n; k++) {
+        double d = pb->data[k];
+        log_d[k] = log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
+    }
+    for (g = 0; g < lay->points; g++) {
+        bf__grid_curve(gr, g, curve);
+        for (b = 0; b < n_w; b++) {
+            bf_problem q = *pb;
+            q.weight = w[b];
+            lse[b * cols + g] = bf__objective(&q, cti, log_d, curve, scratch);
         }
     }
-    return bound;
+    free(curve);
+    return BF_OK;
 }
+
+int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t n_w, const double *const *w,
+                    bf_fit_result *results)
+{
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    size_t cols = bf__grid_cols(gr);
+    double *lse;
+    size_t b;
+    int rc = BF_OK;
+    if (n_w == 0) {
+        return BF_OK;
+    }
+    if (pb->objective == BF_OBJ_MAX || pb->objective == BF_OBJ_COSW) {
+        /* the sums' optima without storing them: one pass for all */
+        return bf__grid_weights_argmin(
+            gr, pb->data, pb->objective == BF_OBJ_COSW ? cti : NULL, n_w, w,
+            results);
+    }
+    if (cols > SIZE_MAX / sizeof(double) / n_w) {
+        return BF_ENOMEM;
+    }
+    lse = malloc(n_w * cols * sizeof *lse);
+    if (lse == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = optima_by_point(gr, pb, cti, n_w, w, lse); /* scale, log */
+    for (b = 0; rc == BF_OK && b < n_w; b++) {
+        int r = bf__grid_best(gr, lse + b * cols, &results[b]);
+        if (r != BF_OK) {
+            memset(&results[b], 0, sizeof results[b]);
+            results[b].lse = NAN; /* no defined point: BF_EDOM's result */
+            results[b].n_eval = lay->points;
+        }
+    }
+    free(lse);
+    return rc;
+}
+
+int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+                          const double *cti, const size_t *fold,
+                          size_t folds, bf_fit_result *results)
+{
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    size_t cols = bf__grid_cols(gr);
+    double *lse;
+    size_t b;
+    if (pb->objective != BF_OBJ_MAX && pb->objective != BF_OBJ_COSW) {
+        /* the slow way: explicit 0/1 weights */
+        double *w = malloc((folds + 1) * pb->n * sizeof *w);
+        const double **wp = malloc((folds + 1) * sizeof *wp);
+        size_t k;
+        int rc = BF_ENOMEM;
+        if (w != NULL && wp != NULL) {
+            wp[0] = NULL;
+            for (b = 0; b < folds; b++) {
+                for (k = 0; k < pb->n; k++) {
+                    w[b * pb->n + k] = fold[k] == b ? 0.0 : 1.0;
+                }
+                wp[b + 1] = w + b * pb->n;
+            }
+            rc = bf__grid_optima(gr, pb, cti, folds + 1, wp, results);
+        }
+        free(w);
+        free(wp);
+        return rc;
+    }
+    if (cols > SIZE_MAX / sizeof(double) / (folds + 1)) {
+        return BF_ENOMEM;
+    }
+    lse = malloc((folds + 1) * cols * sizeof *lse);
+    if (lse == NULL) {
+        return BF_ENOMEM;
+    }
+    bf__grid_score_folds(gr, pb->data,
+                         pb->objective == BF_OBJ_COSW ? cti : NULL, fold,
+                         folds, lse);
+    for (b = 0; b <= folds; b++) {
+        if (bf__grid_best(gr, lse + b * cols, &results[b]) != BF_OK) {
+            memset(&results[b], 0, sizeof results[b]);
+            results[b].lse = NAN;
+            results[b].n_eval = lay->points;
+        }
+    }
+    free(lse);
+    return BF_OK;
+}
+
+/* 1 when point idx of lay is a local minimum of lse: no lower value at any
+ * neighbour along a free parameter (lattice neighbours), and no equal one
+ * before it (a plateau counts once, at its first point). */
+static int local_min(const bf__grid_layout_t *lay, const double *lse,
+                     const unsigned char *ok, size_t idx)
+{
+    size_t stride = 1;
+    size_t f = lay->n_free;
+    if (!ok[idx] || !isfinite(lse[idx])) {
+        return 0;
+    }
+    while (f-- > 0) { /* the last free parameter varies fastest */
+        size_t i = (idx / stride) % lay->count[f];
+        if (i > 0 && ok[idx - stride] && !(lse[idx] < lse[idx - stride])) {
+            return 0;
+        }
+        if (i + 1 < lay->count[f] && ok[idx + stride] &&
+            lse[idx + stride] < lse[idx]) {
+            return 0;
+        }
+        stride *= lay->count[f];
+    }
+    return 1;
+}
+
+int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t max, bf_fit_result *results,
+                    size_t *count)
+{
+    const bf__grid_layout_t *lay = bf__grid_lay(gr);
+    const unsigned char *ok = bf__grid_ok(gr);
+    size_t cols = bf__grid_cols(gr);
+    const double *w[1];
+    double *lse = malloc(cols * sizeof *lse);
+    size_t *idx = malloc((max + 1) * sizeof *idx);
+    size_t g;
+    size_t i;
+    int rc = BF_OK;
+    *count = 0;
+    if (lse == NULL || idx == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    w[0] = pb->weight;
+    switch (pb->objective) {
+    case BF_OBJ_MAX:
+        bf__grid_score_weights(gr, pb->data, NULL, 1, w, lse);
+        break;
+    case BF_OBJ_COSW:
+        bf__grid_score_weights(gr, pb->data, cti, 1, w, lse);
+        break;
+    default:
+        rc = optima_by_point(gr, pb, cti, 1, w, lse);
+        break;
+    }
+    for (g = 0; rc == BF_OK && g < lay->points; g++) {
+        if (!local_min(lay, lse, ok, g)) {
+            continue;
+        }
+        /* keep the max lowest, in increasing value (ties: grid order) */
+        for (i = *count; i > 0 && lse[g] < lse[idx[i - 1]]; i--) {
+            if (i < max) {
+                idx[i] = idx[i - 1];
+            }
+        }
+        if (i < max) {
+            idx[i] = g;
+            *count += *count < max;
+        }
+    }
+    for (i = 0; rc == BF_OK && i < *count; i++) {
+        bf__grid_result(lay, idx[i], lse[idx[i]], &results[i]);
+    }
+done:
+    free(lse);
+    free(idx);
+    return rc;
+}
+
+/* ==== the public bf_curves =============================================== */
 
 bf_curves *bf_curves_alloc(const bf_problem *pb, int *status)
 {
     bf_curves *c = NULL;
-    double param[BF_MAX_PARAMS];
-    size_t j;
-    size_t idx;
-    int rc = BF_OK;
+    bf__grid_layout_t lay;
+    int rc;
 
     if (pb == NULL || pb->type == NULL || pb->geom == NULL || pb->n == 0 ||
         pb->type->p > BF_MAX_PARAMS) {
         rc = BF_EINVAL;
+        goto fail;
+    }
+    rc = bf__grid_layout_range(pb->type, pb->fixed, pb->free_mask, pb->lo,
+                               pb->hi, &lay);
+    if (rc != BF_OK) {
+        goto fail;
+    }
+    rc = bf__geom_check(pb->n, pb->geom);
+    if (rc != BF_OK) {
         goto fail;
     }
     c = calloc(1, sizeof *c);
@@ -64,49 +248,16 @@ bf_curves *bf_curves_alloc(const bf_problem *pb, int *status)
         rc = BF_ENOMEM;
         goto fail;
     }
-    c->type = pb->type;
     c->mask = pb->free_mask;
-    c->n = pb->n;
-    c->points = 1;
-    memcpy(c->base, pb->fixed, sizeof c->base);
-    for (j = 0; j < pb->type->p; j++) {
-        const bf_param *pj = &pb->type->param[j];
-        double span;
-        if (!((pb->free_mask >> j) & 1u)) {
-            continue;
-        }
-        span = pb->hi[j] - pb->lo[j];
-        if (pj->grid_n == 0 || !(pj->grid_step > 0.0) || !(span >= 0.0) ||
-            pb->lo[j] < pj->min || pb->hi[j] > pj->max) {
-            rc = BF_EINVAL;
-            goto fail;
-        }
-        c->free[c->n_free] = j;
-        c->lo[c->n_free] = pb->lo[j];
-        c->step[c->n_free] = pj->grid_step;
-        /* points lo + step t <= hi (1e-9 absorbs the rounding of span) */
-        c->count[c->n_free] = (size_t)floor(span / pj->grid_step + 1e-9) + 1;
-        if (c->count[c->n_free] > SIZE_MAX / c->points) {
-            rc = BF_ENOMEM;
-            goto fail;
-        }
-        c->points *= c->count[c->n_free];
-        c->n_free++;
+    rc = bf__cset_init(&c->cs, pb->n, pb->geom);
+    if (rc == BF_OK) {
+        rc = bf__prep_init(&c->pm, pb->type, &c->cs);
     }
-    if (c->points > SIZE_MAX / sizeof(double) / c->n) {
-        rc = BF_ENOMEM;
+    if (rc == BF_OK) {
+        c->gr = bf__grid_make(&c->pm, &lay, &rc);
+    }
+    if (rc != BF_OK) {
         goto fail;
-    }
-    c->curves = malloc(c->points * c->n * sizeof *c->curves);
-    c->ok = malloc(c->points);
-    if (c->curves == NULL || c->ok == NULL) {
-        rc = BF_ENOMEM;
-        goto fail;
-    }
-    for (idx = 0; idx < c->points; idx++) {
-        point(c, idx, param);
-        c->ok[idx] = bf__model_curve(c->type, param, c->n, pb->geom,
-                                     c->curves + idx * c->n) == BF_OK;
     }
     if (status != NULL) {
         *status = BF_OK;
@@ -126,50 +277,43 @@ void bf_curves_free(bf_curves *c)
     if (c == NULL) {
         return;
     }
-    free(c->curves);
-    free(c->ok);
+    bf_grid_free(c->gr);
+    bf__prep_free(&c->pm);
+    bf__cset_free(&c->cs);
     free(c);
 }
 
 size_t bf_curves_points(const bf_curves *c)
 {
-    return c->points;
+    return bf_grid_points(c->gr);
+}
+
+const bf_grid *bf__curves_grid(const bf_curves *c)
+{
+    return c->gr;
+}
+
+int bf__curves_check(const bf_curves *c, const bf_problem *pb)
+{
+    return (c != NULL && pb != NULL && pb->data != NULL &&
+            pb->type == c->pm.type && pb->n == c->pm.n &&
+            pb->free_mask == c->mask)
+               ? BF_OK
+               : BF_EINVAL;
 }
 
 int bf_curves_best(const bf_curves *c, const bf_problem *pb,
                    bf_fit_result *result)
 {
-    double *scratch;
-    double best_value = INFINITY;
-    size_t best = SIZE_MAX;
-    size_t idx;
-
-    if (c == NULL || pb == NULL || result == NULL || pb->data == NULL ||
-        pb->type != c->type || pb->n != c->n || pb->free_mask != c->mask) {
+    const double *w[1];
+    int rc;
+    if (result == NULL || bf__curves_check(c, pb) != BF_OK) {
         return BF_EINVAL;
     }
-    scratch = malloc(c->n * sizeof *scratch);
-    if (scratch == NULL) {
-        return BF_ENOMEM;
+    w[0] = pb->weight;
+    rc = bf__grid_optima(c->gr, pb, c->cs.cti, 1, w, result);
+    if (rc == BF_OK && !isfinite(result->lse)) {
+        rc = BF_EDOM;
     }
-    memset(result, 0, sizeof *result);
-    for (idx = 0; idx < c->points; idx++) {
-        double v;
-        if (!c->ok[idx]) {
-            continue;
-        }
-        v = bf__objective_curve(pb, c->curves + idx * c->n, scratch);
-        if (v < best_value) { /* strict: ties keep the first point */
-            best_value = v;
-            best = idx;
-        }
-    }
-    free(scratch);
-    result->n_eval = c->points;
-    if (best == SIZE_MAX) {
-        return BF_EDOM;
-    }
-    result->bound_hit = point(c, best, result->param);
-    result->lse = best_value;
-    return BF_OK;
+    return rc;
 }

@@ -29,12 +29,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 struct bf_fit_workspace {
-    size_t n;       /* capacity in configurations */
-    double *curve;  /* model curve at one parameter vector */
+    size_t n;          /* capacity in configurations */
+    double *curve;     /* model curve at one parameter vector */
+    void *work;        /* a model's eval workspace (the largest of the
+                          registry's), or NULL */
+    size_t work_bytes;
 };
+
+/* The largest eval workspace of the registry's models. */
+static size_t registry_work_bytes(void)
+{
+    size_t i;
+    size_t most = 0;
+    for (i = 0; i < bf_model_count(); i++) {
+        size_t b = bf_model_get(i)->work_size;
+        most = b > most ? b : most;
+    }
+    return most;
+}
 
 bf_fit_workspace *bf_fit_alloc(size_t n)
 {
@@ -48,7 +63,11 @@ bf_fit_workspace *bf_fit_alloc(size_t n)
     }
     w->n = n;
     w->curve = malloc(n * sizeof *w->curve);
-    if (w->curve == NULL) {
+    w->work_bytes = registry_work_bytes();
+    if (w->work_bytes > 0) {
+        w->work = aligned_alloc(64, (w->work_bytes + 63) / 64 * 64);
+    }
+    if (w->curve == NULL || (w->work_bytes > 0 && w->work == NULL)) {
         bf_fit_free(w);
         return NULL;
     }
@@ -61,7 +80,26 @@ void bf_fit_free(bf_fit_workspace *w)
         return;
     }
     free(w->curve);
+    free(w->work);
     free(w);
+}
+
+/* w's eval workspace for type, or a new one in *own (freed by the caller)
+ * for a type made outside the library that needs more; NULL with *own
+ * NULL when none is needed. BF_ENOMEM. */
+static int eval_work(bf_fit_workspace *w, const bf_model_type *type,
+                     void **work, void **own)
+{
+    *own = NULL;
+    *work = w->work;
+    if (type->work_size > w->work_bytes) {
+        *own = aligned_alloc(64, (type->work_size + 63) / 64 * 64);
+        *work = *own;
+        if (*own == NULL) {
+            return BF_ENOMEM;
+        }
+    }
+    return BF_OK;
 }
 
 /* Sum of squared differences between a normalised curve and the data, in
@@ -77,53 +115,43 @@ double bf__sum_sq_diff(size_t n, const double *curve, const double *data)
     return s;
 }
 
-/* Evaluates type at param on the n configurations and normalises in place.
- * Returns BF_OK, BF_ENOMEM (WNO-R's quadrature table), or BF_EDOM when the
- * model is undefined or its maximum is not positive. Parameters are assumed
- * valid (checked by the callers). */
-int bf__model_curve(const bf_model_type *type, const double *param, size_t n,
-                    const bf_geom *geom, double *curve)
-{
-    int rc = type->eval(param, n, geom, curve);
-    if (rc != BF_OK) {
-        return (rc == BF_ENOMEM) ? BF_ENOMEM : BF_EDOM;
-    }
-    return bf_normalise(n, curve, curve);
-}
-
 int bf_fit_lse(const bf_model_type *type, const double *param, size_t n,
                const bf_geom *geom, const double *data, bf_fit_workspace *w,
                double *lse)
 {
+    void *work;
+    void *own;
+    bf__prep pm;
     int rc;
     if (type == NULL || (param == NULL && type->p > 0) || geom == NULL ||
         data == NULL || w == NULL || lse == NULL || n == 0 || n > w->n) {
         return BF_EINVAL;
     }
-    rc = bf_model_eval(type, param, n, geom, w->curve);
-    if (rc != BF_OK) {
-        return rc;
+    rc = eval_work(w, type, &work, &own);
+    if (rc == BF_OK) {
+        rc = bf_model_eval_work(type, param, n, geom, w->curve, work);
     }
-    rc = bf_normalise(n, w->curve, w->curve);
-    if (rc != BF_OK) {
-        return rc;
+    if (rc == BF_OK) {
+        rc = bf_normalise(n, w->curve, w->curve);
     }
-    *lse = bf__sum_sq_diff(n, w->curve, data);
-    return BF_OK;
+    if (rc == BF_OK) {
+        *lse = bf__sum_sq_diff(n, w->curve, data);
+    }
+    (void)pm;
+    free(own);
+    return rc;
 }
 
-/* ==== grid enumeration ================================================== */
+/* ==== the grid layout and enumerator ===================================== */
 
-/* Fills g with the free parameters of type (bit j of mask, or the ones the
- * paper fits when mask is 0) and checks that each has a grid and fixed[]
- * holds valid values for the others. */
 int bf__grid_layout(const bf_model_type *type, const double *fixed,
                     unsigned free_mask, bf__grid_layout_t *g)
 {
+    double lo[BF_MAX_PARAMS] = {0};
+    double hi[BF_MAX_PARAMS] = {0};
     size_t j;
-    memset(g, 0, sizeof *g);
-    if (type == NULL || (type->p > 0 && fixed == NULL) ||
-        type->p > BF_MAX_PARAMS) {
+    if (type == NULL || type->p > BF_MAX_PARAMS) {
+        memset(g, 0, sizeof *g);
         return BF_EINVAL;
     }
     if (free_mask == 0) {
@@ -133,49 +161,79 @@ int bf__grid_layout(const bf_model_type *type, const double *fixed,
             }
         }
     }
-    if ((free_mask >> type->p) != 0) {
+    for (j = 0; j < type->p; j++) {
+        const bf_param *pj = &type->param[j];
+        lo[j] = pj->grid_lo;
+        hi[j] = pj->grid_lo + pj->grid_step * (double)(pj->grid_n - 1);
+        if (pj->grid_n == 0 && ((free_mask >> j) & 1u)) {
+            memset(g, 0, sizeof *g);
+            return BF_EINVAL;
+        }
+    }
+    return bf__grid_layout_range(type, fixed, free_mask, lo, hi, g);
+}
+
+int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
+                          unsigned mask, const double *lo, const double *hi,
+                          bf__grid_layout_t *g)
+{
+    size_t j;
+    memset(g, 0, sizeof *g);
+    if (type == NULL || (type->p > 0 && fixed == NULL) ||
+        type->p > BF_MAX_PARAMS || (mask >> type->p) != 0) {
         return BF_EINVAL;
     }
     g->points = 1;
     for (j = 0; j < type->p; j++) {
         const bf_param *pj = &type->param[j];
         g->base[j] = fixed[j];
-        if (free_mask & (1u << j)) {
-            double hi = pj->grid_lo + pj->grid_step * (double)(pj->grid_n - 1);
-            if (pj->grid_n == 0 || pj->grid_lo < pj->min || hi > pj->max) {
+        if ((mask >> j) & 1u) {
+            size_t i = g->n_free;
+            double span = hi[j] - lo[j];
+            if (pj->grid_n == 0 || !(pj->grid_step > 0.0) ||
+                !(span >= 0.0) || !(lo[j] >= pj->min) ||
+                !(hi[j] <= pj->max)) {
                 return BF_EINVAL;
             }
-            g->free[g->n_free++] = j;
-            g->points *= pj->grid_n;
+            g->free[i] = j;
+            g->lo[i] = lo[j];
+            g->step[i] = pj->grid_step;
+            /* points lo + step t <= hi; 1e-9 absorbs the rounding of the
+             * span, so the paper's ranges give grid_n points */
+            g->count[i] = (size_t)floor(span / pj->grid_step + 1e-9) + 1;
+            if (g->count[i] > SIZE_MAX / g->points) {
+                return BF_ENOMEM;
+            }
+            g->points *= g->count[i];
+            g->n_free++;
         } else if (!isfinite(fixed[j]) || fixed[j] < pj->min ||
                    fixed[j] > pj->max) {
             return BF_EINVAL;
         }
     }
-    g->mask = free_mask;
+    g->mask = mask;
     return BF_OK;
 }
 
-/* Parameter vector of grid point idx (mixed radix, first free parameter
- * varying slowest) and the bound flags of that point. */
-unsigned bf__grid_point(const bf_model_type *type, const bf__grid_layout_t *g,
-                        size_t idx, double *param)
+unsigned bf__grid_point(const bf__grid_layout_t *g, size_t idx,
+                        double *param)
 {
     unsigned bound = 0;
     size_t f = g->n_free;
     memcpy(param, g->base, sizeof g->base);
     while (f-- > 0) {
         size_t j = g->free[f];
-        const bf_param *pj = &type->param[j];
-        size_t i = idx % pj->grid_n;
-        idx /= pj->grid_n;
-        param[j] = pj->grid_lo + pj->grid_step * (double)i; /* SPEC §7.4 */
-        if (i == 0 || i == pj->grid_n - 1) {
+        size_t i = idx % g->count[f];
+        idx /= g->count[f];
+        param[j] = g->lo[f] + g->step[f] * (double)i; /* SPEC §7.4 */
+        if (i == 0 || i == g->count[f] - 1) {
             bound |= 1u << j;
         }
     }
     return bound;
 }
+
+/* ==== the plain path: the paper's search, one point at a time =========== */
 
 int bf_fit_grid(const bf_model_type *type, const double *fixed,
                 unsigned free_mask, size_t n, const bf_geom *geom,
@@ -183,10 +241,15 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
                 bf_fit_result *result)
 {
     bf__grid_layout_t g;
+    bf__prep pm;
     double param[BF_MAX_PARAMS];
+    double *lse = NULL;
+    unsigned char *ok = NULL;
+    void *work;
+    void *own = NULL;
     size_t idx;
-    size_t best = SIZE_MAX;
-    double best_lse = INFINITY;
+    size_t best;
+    double best_lse;
     int rc;
 
     if (geom == NULL || data == NULL || w == NULL || result == NULL ||
@@ -197,32 +260,34 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
     if (rc != BF_OK) {
         return rc;
     }
-    memset(result, 0, sizeof *result);
-    for (idx = 0; idx < g.points; idx++) {
-        double lse;
-        bf__grid_point(type, &g, idx, param);
-        result->n_eval++;
-        if (bf__model_curve(type, param, n, geom, w->curve) != BF_OK) {
-            continue; /* undefined here: not a candidate */
-        }
-        lse = bf__sum_sq_diff(n, w->curve, data);
-        if (lse < best_lse) { /* strict: ties keep the first grid point */
-            best_lse = lse;
-            best = idx;
-        }
+    rc = bf__prep_plain(&pm, type, n, geom);
+    if (rc == BF_OK) {
+        rc = eval_work(w, type, &work, &own);
     }
-    if (best == SIZE_MAX) {
-        return BF_EDOM;
+    lse = malloc(g.points * sizeof *lse);
+    ok = malloc(g.points);
+    if (rc == BF_OK && (lse == NULL || ok == NULL)) {
+        rc = BF_ENOMEM;
     }
-    result->bound_hit = bf__grid_point(type, &g, best, result->param);
-    result->lse = best_lse;
-    return BF_OK;
+    for (idx = 0; rc == BF_OK && idx < g.points; idx++) {
+        bf__grid_point(&g, idx, param);
+        /* undefined here: not a candidate */
+        ok[idx] = bf__curve(&pm, param, work, w->curve) == BF_OK;
+        lse[idx] = ok[idx] ? bf__sum_sq_diff(n, w->curve, data) : 0.0;
+    }
+    if (rc == BF_OK) {
+        best_lse = bf__argmin(g.points, lse, ok, &best);
+        rc = bf__grid_result(&g, best, best_lse, result);
+    }
+    free(lse);
+    free(ok);
+    free(own);
+    return rc;
 }
 
 /* ==== precomputed grid (the study path) ================================= */
 
 struct bf_grid {
-    const bf_model_type *type;
     bf__grid_layout_t layout;
     size_t n;          /* configurations */
     size_t cols;       /* grid points padded to a multiple of the lanes */
@@ -232,56 +297,51 @@ struct bf_grid {
     unsigned char *ok; /* cols flags: 1 where the curve is defined */
 };
 
-/* Fills gr's curves with the plain evaluation, one grid point at a time
- * (models without a vector kernel: ON, LAMBERT, other free masks). */
-static int curves_plain(bf_grid *gr, const bf_geom *geom)
+/* Fills gr's curves one grid point at a time through the engine (models
+ * without a block kernel: ON, LAMBERT, WNO, WNO-R, other free masks). */
+static int curves_by_point(bf_grid *gr, const bf__prep *pm)
 {
     double param[BF_MAX_PARAMS];
     double *curve = malloc(gr->n * sizeof *curve);
+    void *work = bf__work_alloc(pm);
     size_t idx;
     size_t k;
-    if (curve == NULL) {
+    if (curve == NULL || work == NULL) {
+        free(curve);
+        free(work);
         return BF_ENOMEM;
     }
     for (idx = 0; idx < gr->layout.points; idx++) {
-        bf__grid_point(gr->type, &gr->layout, idx, param);
-        gr->ok[idx] = bf__model_curve(gr->type, param, gr->n, geom, curve) ==
-                      BF_OK;
+        bf__grid_point(&gr->layout, idx, param);
+        gr->ok[idx] = bf__curve(pm, param, work, curve) == BF_OK;
         for (k = 0; k < gr->n; k++) {
             gr->curves[(k * gr->stride) + idx] = curve[k];
         }
     }
     free(curve);
+    free(work);
     return BF_OK;
 }
 
-bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
-                        unsigned free_mask, size_t n, const bf_geom *geom,
-                        int *status)
+bf_grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
+                       int *status)
 {
     bf_grid *gr = NULL;
     size_t bytes;
+    size_t n = pm->n;
     int rc;
 
-    if (geom == NULL || n == 0) {
-        rc = BF_EINVAL;
-        goto fail;
-    }
     gr = calloc(1, sizeof *gr);
     if (gr == NULL) {
         rc = BF_ENOMEM;
         goto fail;
     }
-    rc = bf__grid_layout(type, fixed, free_mask, &gr->layout);
-    if (rc != BF_OK) {
-        goto fail;
-    }
-    gr->type = type;
+    gr->layout = *lay;
     gr->n = n;
-    gr->cols = (gr->layout.points + BF__SCORE_LANES - 1) / BF__SCORE_LANES *
+    gr->cols = (lay->points + BF__SCORE_LANES - 1) / BF__SCORE_LANES *
                BF__SCORE_LANES;
     gr->stride = gr->cols + BF__ROW_PAD;
-    if (gr->cols < gr->layout.points ||
+    if (gr->cols < lay->points ||
         gr->stride > SIZE_MAX / sizeof(double) / n) {
         rc = BF_ENOMEM;
         goto fail;
@@ -293,15 +353,14 @@ bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
         rc = BF_ENOMEM;
         goto fail;
     }
-    rc = bf__curves_fast(type, &gr->layout, n, geom, gr->cols, gr->stride,
-                         gr->curves, gr->ok);
+    rc = bf__curves_fast(pm, lay, gr->cols, gr->stride, gr->curves, gr->ok);
     if (rc < 0) {
         rc = -rc;
         goto fail;
     }
     if (rc == 0) {
         memset(gr->curves, 0, bytes); /* padding lanes stay defined */
-        rc = curves_plain(gr, geom);
+        rc = curves_by_point(gr, pm);
         if (rc != BF_OK) {
             goto fail;
         }
@@ -319,11 +378,44 @@ fail:
     return NULL;
 }
 
+bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                        unsigned free_mask, const bf__cset *cs, int *status)
+{
+    bf__grid_layout_t lay;
+    bf__prep pm;
+    bf_grid *gr = NULL;
+    int rc = bf__grid_layout(type, fixed, free_mask, &lay);
+    if (rc == BF_OK) {
+        rc = bf__prep_init(&pm, type, cs);
+        if (rc == BF_OK) {
+            gr = bf__grid_make(&pm, &lay, &rc);
+        }
+        bf__prep_free(&pm);
+    }
+    if (status != NULL) {
+        *status = rc;
+    }
+    return gr;
+}
+
 bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
                        unsigned free_mask, size_t n, const bf_geom *geom,
                        int *status)
 {
-    return bf__grid_build(type, fixed, free_mask, n, geom, status);
+    bf__cset cs;
+    bf_grid *gr = NULL;
+    int rc = bf__geom_check(n, geom);
+    if (rc == BF_OK) {
+        rc = bf__cset_init(&cs, n, geom);
+    }
+    if (rc == BF_OK) {
+        gr = bf__grid_build(type, fixed, free_mask, &cs, &rc);
+        bf__cset_free(&cs);
+    }
+    if (status != NULL) {
+        *status = rc;
+    }
+    return gr;
 }
 
 void bf_grid_free(bf_grid *gr)
@@ -346,6 +438,16 @@ size_t bf__grid_cols(const bf_grid *gr)
     return gr->cols;
 }
 
+const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr)
+{
+    return &gr->layout;
+}
+
+const unsigned char *bf__grid_ok(const bf_grid *gr)
+{
+    return gr->ok;
+}
+
 void bf__grid_score(const bf_grid *gr, size_t n_samples,
                     const double *const *data, double *lse)
 {
@@ -353,15 +455,103 @@ void bf__grid_score(const bf_grid *gr, size_t n_samples,
                   lse);
 }
 
-int bf__grid_result(const bf_model_type *type, const bf__grid_layout_t *g,
-                    size_t best, double best_lse, bf_fit_result *result)
+void bf__grid_score_weights(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, double *lse)
+{
+    bf__score_weights(gr->n, gr->cols, gr->stride, gr->curves, data, cw,
+                      n_w, w, lse);
+}
+
+int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, bf_fit_result *results)
+{
+    double *lse = malloc((n_w + 1) * sizeof *lse);
+    size_t *best = malloc((n_w + 1) * sizeof *best);
+    size_t b;
+    int rc = BF_OK;
+    if (lse == NULL || best == NULL) {
+        free(lse);
+        free(best);
+        return BF_ENOMEM;
+    }
+    rc = bf__weights_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
+                            gr->layout.points, data, cw, n_w, w, lse, best);
+    for (b = 0; rc == BF_OK && b < n_w; b++) {
+        if (bf__grid_result(&gr->layout, best[b], lse[b], &results[b]) !=
+            BF_OK) {
+            memset(&results[b], 0, sizeof results[b]);
+            results[b].lse = NAN; /* no defined point: BF_EDOM's result */
+            results[b].n_eval = gr->layout.points;
+        }
+    }
+    free(lse);
+    free(best);
+    return rc;
+}
+
+void bf__grid_score_folds(const bf_grid *gr, const double *data,
+                          const double *cw, const size_t *fold, size_t folds,
+                          double *lse)
+{
+    bf__score_folds(gr->n, gr->cols, gr->stride, gr->curves, data, cw, fold,
+                    folds, lse);
+}
+
+int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+                          const double *const *data, const double *cw,
+                          const size_t *fold, size_t folds,
+                          bf_fit_result *results)
+{
+    size_t total = n_data * (folds + 1);
+    double *lse = malloc((total + 1) * sizeof *lse);
+    size_t *best = malloc((total + 1) * sizeof *best);
+    size_t q;
+    int rc = BF_OK;
+    if (lse == NULL || best == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    bf__folds_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
+                     gr->layout.points, n_data, data, cw, fold, folds, lse,
+                     best);
+    for (q = 0; q < total; q++) {
+        if (bf__grid_result(&gr->layout, best[q], lse[q], &results[q]) !=
+            BF_OK) {
+            results[q].lse = NAN; /* no defined point */
+        }
+    }
+done:
+    free(lse);
+    free(best);
+    return rc;
+}
+
+const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
+                                 size_t *stride)
+{
+    *stride = gr->stride;
+    return gr->curves + k * gr->stride;
+}
+
+void bf__grid_curve(const bf_grid *gr, size_t idx, double *curve)
+{
+    size_t k;
+    for (k = 0; k < gr->n; k++) {
+        curve[k] = gr->curves[k * gr->stride + idx];
+    }
+}
+
+int bf__grid_result(const bf__grid_layout_t *g, size_t best, double best_lse,
+                    bf_fit_result *result)
 {
     memset(result, 0, sizeof *result);
     result->n_eval = g->points;
     if (best == SIZE_MAX) {
         return BF_EDOM;
     }
-    result->bound_hit = bf__grid_point(type, g, best, result->param);
+    result->bound_hit = bf__grid_point(g, best, result->param);
     result->lse = best_lse;
     return BF_OK;
 }
@@ -371,7 +561,7 @@ int bf__grid_best(const bf_grid *gr, const double *lse,
 {
     size_t best;
     double best_lse = bf__argmin(gr->layout.points, lse, gr->ok, &best);
-    return bf__grid_result(gr->type, &gr->layout, best, best_lse, result);
+    return bf__grid_result(&gr->layout, best, best_lse, result);
 }
 
 int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
@@ -395,15 +585,13 @@ int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
 /* ==== models with nothing to fit (the study path for ON, LAMBERT) ======= */
 
 /* A model evaluated once per sample at that sample's fixed inputs (SPEC
- * §7.5: ON at the tabulated rho, sigma). The geometry-only terms of ON are
- * computed once for all samples; the value, the normalisation and the LSE
- * are the plain path's, operation for operation, so the results are bit
- * for bit those of bf_fit_grid. */
+ * §7.5: ON at the tabulated rho, sigma) through the engine: the geometry
+ * terms (ON's) once for all samples; the values, bf_normalise and the LSE
+ * are the plain path's operations, so the results are bit for bit those of
+ * bf_fit_grid. */
 struct bf__fixed_model {
-    const bf_model_type *type;
-    size_t n;
-    const bf_geom *geom;   /* borrowed from the caller */
-    bf__on_terms_t *on;    /* ON's terms, or NULL: plain evaluation */
+    bf__prep pm;
+    void *work;
     double *curve;
 };
 
@@ -418,31 +606,22 @@ int bf__fits_nothing(const bf_model_type *type)
     return 1;
 }
 
-bf__fixed_model *bf__fixed_alloc(const bf_model_type *type, size_t n,
-                                 const bf_geom *geom)
+bf__fixed_model *bf__fixed_alloc(const bf_model_type *type,
+                                 const bf__cset *cs)
 {
     bf__fixed_model *fm = calloc(1, sizeof *fm);
-    size_t k;
     if (fm == NULL) {
         return NULL;
     }
-    fm->type = type;
-    fm->n = n;
-    fm->geom = geom;
-    fm->curve = malloc(n * sizeof *fm->curve);
-    if (fm->curve == NULL) {
+    if (bf__prep_init(&fm->pm, type, cs) != BF_OK) {
         bf__fixed_free(fm);
         return NULL;
     }
-    if (bf__is_on(type)) {
-        fm->on = malloc(n * sizeof *fm->on);
-        if (fm->on == NULL) {
-            bf__fixed_free(fm);
-            return NULL;
-        }
-        for (k = 0; k < n; k++) {
-            bf__on_terms(&geom[k], &fm->on[k]);
-        }
+    fm->work = bf__work_alloc(&fm->pm);
+    fm->curve = malloc(cs->n * sizeof *fm->curve);
+    if (fm->work == NULL || fm->curve == NULL) {
+        bf__fixed_free(fm);
+        return NULL;
     }
     return fm;
 }
@@ -451,28 +630,18 @@ int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
                   const double *data, bf_fit_result *result)
 {
     bf__grid_layout_t g;
-    int rc = bf__grid_layout(fm->type, fixed, 0, &g);
+    int rc = bf__grid_layout(fm->pm.type, fixed, 0, &g);
     memset(result, 0, sizeof *result);
     if (rc != BF_OK) {
         return rc;
     }
-    if (fm->on != NULL) {
-        bf__on_coef_t c;
-        size_t k;
-        bf__on_coef(fixed[0], fixed[1], &c); /* rho, sigma: SPEC §5 */
-        for (k = 0; k < fm->n; k++) {
-            fm->curve[k] = bf__on_value(&fm->on[k], &c);
-        }
-        rc = bf_normalise(fm->n, fm->curve, fm->curve);
-    } else {
-        rc = bf__model_curve(fm->type, g.base, fm->n, fm->geom, fm->curve);
-    }
+    rc = bf__curve(&fm->pm, g.base, fm->work, fm->curve);
     result->n_eval = 1;
     if (rc != BF_OK) {
         return BF_EDOM; /* as bf_fit_grid: no defined grid point */
     }
-    result->bound_hit = bf__grid_point(fm->type, &g, 0, result->param);
-    result->lse = bf__sum_sq_diff(fm->n, fm->curve, data);
+    result->bound_hit = bf__grid_point(&g, 0, result->param);
+    result->lse = bf__sum_sq_diff(fm->pm.n, fm->curve, data);
     return BF_OK;
 }
 
@@ -481,7 +650,8 @@ void bf__fixed_free(bf__fixed_model *fm)
     if (fm == NULL) {
         return;
     }
-    free(fm->on);
+    bf__prep_free(&fm->pm);
+    free(fm->work);
     free(fm->curve);
     free(fm);
 }

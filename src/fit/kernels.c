@@ -45,12 +45,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 
 
-/* Grid points per curve block: one AVX-512 register of doubles. */
-#define CURVE_LANES 16
+/* Grid points per curve block: one AVX-512 register of doubles (two of
+ * AVX2's); a block of curves (8 x K doubles: 12.7 KB at K = 198) and the
+ * next one fit a 32 KB L1 together. The bits do not depend on it: every
+ * grid point's sums are formed alone, in index order. */
+#define CURVE_LANES 8
 /* Samples scored together (each loaded curve value is used this often). */
 #define TILE_SAMPLES 4
 
@@ -113,12 +116,215 @@ double bf__exp_nonpos(double x)
     return exp_nonpos(x);
 }
 
-/* ==== geometry terms, once per configuration ============================= */
+/* ==== geometry terms, once per configuration set ======================== */
 
-/* Structure of arrays of the per-configuration terms, 64-byte aligned.
- * Every factor that does not depend on the configuration (1/m^2 of (P1),
- * 2m of (P2), (n_d + 2)/(2 pi) of (P7)) is dropped: it cancels in the
- * normalisation (SPEC §2). */
+/* The BK family's terms (src/fit/engine.h, BF__BK_NTERMS rows of n, then
+ * one extra: 1 when some slope gives a curve). Every factor that does not
+ * depend on the configuration (1/m^2 of (P1), 2m of (P2)) is dropped: it
+ * cancels in the normalisation (SPEC §2). */
+enum {
+    T_SI = 0, T_CI, T_SS, T_CS, /* sines and cosines, for FC's F^2 */
+    T_VZ2,                      /* vz^2 (SPEC §3) */
+    T_VXY2,                     /* vxy^2 */
+    T_AVZ,                      /* |vz| */
+    T_A,                        /* G: F^2/vz^2   E: F^2 |vz| (not FC) */
+    T_B,                        /* G: -vxy^2/(4 vz^2)   E: vz^2 */
+    T_C,                        /* E: vxy^2 */
+    T_F2                        /* F^2 of BK, VH (not FC) */
+};
+
+/* The slope-independent parts of (P1)/(P2) from F^2 = f2 at one
+ * configuration, exactly as the grid has always formed them. Where vz = 0
+ * (theta_i = theta_s = pi/2) the model's limit is 0 (SPEC §3.3): a = 0 and
+ * a harmless denominator. Returns 0 when a term is not finite. */
+static inline int bk_abc(int corr, double f2, double vz2, double vxy2,
+                         double abs_vz, double *a, double *b, double *c)
+{
+    if (vz2 == 0.0) {
+        *a = 0.0; /* the limit 0, SPEC §3.3 */
+        *b = 0.0;
+        *c = 1.0;
+    } else if (corr == BF__BK_CORR_GAUSS) {
+        /* (P1): L m^2 = F^2/vz^2 exp(-vxy^2/(4 vz^2) / m^2) */
+        *a = f2 / vz2;
+        *b = -vxy2 / (4.0 * vz2);
+        *c = 0.0;
+    } else {
+        /* (P2) as in bk.c: L / (2m) = F^2 |vz| / (m^2 vz^2 + vxy^2)^1.5 */
+        *a = f2 * abs_vz;
+        *b = vz2;
+        *c = vxy2;
+    }
+    return isfinite(*a) && isfinite(*b);
+}
+
+void bf__bk_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
+{
+    size_t n = cs->n;
+    size_t k;
+    int ok = 1;
+    for (k = 0; k < n; k++) {
+        bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
+        const bf__trig_t *tr = &cs->trig[k];
+        double a;
+        double b;
+        double c;
+        /* FC's F^2 depends on n: formed per n in the workspace */
+        int fc = kr->factor == BF__BK_FACTOR_FC;
+        if (bf__bk_terms_trig(fc ? BF__BK_FACTOR_VH : kr->factor, 1.0, tr,
+                              &bt) != BF_OK) {
+            ok = 0; /* BK at theta_i = pi/2: no slope works (SPEC §3.3) */
+        }
+        terms[T_SI * n + k] = tr->si;
+        terms[T_CI * n + k] = tr->ci;
+        terms[T_SS * n + k] = tr->ss;
+        terms[T_CS * n + k] = tr->cs;
+        terms[T_VZ2 * n + k] = bt.vz2;
+        terms[T_VXY2 * n + k] = bt.vxy2;
+        terms[T_AVZ * n + k] = bt.abs_vz;
+        terms[T_F2 * n + k] = bt.f2;
+        ok &= bk_abc(kr->corr, bt.f2, bt.vz2, bt.vxy2, bt.abs_vz, &a, &b, &c);
+        terms[T_A * n + k] = a;
+        terms[T_B * n + k] = b;
+        terms[T_C * n + k] = c;
+    }
+    terms[BF__BK_NTERMS * n] = ok;
+}
+
+/* FC's workspace: the a-terms of the last FC_SLOTS indices n (the grid of
+ * n is 27 values: a fit, a grid of n or a profile over it finds them
+ * here after their first use), replaced round-robin. A slot's content is
+ * a function of its n alone, so hits and misses give the same bits. */
+#define FC_SLOTS 32
+typedef struct {
+    double n[FC_SLOTS];
+    int used[FC_SLOTS]; /* 1 once the slot holds n[slot]'s terms */
+    int ok[FC_SLOTS];   /* every a finite */
+    size_t next;        /* the slot to replace */
+    double a[];         /* FC_SLOTS x n values */
+} fc_work;
+
+size_t bf__bk_kwork(const bf_kernel *kr, size_t n)
+{
+    return kr->factor == BF__BK_FACTOR_FC
+               ? sizeof(fc_work) + FC_SLOTS * n * sizeof(double)
+               : 0;
+}
+
+/* The a-terms of FC at index n_index (F_FC^2 of (P6), SPEC §4.2), as
+ * bf__bk_terms_trig and the grid form them, from w's slots or into one;
+ * *a points at them. Returns 0 when a term is not finite. */
+static int fc_terms(const bf__prep *pm, double n_index, fc_work *w,
+                    const double **a)
+{
+    size_t n = pm->n;
+    const double *t = pm->terms;
+    size_t slot;
+    size_t k;
+    double *as;
+    for (slot = 0; slot < FC_SLOTS; slot++) {
+        if (w->used[slot] && w->n[slot] == n_index) {
+            *a = w->a + slot * n;
+            return w->ok[slot];
+        }
+    }
+    slot = w->next;
+    w->next = (w->next + 1) % FC_SLOTS;
+    as = w->a + slot * n;
+    bf__fc2_values(n, t + T_SI * n, t + T_CI * n, t + T_SS * n, t + T_CS * n,
+                   n_index, as);
+    w->ok[slot] = 1;
+    for (k = 0; k < n; k++) {
+        double b;
+        double c;
+        w->ok[slot] &= bk_abc(pm->kr->corr, as[k], t[T_VZ2 * n + k],
+                              t[T_VXY2 * n + k], t[T_AVZ * n + k], &as[k],
+                              &b, &c);
+    }
+    w->used[slot] = 1;
+    w->n[slot] = n_index;
+    *a = as;
+    return w->ok[slot];
+}
+
+/* The BK family at one slope m (and FC's n): the grid kernels' operations
+ * for one lane, vectorised across the configurations instead, so a value
+ * has the bits of the same grid value's (before normalisation). */
+BF__CLONES
+int bf__bk_kvalues(const bf__prep *pm, const double *param, void *work,
+                   double *out)
+{
+    size_t n = pm->n;
+    const double *t = pm->terms;
+    const double *fa = t + T_A * n;
+    const double *restrict a;
+    const double *restrict b = t + T_B * n;
+    const double *restrict c = t + T_C * n;
+    double m = param[0];
+    size_t k;
+    int ok = t[BF__BK_NTERMS * n] != 0.0;
+    if (pm->kr->factor == BF__BK_FACTOR_FC) {
+        ok &= fc_terms(pm, param[1], work, &fa);
+    }
+    a = fa;
+    if (!ok) {
+        for (k = 0; k < n; k++) {
+            out[k] = NAN; /* BK at theta_i = pi/2 (SPEC §3.3) */
+        }
+        return BF_EDOM;
+    }
+    if (pm->kr->corr == BF__BK_CORR_GAUSS) {
+        double inv_m2 = 1.0 / (m * m);
+#pragma omp simd
+        for (k = 0; k < n; k++) {
+            out[k] = a[k] * exp_nonpos(b[k] * inv_m2); /* (P1), SPEC §3.1 */
+        }
+    } else {
+        double m2 = m * m;
+#pragma omp simd
+        for (k = 0; k < n; k++) {
+            double d = fma(m2, b[k], c[k]); /* (P2), SPEC §3.2 */
+            out[k] = a[k] / (d * sqrt(d));
+        }
+    }
+    return BF_OK;
+}
+
+/* LFTG (P7), SPEC §6, at one n_d: (cos ti cos ts)^n_d = exp(n_d ln(cos ti
+ * cos ts)) with the kernels' exp; the constant (n_d + 2)/(2 pi) cancels
+ * (SPEC §2). At grazing the base is 0: the value 0 for n_d > 0, 1 for
+ * n_d = 0 (pow(0, 0) = 1, as eval_lftg). */
+BF__CLONES
+int bf__lftg_kvalues(const bf__prep *pm, const double *param, void *work,
+                     double *out)
+{
+    const double *restrict lnb = pm->terms;
+    double n_d = param[0];
+    size_t k;
+    (void)work;
+#pragma omp simd
+    for (k = 0; k < pm->n; k++) {
+        double x = lnb[k];
+        double e = exp_nonpos(n_d * x); /* (P7), SPEC §6 */
+        out[k] = (n_d == 0.0) ? 1.0 : e;
+    }
+    return BF_OK;
+}
+
+BF__CLONES
+void bf__fc2_values(size_t n, const double *si, const double *ci,
+                    const double *ss, const double *cs, double n_index,
+                    double *out)
+{
+    size_t k;
+#pragma omp simd
+    for (k = 0; k < n; k++) {
+        out[k] = bf__fc2_inline(si[k], ci[k], ss[k], cs[k], n_index);
+    }
+}
+
+/* The block kernels' terms (structure of arrays, 64-byte aligned), copied
+ * from a prepared model's terms for one grid. */
 typedef struct {
     double *a;   /* G: F^2/vz^2   E: F^2 |vz|   LFTG: ln(cos ti cos ts) */
     double *b;   /* G: -vxy^2/(4 vz^2)   E: vz^2   LFTG: scratch */
@@ -139,50 +345,6 @@ static int terms_alloc(terms_t *t, size_t n)
     t->c = t->b + n;
     t->p = t->c + n;
     return BF_OK;
-}
-
-/* Fills t for the BK family member (factor, corr) with FC's index n_index
- * (SPEC §3): per configuration the slope-independent parts of (P1)/(P2).
- * Where vz = 0 (theta_i = theta_s = pi/2) the model's limit is 0 (SPEC
- * §3.3): a = 0 and a harmless denominator. Returns 0 when some
- * configuration is outside the model's domain (BK at theta_i = pi/2) or a
- * term is not finite: then no slope gives a curve. */
-static int terms_bk(int factor, int corr, double n_index, size_t n,
-                    const bf_geom *geom, const bf__trig_t *trig, terms_t *t)
-{
-    size_t k;
-    int ok = 1;
-    for (k = 0; k < n; k++) {
-        bf__bk_terms_t bt = {0.0, 0.0, 0.0, 0.0};
-        bf__trig_t tr;
-        if (trig == NULL) {
-            bf__geom_trig(&geom[k], &tr);
-        } else {
-            tr = trig[k];
-        }
-        if (bf__bk_terms_trig(factor, n_index, &tr, &bt) != BF_OK) {
-            ok = 0; /* BK at theta_i = pi/2: no slope works */
-        }
-        if (bt.vz2 == 0.0) {
-            t->a[k] = 0.0; /* the limit 0, SPEC §3.3 */
-            t->b[k] = 0.0;
-            t->c[k] = 1.0;
-        } else if (corr == BF__BK_CORR_GAUSS) {
-            /* (P1): L m^2 = F^2/vz^2 exp(-vxy^2/(4 vz^2) / m^2) */
-            t->a[k] = bt.f2 / bt.vz2;
-            t->b[k] = -bt.vxy2 / (4.0 * bt.vz2);
-            t->c[k] = 0.0;
-        } else {
-            /* (P2) as in bk.c: L / (2m) = F^2 |vz| / (m^2 vz^2 + vxy^2)^1.5 */
-            t->a[k] = bt.f2 * bt.abs_vz;
-            t->b[k] = bt.vz2;
-            t->c[k] = bt.vxy2;
-        }
-        if (!isfinite(t->a[k]) || !isfinite(t->b[k])) {
-            ok = 0;
-        }
-    }
-    return ok;
 }
 
 /* ==== curve kernels ====================================================== */
@@ -335,51 +497,66 @@ static void lftg_factors(size_t n, double step, const double *ln_base,
     }
 }
 
-/* A curve generator: the kernel and geometry terms of one model on one
- * grid (BK family with the slope m free, or LFTG with n_d free on a grid
- * of positive values: a single free parameter, the paper's protocol). */
+/* A curve generator: the block kernel and terms of one model on one grid
+ * (BK family with the slope m free, or LFTG with n_d free on a grid of
+ * positive values: a single free parameter, the paper's protocol). The
+ * terms come from the model's prepared terms (bf__bk_kterms; LFTG's
+ * ln(cos ti cos ts)); FC's a-terms are formed here for the grid's n. */
 typedef struct {
     int is_lftg;
     int corr;
-    int defined; /* 0: no grid point gives a curve (domain, see terms_bk) */
-    const bf_param *pf;
+    int defined; /* 0: no grid point gives a curve (domain, see bk_abc) */
+    double lo;   /* the grid: lo + step i, i < points */
+    double step;
     size_t points;
     terms_t t;
 } gen_t;
 
-/* Sets up g for type on lay; returns 1, 0 when type has no kernel, or
+/* Sets up g for pm on lay; returns 1, 0 when no block kernel applies, or
  * -BF_ENOMEM. */
-static int gen_init(gen_t *g, const bf_model_type *type,
-                    const bf__grid_layout_t *lay, size_t n,
-                    const bf_geom *geom, const bf__trig_t *trig)
+static int gen_init(gen_t *g, const bf__prep *pm, const bf__grid_layout_t *lay)
 {
-    int factor = 0;
-    int is_bk = bf__bk_kind(type, &factor, &g->corr);
+    const bf_kernel *kr = pm->kr;
+    size_t n = pm->n;
     size_t k;
 
-    g->is_lftg = bf__is_lftg(type);
+    memset(g, 0, sizeof *g);
+    g->is_lftg = kr->block == BF__BLOCK_LFTG;
+    g->corr = kr->corr;
     g->defined = 1;
-    if ((!is_bk && !g->is_lftg) || lay->n_free != 1 || lay->free[0] != 0 ||
-        (g->is_lftg && !(type->param[0].grid_lo > 0.0))) {
+    if (kr->block == BF__BLOCK_NONE || lay->n_free != 1 ||
+        lay->free[0] != 0 || (g->is_lftg && !(lay->lo[0] > 0.0))) {
         return 0;
     }
-    g->pf = &type->param[0];
+    g->lo = lay->lo[0];
+    g->step = lay->step[0];
     g->points = lay->points;
     if (terms_alloc(&g->t, n) != BF_OK) {
         return -BF_ENOMEM;
     }
     if (g->is_lftg) {
-        for (k = 0; k < n; k++) {
-            /* bf__lftg_base: cos ti cos ts, -inf at grazing */
-            g->t.a[k] = log(trig != NULL ? trig[k].ci * trig[k].cs
-                                         : bf__lftg_base(&geom[k]));
-        }
-        lftg_factors(n, g->pf->grid_step, g->t.a, g->t.p);
+        /* ln(cos ti cos ts), -inf at grazing (the LFTG kernel's terms) */
+        memcpy(g->t.a, pm->terms, n * sizeof *g->t.a);
+        lftg_factors(n, g->step, g->t.a, g->t.p);
     } else {
-        /* FC's refractive index is parameter 1, fixed here */
-        double n_index = (factor == BF__BK_FACTOR_FC) ? lay->base[1] : 1.0;
-        g->defined = terms_bk(factor, g->corr, n_index, n, geom, trig,
-                              &g->t);
+        const double *tm = pm->terms;
+        memcpy(g->t.b, tm + T_B * n, n * sizeof *g->t.b);
+        memcpy(g->t.c, tm + T_C * n, n * sizeof *g->t.c);
+        g->defined = tm[BF__BK_NTERMS * n] != 0.0;
+        if (kr->factor != BF__BK_FACTOR_FC) {
+            memcpy(g->t.a, tm + T_A * n, n * sizeof *g->t.a);
+        } else {
+            /* FC's refractive index is parameter 1, fixed here (P6) */
+            bf__fc2_values(n, tm + T_SI * n, tm + T_CI * n, tm + T_SS * n,
+                           tm + T_CS * n, lay->base[1], g->t.a);
+            for (k = 0; k < n; k++) {
+                double b;
+                double c;
+                g->defined &= bk_abc(g->corr, g->t.a[k], tm[T_VZ2 * n + k],
+                                     tm[T_VXY2 * n + k], tm[T_AVZ * n + k],
+                                     &g->t.a[k], &b, &c);
+            }
+        }
     }
     return 1;
 }
@@ -393,7 +570,7 @@ static void gen_x(const gen_t *g, size_t g0, double *x)
     size_t j;
     for (j = 0; j < CURVE_LANES; j++) {
         size_t i = g0 + j < g->points ? g0 + j : g->points - 1;
-        x[j] = g->pf->grid_lo + g->pf->grid_step * (double)i; /* §7.4 */
+        x[j] = g->lo + g->step * (double)i; /* SPEC §7.4 */
     }
 }
 
@@ -427,9 +604,9 @@ static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
  * vectorised kernel when one exists for type (see gen_t). Returns 1 when
  * done, 0 when type has no kernel (the caller uses the plain evaluation),
  * or -BF_ENOMEM. */
-int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, size_t cols,
-                    size_t stride, double *curves, unsigned char *ok)
+int bf__curves_fast(const bf__prep *pm, const bf__grid_layout_t *lay,
+                    size_t cols, size_t stride, double *curves,
+                    unsigned char *ok)
 {
     gen_t g;
     size_t g0;
@@ -438,12 +615,12 @@ int bf__curves_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     if (cols % CURVE_LANES != 0 || lay->points > cols) {
         return 0;
     }
-    rc = gen_init(&g, type, lay, n, geom, NULL);
+    rc = gen_init(&g, pm, lay);
     if (rc <= 0) {
         return rc;
     }
     for (g0 = 0; g0 < cols; g0 += CURVE_LANES) {
-        gen_block(&g, n, g0, stride, curves + g0, ok + g0);
+        gen_block(&g, pm->n, g0, stride, curves + g0, ok + g0);
     }
     free(g.t.mem);
     return 1;
@@ -561,10 +738,391 @@ void bf__score_all(size_t n, size_t cols, size_t stride,
     }
 }
 
+/* ==== the objective's sum (src/fit/objective.c) ========================= */
+
+/* sum_k w_k f_k (c_k - d_k)^2 in index order, each rounded square added by
+ * one fma (w NULL: one add; f NULL: 1) -- the weights kernel's sum, so a
+ * grid point's S is the same number either way. Here, not in objective.c,
+ * so that fma is one instruction in the ISA clones. */
+BF__CLONES
+double bf__sum_weighted(size_t n, const double *c, const double *d,
+                        const double *w, const double *f)
+{
+    double sum = 0.0;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        double r = c[k] - d[k]; /* SPEC §7.3 */
+        double rho = (f != NULL ? f[k] : 1.0) * (r * r);
+        sum = w != NULL ? fma(w[k], rho, sum) : sum + rho;
+    }
+    return sum;
+}
+
+/* ==== many weight vectors against stored curves (bootstrap, CV) ========= */
+
+/* Grid columns whose squared residuals are formed at once (in L2), lanes of
+ * one accumulator block, weight vectors per tile: WTILE x WLANES
+ * accumulators stay in registers (8 of AVX2's 16). */
+#define WSUPER 128
+#define WLANES 4
+#define WTILE 8
+
+/* acc[q][j] = sum_k w[q][k] rho[k * WSUPER + j] for WTILE weight rows,
+ * one fma per term in index order. */
+BF__CLONES
+static void weights_tile(size_t n, const double *restrict rho,
+                         const double *const *w, double *restrict out,
+                         size_t out_stride)
+{
+    double acc[WTILE][WLANES];
+    const double *restrict w0 = w[0];
+    const double *restrict w1 = w[1];
+    const double *restrict w2 = w[2];
+    const double *restrict w3 = w[3];
+    const double *restrict w4 = w[4];
+    const double *restrict w5 = w[5];
+    const double *restrict w6 = w[6];
+    const double *restrict w7 = w[7];
+    size_t j;
+    size_t k;
+    size_t q;
+    for (q = 0; q < WTILE; q++) {
+        for (j = 0; j < WLANES; j++) {
+            acc[q][j] = 0.0;
+        }
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict rk = rho + (k * WSUPER);
+#pragma omp simd
+        for (j = 0; j < WLANES; j++) {
+            double r = rk[j];
+            acc[0][j] = fma(w0[k], r, acc[0][j]);
+            acc[1][j] = fma(w1[k], r, acc[1][j]);
+            acc[2][j] = fma(w2[k], r, acc[2][j]);
+            acc[3][j] = fma(w3[k], r, acc[3][j]);
+            acc[4][j] = fma(w4[k], r, acc[4][j]);
+            acc[5][j] = fma(w5[k], r, acc[5][j]);
+            acc[6][j] = fma(w6[k], r, acc[6][j]);
+            acc[7][j] = fma(w7[k], r, acc[7][j]);
+        }
+    }
+    for (q = 0; q < WTILE; q++) {
+        for (j = 0; j < WLANES; j++) {
+            out[(q * out_stride) + j] = acc[q][j];
+        }
+    }
+}
+
+/* rho[k * WSUPER + j] = cw_k (c[k][g0 + j] - d_k)^2, j < WSUPER. */
+BF__CLONES
+static void squared_residuals(size_t n, size_t stride,
+                              const double *restrict c,
+                              const double *restrict d,
+                              const double *restrict cw,
+                              double *restrict rho)
+{
+    size_t j;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        double dk = d[k];
+        double f = cw != NULL ? cw[k] : 1.0;
+#pragma omp simd
+        for (j = 0; j < WSUPER; j++) {
+            double r = ck[j] - dk;
+            rho[(k * WSUPER) + j] = f * (r * r);
+        }
+    }
+}
+
+/* rho for the super-block of columns g0 .. g0 + width (a padded copy when
+ * width < WSUPER: the columns past the grid score 0 - d_k). */
+static void super_rho(size_t n, size_t stride, const double *curves,
+                      const double *data, const double *cw, size_t g0,
+                      size_t width, double *rho)
+{
+    size_t k;
+    size_t j;
+    if (width == WSUPER) {
+        squared_residuals(n, stride, curves + g0, data, cw, rho);
+        return;
+    }
+    for (k = 0; k < n; k++) {
+        for (j = 0; j < WSUPER; j++) {
+            double r = (j < width ? curves[k * stride + g0 + j] : 0.0) -
+                       data[k];
+            rho[k * WSUPER + j] = (cw != NULL ? cw[k] : 1.0) * (r * r);
+        }
+    }
+}
+
+/* The WTILE weight rows of tile b (the last repeated past n_w; NULL rows
+ * are ones); returns how many are real. */
+static size_t tile_rows(size_t n_w, const double *const *w, size_t b,
+                        const double *ones, const double **wt)
+{
+    size_t left = n_w - b < WTILE ? n_w - b : WTILE;
+    size_t q;
+    for (q = 0; q < WTILE; q++) {
+        const double *row = w[b + (q < left ? q : left - 1)];
+        wt[q] = row != NULL ? row : ones;
+    }
+    return left;
+}
+
+/* What one pass of the weights kernel does with the sums of a tile:
+ * tmp[q * WLANES + j] of weight vector b + q (q < left) at column g0 + j. */
+typedef struct {
+    void (*sink)(void *ctx, size_t b, size_t left, size_t g0,
+                 const double *tmp);
+    void *ctx;
+    size_t limit; /* columns scored: < limit (the rest is padding) */
+} weights_sink;
+
+/* The one pass over the curves for n_w weight vectors: each super-block's
+ * squared residuals once, every tile of weight vectors against them. 1
+ * when done, 0 when out of memory. */
+static int weights_pass(size_t n, size_t cols, size_t stride,
+                        const double *curves, const double *data,
+                        const double *cw, size_t n_w, const double *const *w,
+                        const weights_sink *out)
+{
+    double *rho = aligned_alloc(64, n * WSUPER * sizeof *rho);
+    double *ones = malloc(n * sizeof *ones);
+    double tmp[WTILE * WLANES];
+    size_t g0;
+    size_t k;
+    if (rho == NULL || ones == NULL) {
+        free(rho);
+        free(ones);
+        return 0;
+    }
+    for (k = 0; k < n; k++) {
+        ones[k] = 1.0;
+    }
+    for (g0 = 0; g0 < cols; g0 += WSUPER) {
+        size_t width = cols - g0 < WSUPER ? cols - g0 : WSUPER;
+        size_t b;
+        super_rho(n, stride, curves, data, cw, g0, width, rho);
+        for (b = 0; b < n_w; b += WTILE) {
+            const double *wt[WTILE];
+            size_t left = tile_rows(n_w, w, b, ones, wt);
+            size_t j0;
+            for (j0 = 0; j0 < width && g0 + j0 < out->limit; j0 += WLANES) {
+                weights_tile(n, rho + j0, wt, tmp, WLANES);
+                out->sink(out->ctx, b, left, g0 + j0, tmp);
+            }
+        }
+    }
+    free(rho);
+    free(ones);
+    return 1;
+}
+
+typedef struct {
+    double *lse;
+    size_t cols;
+} store_ctx;
+
+static void store_sums(void *ctx, size_t b, size_t left, size_t g0,
+                       const double *tmp)
+{
+    const store_ctx *c = ctx;
+    size_t q;
+    for (q = 0; q < left; q++) {
+        memcpy(c->lse + ((b + q) * c->cols) + g0, tmp + (q * WLANES),
+               WLANES * sizeof *tmp);
+    }
+}
+
+void bf__score_weights(size_t n, size_t cols, size_t stride,
+                       const double *curves, const double *data,
+                       const double *cw, size_t n_w, const double *const *w,
+                       double *lse)
+{
+    store_ctx c = {lse, cols};
+    weights_sink out = {store_sums, &c, cols};
+    size_t g;
+    if (!weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)) {
+        for (g = 0; g < n_w * cols; g++) {
+            lse[g] = NAN; /* never a grid optimum */
+        }
+    }
+}
+
+typedef struct {
+    const unsigned char *ok;
+    size_t points;
+    double *best_lse;
+    size_t *best;
+} argmin_ctx;
+
+/* bf__argmin's choice: index order, strict <, defined points only. */
+static void keep_best(void *ctx, size_t b, size_t left, size_t g0,
+                      const double *tmp)
+{
+    const argmin_ctx *c = ctx;
+    size_t q;
+    size_t j;
+    for (q = 0; q < left; q++) {
+        for (j = 0; j < WLANES; j++) {
+            size_t g = g0 + j;
+            if (g < c->points && c->ok[g] &&
+                tmp[q * WLANES + j] < c->best_lse[b + q]) {
+                c->best_lse[b + q] = tmp[q * WLANES + j];
+                c->best[b + q] = g;
+            }
+        }
+    }
+}
+
+int bf__weights_argmin(size_t n, size_t cols, size_t stride,
+                       const double *curves, const unsigned char *ok,
+                       size_t points, const double *data, const double *cw,
+                       size_t n_w, const double *const *w, double *best_lse,
+                       size_t *best)
+{
+    argmin_ctx c = {ok, points, best_lse, best};
+    weights_sink out = {keep_best, &c, points};
+    size_t b;
+    for (b = 0; b < n_w; b++) {
+        best_lse[b] = INFINITY;
+        best[b] = SIZE_MAX;
+    }
+    return weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)
+               ? BF_OK
+               : BF_ENOMEM;
+}
+
+/* The full-data LSE and every fold's training LSE of one 16-lane block:
+ * full[j] = sum_k rho_kj in index order (the weights kernel's sum for
+ * weights 1, the same bits), held[f][j] = sum over the configurations of
+ * fold f, so that fold f's training sum is full - held[f]. */
+BF__CLONES
+static void folds_block(size_t n, size_t stride, const double *restrict c,
+                        const double *restrict d, const double *restrict cw,
+                        const size_t *restrict fold, size_t folds,
+                        double *restrict full, double *restrict held)
+{
+    double acc[WLANES];
+    size_t f;
+    size_t j;
+    size_t k;
+    for (j = 0; j < WLANES; j++) {
+        acc[j] = 0.0;
+    }
+    for (f = 0; f < (folds > 0 ? folds : 1) * WLANES; f++) {
+        held[f] = 0.0;
+    }
+    for (k = 0; k < n; k++) {
+        const double *restrict ck = c + (k * stride);
+        /* without folds the sums go to a scratch row nobody reads */
+        double *restrict hk = held + ((folds > 0 ? fold[k] : 0) * WLANES);
+        double dk = d[k];
+        double fk = cw != NULL ? cw[k] : 1.0;
+#pragma omp simd
+        for (j = 0; j < WLANES; j++) {
+            double r = ck[j] - dk;
+            double rho = fk * (r * r);
+            acc[j] = acc[j] + rho;
+            hk[j] = hk[j] + rho;
+        }
+    }
+    for (j = 0; j < WLANES; j++) {
+        full[j] = acc[j];
+    }
+}
+
+void bf__score_folds(size_t n, size_t cols, size_t stride,
+                     const double *curves, const double *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *lse)
+{
+    double *held = malloc((folds + 1) * WLANES * sizeof *held);
+    size_t g0;
+    size_t f;
+    size_t j;
+    if (held == NULL) {
+        for (g0 = 0; g0 < (folds + 1) * cols; g0++) {
+            lse[g0] = NAN; /* never a grid optimum */
+        }
+        return;
+    }
+    for (g0 = 0; g0 < cols; g0 += WLANES) {
+        folds_block(n, stride, curves + g0, data, cw, fold, folds,
+                    lse + g0, held);
+        for (f = 0; f < folds; f++) { /* training: all but the fold */
+            for (j = 0; j < WLANES; j++) {
+                lse[(f + 1) * cols + g0 + j] =
+                    lse[g0 + j] - held[f * WLANES + j];
+            }
+        }
+    }
+    free(held);
+}
+
+/* Running grid optima of many data vectors and their folds: for each
+ * 16-lane block of stored curves (in L1) every data vector's full and
+ * training sums (folds_block), the smallest defined value of each and its
+ * first index (strict <, in index order: bf__argmin's result). */
+void bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                      const double *curves, const unsigned char *ok,
+                      size_t points, size_t n_data, const double *const *data,
+                      const double *cw, const size_t *fold, size_t folds,
+                      double *best_lse, size_t *best)
+{
+    double *held = malloc((folds + 1) * WLANES * sizeof *held);
+    double full[WLANES];
+    size_t per = folds + 1;
+    size_t g0;
+    size_t q;
+    size_t f;
+    size_t j;
+    (void)cols; /* >= points rounded up to WLANES: blocks read padding */
+    for (q = 0; q < n_data * per; q++) {
+        best_lse[q] = INFINITY;
+        best[q] = SIZE_MAX;
+    }
+    if (held == NULL) {
+        return; /* no optimum: the callers report BF_ENOMEM */
+    }
+    for (g0 = 0; g0 < points; g0 += WLANES) {
+        size_t width = points - g0 < WLANES ? points - g0 : WLANES;
+        for (q = 0; q < n_data; q++) {
+            double *bl = best_lse + q * per;
+            size_t *bi = best + q * per;
+            folds_block(n, stride, curves + g0, data[q], cw, fold, folds,
+                        full, held);
+            for (j = 0; j < width; j++) {
+                if (!ok[g0 + j]) {
+                    continue;
+                }
+                if (full[j] < bl[0]) {
+                    bl[0] = full[j];
+                    bi[0] = g0 + j;
+                }
+                for (f = 0; f < folds; f++) {
+                    double v = full[j] - held[f * WLANES + j];
+                    if (v < bl[1 + f]) {
+                        bl[1 + f] = v;
+                        bi[1 + f] = g0 + j;
+                    }
+                }
+            }
+        }
+    }
+    free(held);
+}
+
 /* ==== streaming: curves of one block, scored at once (the study) ======== */
 
-/* Samples scored together against one block of streamed curves. */
+/* Samples scored together against one block of streamed curves: their
+ * STREAM_SAMPLES x CURVE_LANES sums take 8 of AVX-512's 32 registers; with
+ * AVX2's (or the baseline's) 16, STREAM_SAMPLES_NARROW leave room for the
+ * curve values (stream_samples; measured on Zen 3: 4 is fastest). The
+ * sums, and so the bits, do not depend on how many samples share a pass. */
 #define STREAM_SAMPLES 8
+#define STREAM_SAMPLES_NARROW 4
 
 /* The raw curves of the next block of an E model (P2), computed while the
  * current block is scored (interleaved): the divider's work (a division
@@ -581,14 +1139,17 @@ typedef struct {
 } erows_t;
 
 /* LSE of the CURVE_LANES grid points of one block (curves c[k *
- * CURVE_LANES + j], contiguous) against STREAM_SAMPLES samples d[q]:
+ * CURVE_LANES + j], contiguous) against ns samples d[q]:
  * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
  * order with one fma per term, as score_tile forms it. When e is not
  * NULL, also the rows of e (see erows_t). */
-BF__CLONES
-static void score_stream(size_t n, const double *restrict c,
-                         const double *const *d, double *restrict lse,
-                         erows_t *restrict e)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void score_stream(size_t ns, size_t n,
+                                const double *restrict c,
+                                const double *const *d,
+                                double *restrict lse, erows_t *restrict e)
 {
     double a[STREAM_SAMPLES][CURVE_LANES];
     double m2[CURVE_LANES];
@@ -598,7 +1159,7 @@ static void score_stream(size_t n, const double *restrict c,
     size_t j;
     size_t k;
     size_t q;
-    for (q = 0; q < STREAM_SAMPLES; q++) {
+    for (q = 0; q < ns; q++) {
         for (j = 0; j < CURVE_LANES; j++) {
             a[q][j] = 0.0;
         }
@@ -615,10 +1176,10 @@ static void score_stream(size_t n, const double *restrict c,
     for (k = 0; k < n; k++) {
         const double *restrict ck = c + (k * CURVE_LANES);
         double x[STREAM_SAMPLES];
-        for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (q = 0; q < ns; q++) {
             x[q] = d[q][k];
         }
-        for (q = 0; q < STREAM_SAMPLES; q++) {
+        for (q = 0; q < ns; q++) {
 #pragma omp simd simdlen(CURVE_LANES)
             for (j = 0; j < CURVE_LANES; j++) {
                 double r = ck[j] - x[q]; /* SPEC §7.3 */
@@ -641,7 +1202,7 @@ static void score_stream(size_t n, const double *restrict c,
             next_e += e->every;
         }
     }
-    for (q = 0; q < STREAM_SAMPLES; q++) {
+    for (q = 0; q < ns; q++) {
         for (j = 0; j < CURVE_LANES; j++) {
             lse[(q * CURVE_LANES) + j] = a[q][j];
         }
@@ -650,6 +1211,35 @@ static void score_stream(size_t n, const double *restrict c,
         memcpy(e->mx, mx, sizeof mx);
         memcpy(e->nf, nf, sizeof nf);
     }
+}
+
+/* score_stream with the sample count a constant (its sums in registers). */
+BF__CLONES
+static void score_stream_wide(size_t n, const double *restrict c,
+                              const double *const *d, double *restrict lse,
+                              erows_t *restrict e)
+{
+    score_stream(STREAM_SAMPLES, n, c, d, lse, e);
+}
+
+BF__CLONES
+static void score_stream_narrow(size_t n, const double *restrict c,
+                                const double *const *d,
+                                double *restrict lse, erows_t *restrict e)
+{
+    score_stream(STREAM_SAMPLES_NARROW, n, c, d, lse, e);
+}
+
+/* Samples per pass on this processor: STREAM_SAMPLES with AVX-512's 32
+ * vector registers, STREAM_SAMPLES_NARROW otherwise. */
+static size_t stream_samples(void)
+{
+#if defined(__GNUC__) && defined(__x86_64__)
+    return __builtin_cpu_supports("avx512f") ? STREAM_SAMPLES
+                                             : STREAM_SAMPLES_NARROW;
+#else
+    return STREAM_SAMPLES;
+#endif
 }
 
 /* 1 when some defined value v[j] + pen[j] (pen 0 where defined, +inf
@@ -668,8 +1258,7 @@ static inline int block_beats(const double *restrict v,
 
 BF__CLONES
 int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
-                    size_t n, const bf_geom *geom, const bf__trig_t *trig,
-                    size_t n_samples,
+                    const bf__cset *cs, size_t n_samples,
                     const double *const *data, double *best_lse,
                     size_t *best)
 {
@@ -680,12 +1269,25 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
     double *c;
     double *nxt;
     gen_t g;
-    size_t n_tiles = (n_samples + STREAM_SAMPLES - 1) / STREAM_SAMPLES;
+    bf__prep pm;
+    size_t n = cs->n;
+    size_t ns = stream_samples();
+    size_t n_tiles = (n_samples + ns - 1) / ns;
     size_t g0;
     size_t s;
     int pipe; /* E models: the next block's curves during the scoring */
-    int rc = gen_init(&g, type, lay, n, geom, trig);
+    int rc;
 
+    if (type->kernel == NULL || type->kernel->block == BF__BLOCK_NONE) {
+        return 0; /* no block kernel: nothing to prepare */
+    }
+    rc = bf__prep_init(&pm, type, cs);
+    if (rc != BF_OK) {
+        bf__prep_free(&pm);
+        return -rc;
+    }
+    rc = gen_init(&g, &pm, lay);
+    bf__prep_free(&pm); /* gen copied what it needs */
     if (rc <= 0) {
         return rc;
     }
@@ -718,18 +1320,22 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             e.out = nxt;
             e.every = n_tiles;
         }
-        for (s = 0; s < n_samples; s += STREAM_SAMPLES) {
+        for (s = 0; s < n_samples; s += ns) {
             const double *d[STREAM_SAMPLES];
             size_t left = n_samples - s;
             size_t q;
             size_t j;
-            for (q = 0; q < STREAM_SAMPLES; q++) {
+            for (q = 0; q < ns; q++) {
                 d[q] = data[s + (q < left ? q : left - 1)];
             }
-            e.first = s / STREAM_SAMPLES; /* rows spread over the tiles */
-            score_stream(n, c, d, lse, more ? &e : NULL);
-            if (left > STREAM_SAMPLES) {
-                left = STREAM_SAMPLES;
+            e.first = s / ns; /* rows spread over the tiles */
+            if (ns == STREAM_SAMPLES) {
+                score_stream_wide(n, c, d, lse, more ? &e : NULL);
+            } else {
+                score_stream_narrow(n, c, d, lse, more ? &e : NULL);
+            }
+            if (left > ns) {
+                left = ns;
             }
             /* the running argmin: grid points in index order, strict <
              * (ties keep the first point, NaN never wins), defined points

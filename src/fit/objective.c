@@ -13,7 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 static const char *const objective_names[] = {"max", "scale", "cosw", "log"};
 
@@ -111,8 +111,8 @@ static double optimal_scale(const bf_problem *pb, const double *curve)
     return den > 0.0 ? num / den : 0.0;
 }
 
-void bf__objective_residuals(const bf_problem *pb, const double *curve,
-                             double *resid)
+void bf__residuals(const bf_problem *pb, const double *cti,
+                   const double *log_d, const double *curve, double *resid)
 {
     size_t k;
     double s = pb->objective == BF_OBJ_SCALE ? optimal_scale(pb, curve) : 1.0;
@@ -123,16 +123,11 @@ void bf__objective_residuals(const bf_problem *pb, const double *curve,
         case BF_OBJ_SCALE:
             resid[k] = s * l - d;
             break;
-        case BF_OBJ_COSW: {
-            double si;
-            double ci;
-            bf__zenith_sincos(pb->geom[k].theta_i, &si, &ci);
-            resid[k] = sqrt(ci) * (l - d);
+        case BF_OBJ_COSW:
+            resid[k] = sqrt(cti[k]) * (l - d);
             break;
-        }
         case BF_OBJ_LOG:
-            resid[k] = log(l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR) -
-                       log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
+            resid[k] = log(l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR) - log_d[k];
             break;
         default:
             resid[k] = l - d; /* SPEC §7.3 */
@@ -141,58 +136,76 @@ void bf__objective_residuals(const bf_problem *pb, const double *curve,
     }
 }
 
-double bf__objective_curve(const bf_problem *pb, const double *curve,
-                           double *scratch)
+double bf__objective(const bf_problem *pb, const double *cti,
+                     const double *log_d, const double *curve,
+                     double *scratch)
 {
     double sum = 0.0;
     size_t k;
-    if (pb->objective == BF_OBJ_MAX && pb->weight == NULL) {
-        /* the paper's LSE, summed exactly as the grid search sums it */
-        return bf__sum_sq_diff(pb->n, curve, pb->data);
+    /* Every objective is sum_k w_k rho_k with rho_k the rounded squared
+     * residual, added in index order by one fma (w = 1: one add), exactly
+     * as the grid's scoring (bf__score_weights) adds them, so a grid
+     * point's S is the same number either way. */
+    if (pb->objective == BF_OBJ_MAX || pb->objective == BF_OBJ_COSW) {
+        return bf__sum_weighted(pb->n, curve, pb->data, pb->weight,
+                                pb->objective == BF_OBJ_COSW ? cti : NULL);
     }
-    bf__objective_residuals(pb, curve, scratch);
+    bf__residuals(pb, cti, log_d, curve, scratch);
     for (k = 0; k < pb->n; k++) {
-        sum += weight_of(pb, k) * scratch[k] * scratch[k];
+        double rho = scratch[k] * scratch[k];
+        sum = pb->weight != NULL ? fma(pb->weight[k], rho, sum) : sum + rho;
     }
     return sum;
 }
 
-/* ==== objectives at a parameter vector =================================== */
+/* ==== objectives at a parameter vector (the public entry points) ========= */
+
+/* One evaluation of pb through the engine, with its own configuration set
+ * and scratch memory (the public API's convenience; the library's fits
+ * keep one engine context per problem instead). resid NULL: the value. */
+static int problem_eval(const bf_problem *pb, const double *param,
+                        double *value, double *resid)
+{
+    bf__solo so;
+    size_t j;
+    int rc;
+    if (pb->type->p > 0 && param == NULL) {
+        return BF_EINVAL;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        const bf_param *pj = &pb->type->param[j];
+        if (!isfinite(param[j]) || param[j] < pj->min || param[j] > pj->max) {
+            return BF_EINVAL;
+        }
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = resid != NULL ? bf__fit_residuals(&so.fc, param, resid)
+                       : bf__fit_value(&so.fc, param, value);
+    bf__solo_free(&so);
+    return rc;
+}
 
 int bf_problem_value(const bf_problem *pb, const double *param, double *work,
                      double *value)
 {
-    int rc;
-    if (pb == NULL || pb->data == NULL || work == NULL || value == NULL) {
+    (void)work;
+    if (pb == NULL || pb->data == NULL || pb->type == NULL ||
+        pb->geom == NULL || value == NULL) {
         return BF_EINVAL;
     }
-    rc = bf_model_eval(pb->type, param, pb->n, pb->geom, work);
-    if (rc != BF_OK) {
-        return rc;
-    }
-    rc = bf_normalise(pb->n, work, work); /* SPEC §2 */
-    if (rc != BF_OK) {
-        return rc;
-    }
-    *value = bf__objective_curve(pb, work, work + pb->n);
-    return BF_OK;
+    return problem_eval(pb, param, value, NULL);
 }
 
 int bf_problem_residuals(const bf_problem *pb, const double *param,
                          double *work, double *resid)
 {
-    int rc;
-    if (pb == NULL || pb->data == NULL || work == NULL || resid == NULL) {
+    (void)work;
+    if (pb == NULL || pb->data == NULL || pb->type == NULL ||
+        pb->geom == NULL || resid == NULL) {
         return BF_EINVAL;
     }
-    rc = bf_model_eval(pb->type, param, pb->n, pb->geom, work);
-    if (rc != BF_OK) {
-        return rc;
-    }
-    rc = bf_normalise(pb->n, work, work);
-    if (rc != BF_OK) {
-        return rc;
-    }
-    bf__objective_residuals(pb, work, resid);
-    return BF_OK;
+    return problem_eval(pb, param, NULL, resid);
 }

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 double bf_aic(double rss, size_t n, size_t k)
 {
@@ -62,58 +62,81 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
     return BF_OK;
 }
 
-int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
-              unsigned long seed, double *cv)
+int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+           size_t folds, const bf_fit_result *fold_grid, double *cv)
 {
-    size_t *fold = NULL;
-    double *w = NULL;
-    double *work = NULL;
-    double *resid = NULL;
+    const bf_problem *pb = fc->pb;
+    size_t n = pb->n;
+    double *w = malloc(n * sizeof *w);
+    bf_fit_result *g = fold_grid == NULL ? malloc((folds + 1) * sizeof *g)
+                                         : NULL;
+    double *resid = malloc(n * sizeof *resid);
     double sum = 0.0;
     size_t f;
     size_t k;
-    int rc;
+    int rc = BF_OK;
 
-    if (pb == NULL || curves == NULL || cv == NULL || pb->weight != NULL) {
-        return BF_EINVAL;
-    }
-    fold = malloc(pb->n * sizeof *fold);
-    w = malloc(pb->n * sizeof *w);
-    work = malloc(pb->n * sizeof *work);
-    resid = malloc(pb->n * sizeof *resid);
-    if (fold == NULL || w == NULL || work == NULL || resid == NULL) {
+    if (w == NULL || resid == NULL || (fold_grid == NULL && g == NULL)) {
         rc = BF_ENOMEM;
         goto done;
     }
-    rc = bf_cv_folds(pb->n, folds, seed, fold);
+    if (fold_grid == NULL) { /* every fold's grid optimum, one pass */
+        rc = bf__grid_optima_folds(gr, pb, fc->pm->cs->cti, fold, folds, g);
+        fold_grid = g + 1;
+    }
     for (f = 0; rc == BF_OK && f < folds; f++) {
         bf_problem train = *pb;
-        bf_fit_result g;
         bf_fit_result r;
-        for (k = 0; k < pb->n; k++) {
+        for (k = 0; k < n; k++) {
             w[k] = fold[k] == f ? 0.0 : 1.0; /* fit to the other folds */
         }
         train.weight = w;
-        rc = bf_curves_best(curves, &train, &g);
-        if (rc == BF_OK) {
-            rc = bf_fit_refine(&train, &g, &r);
-            rc = rc == BF_ENOCONV ? BF_OK : rc;
-        }
+        bf__fitctx_use(fc, &train);
+        rc = isfinite(fold_grid[f].lse) ? bf__refine(fc, &fold_grid[f], &r)
+                                        : BF_EDOM;
+        rc = rc == BF_ENOCONV ? BF_OK : rc;
         if (rc == BF_OK) {
             /* residuals under the training fit (its scale, for scale) */
-            rc = bf_problem_residuals(&train, r.param, work, resid);
+            rc = bf__fit_residuals(fc, r.param, resid);
         }
-        for (k = 0; rc == BF_OK && k < pb->n; k++) {
+        for (k = 0; rc == BF_OK && k < n; k++) {
             if (fold[k] == f) {
                 sum += resid[k] * resid[k]; /* held out [3] */
             }
         }
     }
+    bf__fitctx_use(fc, pb);
     *cv = rc == BF_OK ? sum : NAN;
 done:
-    free(fold);
     free(w);
-    free(work);
+    free(g);
     free(resid);
+    return rc;
+}
+
+int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
+              unsigned long seed, double *cv)
+{
+    bf__solo so;
+    size_t *fold;
+    int rc;
+    if (bf__curves_check(curves, pb) != BF_OK || cv == NULL ||
+        pb->weight != NULL || folds < 2 || folds > pb->n) {
+        return BF_EINVAL;
+    }
+    fold = malloc(pb->n * sizeof *fold);
+    if (fold == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = bf_cv_folds(pb->n, folds, seed, fold);
+    if (rc == BF_OK) {
+        rc = bf__solo_init(&so, pb);
+        if (rc == BF_OK) {
+            rc = bf__cv(&so.fc, bf__curves_grid(curves), fold, folds, NULL,
+                        cv);
+            bf__solo_free(&so);
+        }
+    }
+    free(fold);
     return rc;
 }

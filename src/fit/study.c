@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 const int bf_study_samples[BF_STUDY_NSAMPLES] = {
     1,  2,  5,  7,  9,  12, 16, 17, 20, 22, 23, 25,
@@ -23,8 +23,8 @@ const int bf_study_samples[BF_STUDY_NSAMPLES] = {
 typedef struct {
     const bf_study_spec *spec;
     size_t n_sel;         /* K of the group */
-    const bf_geom *geom;  /* its n_sel configurations */
-    const bf__trig_t *trig; /* their sines and cosines, once per group */
+    const bf__cset *cs;   /* its n_sel configurations, their sines and
+                             cosines once per group */
     const double *data;   /* n_samples x n_sel normalised radiances */
     size_t n_samples;     /* members of the group */
     const size_t *members; /* their target indices */
@@ -92,8 +92,7 @@ static int run_fixed(const study_t *st, size_t m)
 {
     const bf_study_spec *spec = st->spec;
     size_t ns = st->n_samples;
-    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], st->n_sel,
-                                          st->geom);
+    bf__fixed_model *fm = bf__fixed_alloc(spec->models[m], st->cs);
     size_t s;
     if (fm == NULL) {
         return BF_ENOMEM;
@@ -146,14 +145,13 @@ static int run_group(const study_t *st, size_t m, size_t leader)
         size_t *best = malloc(n_group * sizeof *best);
         int done = -BF_ENOMEM;
         if (best_lse != NULL && best != NULL) {
-            done = bf__stream_fast(spec->models[m], &lay, st->n_sel,
-                                   st->geom, st->trig, n_group, group,
-                                   best_lse, best);
+            done = bf__stream_fast(spec->models[m], &lay, st->cs, n_group,
+                                   group, best_lse, best);
         }
         for (q = 0; done == 1 && q < n_group; q++) {
             bf_study_row *r = row_of(st, members[q], m);
-            r->status = bf__grid_result(spec->models[m], &lay, best[q],
-                                        best_lse[q], &r->fit);
+            r->status = bf__grid_result(&lay, best[q], best_lse[q],
+                                        &r->fit);
         }
         free(best_lse);
         free(best);
@@ -164,7 +162,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     }
     gr = bf__grid_build(spec->models[m],
                         st->fixed + ((m * ns) + leader) * BF_MAX_PARAMS, 0,
-                        st->n_sel, st->geom, &status);
+                        st->cs, &status);
     if (gr == NULL) {
         for (q = 0; q < n_group; q++) {
             row_of(st, members[q], m)->status = status;
@@ -243,24 +241,21 @@ static int fit_all(study_t *st)
 static int run_group_of_targets(const bf_study_spec *spec,
                                 const bf__group_t *g, bf_study_row *rows)
 {
-    bf__trig_t *trig = malloc(g->n_sel * sizeof *trig);
+    bf__cset cs;
     double *fixed = malloc((spec->n_models * g->n_members + 1) *
                            BF_MAX_PARAMS * sizeof *fixed);
     size_t *leader = malloc((spec->n_models * g->n_members + 1) *
                             sizeof *leader);
-    size_t k;
     study_t st;
     int rc = BF_ENOMEM;
 
-    if (trig != NULL && fixed != NULL && leader != NULL) {
-        for (k = 0; k < g->n_sel; k++) {
-            bf__geom_trig(&g->geom[k], &trig[k]);
-        }
+    memset(&cs, 0, sizeof cs);
+    if (fixed != NULL && leader != NULL &&
+        bf__cset_init(&cs, g->n_sel, g->geom) == BF_OK) {
         /* SPEC §7.3-7.5: each model, each target of the group. */
         st.spec = spec;
         st.n_sel = g->n_sel;
-        st.geom = g->geom;
-        st.trig = trig;
+        st.cs = &cs;
         st.data = g->data;
         st.n_samples = g->n_members;
         st.members = g->members;
@@ -269,7 +264,7 @@ static int run_group_of_targets(const bf_study_spec *spec,
         st.rows = rows;
         rc = fit_all(&st);
     }
-    free(trig);
+    bf__cset_free(&cs);
     free(fixed);
     free(leader);
     return rc;

@@ -134,18 +134,16 @@ int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
         if (pj->fitted) {
             continue;
         }
-        if (strcmp(pj->name, "n") == 0) {
+        if (pj->input == BF_INPUT_INDEX) { /* SPEC §4.2 */
             fixed[j] = spec->n_default;
             if (spec->n_file != NULL &&
                 bf_sample_table_get(spec->n_file, sample, 0, &fixed[j]) !=
                     BF_OK) {
                 return BF_ENOTFOUND;
             }
-        } else if (strcmp(pj->name, "rho") == 0 ||
-                   strcmp(pj->name, "sigma") == 0) {
-            size_t col = strcmp(pj->name, "rho") == 0 ? 0 : 1;
+        } else if (pj->input == BF_INPUT_ON) { /* SPEC §5 */
             if (spec->on_params == NULL ||
-                bf_sample_table_get(spec->on_params, sample, col,
+                bf_sample_table_get(spec->on_params, sample, pj->input_col,
                                     &fixed[j]) != BF_OK) {
                 return BF_ENOTFOUND;
             }
@@ -176,60 +174,56 @@ static int same_group(const bf__group_t *g, size_t set, size_t k,
            memcmp(g->sel, sel, k * sizeof *sel) == 0;
 }
 
-/* Grows buffers sel, data to hold n values. */
-static int reserve(size_t **sel, double **data, size_t *cap, size_t n)
-{
-    if (n <= *cap) {
-        return BF_OK;
-    }
-    free(*sel);
-    free(*data);
-    *sel = malloc(n * sizeof **sel);
-    *data = malloc(n * sizeof **data);
-    *cap = n;
-    return (*sel == NULL || *data == NULL) ? BF_ENOMEM : BF_OK;
-}
-
-/* Two passes: each target's selection finds (or opens) its group; then
- * every group gets its members' data, computed into place. */
+/* One pass over the targets: each one's selection and data, computed
+ * once into per-target storage, find (or open) its group; then every group
+ * gets its members' data. */
 int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
                      bf_error *err)
 {
-    size_t *group_of = malloc((spec->n_targets + 1) * sizeof *group_of);
+    size_t nt = spec->n_targets;
+    size_t *group_of = malloc((nt + 1) * sizeof *group_of);
+    size_t *k_of = malloc((nt + 1) * sizeof *k_of);
+    size_t *at = malloc((nt + 1) * sizeof *at);
     size_t *sel = NULL;
     double *data = NULL;
-    size_t cap = 0;
+    size_t total = 0;
     size_t t;
     size_t i;
     int rc = BF_OK;
 
-    gs->g = calloc(spec->n_targets + 1, sizeof *gs->g);
+    gs->g = calloc(nt + 1, sizeof *gs->g);
     gs->n = 0;
-    if (gs->g == NULL || group_of == NULL) {
+    if (gs->g == NULL || group_of == NULL || k_of == NULL || at == NULL) {
         rc = bf__error_set(err, BF_ENOMEM, 0, "out of memory");
         goto fail;
     }
-    for (t = 0; t < spec->n_targets; t++) {
+    for (t = 0; t < nt; t++) { /* where each target's values go */
+        at[t] = total;
+        total += bf_dataset_nconf(spec->data, spec->targets[t].material);
+    }
+    sel = malloc((total + 1) * sizeof *sel);
+    data = malloc((total + 1) * sizeof *data);
+    if (sel == NULL || data == NULL) {
+        rc = bf__error_set(err, BF_ENOMEM, 0, "out of memory");
+        goto fail;
+    }
+    for (t = 0; t < nt; t++) {
         size_t m = spec->targets[t].material;
         size_t set = bf_dataset_set(spec->data, m);
-        size_t k = 0;
+        size_t *ts = sel + at[t];
         bf__group_t *g = NULL;
-        if (reserve(&sel, &data, &cap, bf_dataset_nconf(spec->data, m)) !=
-            BF_OK) {
-            rc = bf__error_set(err, BF_ENOMEM, 0, "out of memory");
-            goto fail;
-        }
-        rc = bf_study_target_data(spec, t, sel, &k, data, err);
+        rc = bf_study_target_data(spec, t, ts, &k_of[t], data + at[t], err);
         if (rc != BF_OK) {
             goto fail;
         }
         for (i = 0; i < gs->n && g == NULL; i++) {
-            if (same_group(&gs->g[i], set, k, sel)) {
+            if (same_group(&gs->g[i], set, k_of[t], ts)) {
                 g = &gs->g[i];
             }
         }
         if (g == NULL) { /* a new group: its configurations, once */
             const bf_geom *geom = bf_dataset_geom(spec->data, m);
+            size_t k = k_of[t];
             g = &gs->g[gs->n++];
             g->set = set;
             g->n_sel = k;
@@ -239,9 +233,9 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
                 rc = bf__error_set(err, BF_ENOMEM, 0, "out of memory");
                 goto fail;
             }
-            memcpy(g->sel, sel, k * sizeof *sel);
+            memcpy(g->sel, ts, k * sizeof *ts);
             for (i = 0; i < k; i++) {
-                g->geom[i] = geom[sel[i]];
+                g->geom[i] = geom[ts[i]];
             }
         }
         group_of[t] = (size_t)(g - gs->g);
@@ -257,22 +251,22 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
         }
         g->n_members = 0;
     }
-    for (t = 0; t < spec->n_targets; t++) {
+    for (t = 0; t < nt; t++) {
         bf__group_t *g = &gs->g[group_of[t]];
-        size_t k = 0;
-        rc = bf_study_target_data(spec, t, sel, &k, g->data + g->n_members *
-                                                              g->n_sel, err);
-        if (rc != BF_OK) {
-            goto fail;
-        }
+        memcpy(g->data + g->n_members * g->n_sel, data + at[t],
+               g->n_sel * sizeof *data);
         g->members[g->n_members++] = t;
     }
     free(group_of);
+    free(k_of);
+    free(at);
     free(sel);
     free(data);
     return BF_OK;
 fail:
     free(group_of);
+    free(k_of);
+    free(at);
     free(sel);
     free(data);
     bf__study_groups_free(gs);

@@ -42,3 +42,35 @@ int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
     pj->grid_n = (size_t)count;
     return BF_OK;
 }
+
+int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
+                           double hi)
+{
+    int j = bf_model_param_index(&v->type, name);
+    const bf_param *pj;
+    if (j < 0) {
+        return BF_ENOTFOUND;
+    }
+    pj = &v->param[j];
+    /* a user's range keeps the parameter's grid step; a parameter without
+     * a grid gets 100 intervals (doc/methods.md §6) */
+    return bf_model_variant_fit(v, name, lo, hi,
+                                pj->grid_n > 0 ? pj->grid_step
+                                               : (hi - lo) / 100.0);
+}
+
+size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep)
+{
+    size_t freed = 0;
+    size_t j;
+    for (j = 0; j < v->type.p; j++) {
+        const bf_param *pj = &v->param[j];
+        if (pj->fitted || !(pj->free_lo < pj->free_hi) ||
+            ((keep >> pj->input) & 1u)) {
+            continue; /* fitted already, never freed, or kept */
+        }
+        freed += bf_model_variant_fit(v, pj->name, pj->free_lo, pj->free_hi,
+                                      pj->free_step) == BF_OK;
+    }
+    return freed;
+}

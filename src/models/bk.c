@@ -36,7 +36,7 @@
  */
 #include <math.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 /* The grazing corner theta_i = theta_s = pi/2, phi_s = 0,
  * where vz = 0 and vxy = 0. SPEC §3.3 resolves it: the VH and FC variants
@@ -154,39 +154,45 @@ static int bk_family(int factor, int corr, double m, double n, size_t count,
 /* ---------------------------------------------------------------------- */
 
 static int eval_bk_g(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS, param[0], 1.0, count, geom, out);
 }
 
 static int eval_bk_e(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_BK, BF__BK_CORR_EXP, param[0], 1.0, count, geom, out);
 }
 
 static int eval_vh_g(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS, param[0], 1.0, count, geom, out);
 }
 
 static int eval_vh_e(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_VH, BF__BK_CORR_EXP, param[0], 1.0, count, geom, out);
 }
 
 static int eval_fc_g(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_FC, BF__BK_CORR_GAUSS, param[0], param[1], count, geom,
                      out);
 }
 
 static int eval_fc_e(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
+    (void)work;
     return bk_family(BF__BK_FACTOR_FC, BF__BK_CORR_EXP, param[0], param[1], count, geom,
                      out);
 }
@@ -213,53 +219,74 @@ static int eval_fc_e(const double *param, size_t count, const bf_geom *geom,
 
 static const bf_param param_g[1] = {
     {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
+     0.0, 0.0},
 };
 
 static const bf_param param_e[1] = {
     {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
+     0.0, 0.0},
 };
 
 static const bf_param param_fc_g[2] = {
     {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
+     0.0, 0.0},
     {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
-     0},
+     0, BF_INPUT_INDEX, 0, BF_FREE_N_LO, BF_FREE_N_HI, BF_FREE_N_STEP},
 };
 
 static const bf_param param_fc_e[2] = {
     {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N},
+     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
+     0.0, 0.0},
     {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
-     0},
+     0, BF_INPUT_INDEX, 0, BF_FREE_N_LO, BF_FREE_N_HI, BF_FREE_N_STEP},
 };
 
+/* The engine's kernels (src/fit/kernels.c): one per member. */
+#define BK_KERNEL(factor, corr)                                              \
+    {BF__BK_NTERMS, BF__BK_NEXTRA, bf__bk_kterms, bf__bk_kwork,             \
+     bf__bk_kvalues, NULL, BF__BLOCK_BK, (factor), (corr), -1, NULL, NULL}
+static const bf_kernel kr_bk_g = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS);
+static const bf_kernel kr_bk_e = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_EXP);
+static const bf_kernel kr_vh_g = BK_KERNEL(BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS);
+static const bf_kernel kr_vh_e = BK_KERNEL(BF__BK_FACTOR_VH, BF__BK_CORR_EXP);
+static const bf_kernel kr_fc_g = BK_KERNEL(BF__BK_FACTOR_FC, BF__BK_CORR_GAUSS);
+static const bf_kernel kr_fc_e = BK_KERNEL(BF__BK_FACTOR_FC, BF__BK_CORR_EXP);
+
+/* Plot styles: the paper's models the lowest slots (FC-E, VH-E first: the
+ * two it finds best), BK-G, BK-E after every paper model. */
 static const bf_model_type bk_g = {
     "BK-G", "Beckmann-Kirchhoff, Gaussian correlation",
-    "paper (P1),(P3), SPEC §3.1", 1, param_g, eval_bk_g};
+    "paper (P1),(P3), SPEC §3.1", 1, param_g, eval_bk_g, 0, &kr_bk_g, 6,
+    NULL, 0, 0.0};
 
 static const bf_model_type bk_e = {
     "BK-E", "Beckmann-Kirchhoff, exponential correlation",
-    "paper (P2),(P3), SPEC §3.2", 1, param_e, eval_bk_e};
+    "paper (P2),(P3), SPEC §3.2", 1, param_e, eval_bk_e, 0, &kr_bk_e, 7,
+    NULL, 0, 0.0};
 
 static const bf_model_type vh_g = {
     "VH-G", "Vernold-Harvey Beckmann-Kirchhoff, Gaussian correlation",
-    "paper (P1), Table 1, SPEC §3.1, §3.3", 1, param_g, eval_vh_g};
+    "paper (P1), Table 1, SPEC §3.1, §3.3", 1, param_g, eval_vh_g, 0,
+    &kr_vh_g, 4, NULL, 0, 0.0};
 
 static const bf_model_type vh_e = {
     "VH-E", "Vernold-Harvey Beckmann-Kirchhoff, exponential correlation",
-    "paper (P2), Table 1, SPEC §3.2, §3.3", 1, param_e, eval_vh_e};
+    "paper (P2), Table 1, SPEC §3.2, §3.3", 1, param_e, eval_vh_e, 0,
+    &kr_vh_e, 1, NULL, 0, 0.0};
 
 static const bf_model_type fc_g = {
     "FC-G", "Fresnel-corrected Beckmann-Kirchhoff, Gaussian correlation",
     "paper (P1),(P4)-(P6), Table 1, SPEC §3.1, §3.3, §4", 2, param_fc_g,
-    eval_fc_g};
+    eval_fc_g, 0, &kr_fc_g, 5, NULL, 0, 0.0};
 
 static const bf_model_type fc_e = {
     "FC-E", "Fresnel-corrected Beckmann-Kirchhoff, exponential correlation",
     "paper (P2),(P4)-(P6), Table 1, SPEC §3.2, §3.3, §4", 2, param_fc_e,
-    eval_fc_e};
+    eval_fc_e, 0, &kr_fc_e, 0, NULL, 0, 0.0};
 
 const bf_model_type *const bf_model_bk_g = &bk_g;
 const bf_model_type *const bf_model_bk_e = &bk_e;
@@ -267,32 +294,3 @@ const bf_model_type *const bf_model_vh_g = &vh_g;
 const bf_model_type *const bf_model_vh_e = &vh_e;
 const bf_model_type *const bf_model_fc_g = &fc_g;
 const bf_model_type *const bf_model_fc_e = &fc_e;
-
-/* Which member of the family a type is, recognised by its eval function
- * (so a copy of a type object with another grid is recognised too). Used
- * by the study path to pick its vectorised kernel. Returns 0 for a type
- * outside the family. */
-int bf__bk_kind(const bf_model_type *type, int *factor, int *corr)
-{
-    static const struct {
-        bf_eval_fn eval;
-        int factor;
-        int corr;
-    } kinds[] = {
-        {eval_bk_g, BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS},
-        {eval_bk_e, BF__BK_FACTOR_BK, BF__BK_CORR_EXP},
-        {eval_vh_g, BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS},
-        {eval_vh_e, BF__BK_FACTOR_VH, BF__BK_CORR_EXP},
-        {eval_fc_g, BF__BK_FACTOR_FC, BF__BK_CORR_GAUSS},
-        {eval_fc_e, BF__BK_FACTOR_FC, BF__BK_CORR_EXP},
-    };
-    size_t i;
-    for (i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
-        if (type->eval == kinds[i].eval) {
-            *factor = kinds[i].factor;
-            *corr = kinds[i].corr;
-            return 1;
-        }
-    }
-    return 0;
-}

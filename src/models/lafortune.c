@@ -14,7 +14,7 @@
  */
 #include <math.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 /* The base cos ti cos ts of (P7) at one configuration: the only geometry
  * the model needs. Shared with the study path (src/fit/kernels.c), which
@@ -33,11 +33,12 @@ double bf__lftg_base(const bf_geom *g)
 
 /* Evaluates LFTG at param = {n_d}, checked by bf_model_eval. */
 static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
-                     double *out)
+                     double *out, void *work)
 {
     double n_d = param[0];
     double scale = (n_d + 2.0) / (2.0 * BF__PI);
     size_t k;
+    (void)work;
     for (k = 0; k < count; k++) {
         out[k] = scale * pow(bf__lftg_base(&geom[k]), n_d); /* (P7), SPEC §6 */
     }
@@ -48,18 +49,29 @@ static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
  * domain [0, 100] keeps the lobe representable: (cos ti cos ts)^100 is still
  * above 1e-300 for cos > 1e-3. */
 static const bf_param param_lftg[1] = {
-    {"n_d", "exponent n_d", "1", 0.0, 100.0, 1.0, 1, 0.1, 0.04, 501},
+    {"n_d", "exponent n_d", "1", 0.0, 100.0, 1.0, 1, 0.1, 0.04, 501,
+     BF_INPUT_DEFAULT, 0, 0.0, 0.0, 0.0},
 };
+
+/* The engine's terms: ln(cos ti cos ts) per configuration (-inf at
+ * grazing), the only geometry (P7) needs; the values are
+ * bf__lftg_kvalues (src/fit/kernels.c). */
+static void lftg_terms(const bf_kernel *kr, const bf__cset *cs, double *terms)
+{
+    size_t k;
+    (void)kr;
+    for (k = 0; k < cs->n; k++) {
+        terms[k] = log(cs->trig[k].ci * cs->trig[k].cs); /* (P7) */
+    }
+}
+
+static const bf_kernel lftg_kernel = {1,    0, lftg_terms, NULL,
+                                      bf__lftg_kvalues, NULL,
+                                      BF__BLOCK_LFTG, 0, 0, -1, NULL, NULL};
 
 static const bf_model_type lftg_type = {
     "LFTG", "Lafortune diffuse lobe",
-    "paper (P7), Lafortune et al. 1997, SPEC §6", 1, param_lftg, eval_lftg};
+    "paper (P7), Lafortune et al. 1997, SPEC §6", 1, param_lftg, eval_lftg,
+    0, &lftg_kernel, 3, NULL, 0, 0.0};
 
 const bf_model_type *const bf_model_lftg = &lftg_type;
-
-/* 1 when type is LFTG (or a copy of it with another grid), recognised by its
- * eval function; used by the study path to pick its kernel. */
-int bf__is_lftg(const bf_model_type *type)
-{
-    return type->eval == eval_lftg;
-}

@@ -7,14 +7,17 @@
  *   L = (rho/pi) cos ti; after normalisation (SPEC §2) simply cos ti, so the
  *   model has no parameter.                             SPEC §6a
  */
-#include "internal.h"
+#include <string.h>
+
+#include "fit/engine.h"
 
 /* Evaluates LAMBERT (no parameters; param is ignored and may be NULL). */
 static int eval_lambert(const double *param, size_t count, const bf_geom *geom,
-                        double *out)
+                        double *out, void *work)
 {
     size_t k;
     (void)param;
+    (void)work;
     for (k = 0; k < count; k++) {
         double si;
         double ci;
@@ -24,8 +27,30 @@ static int eval_lambert(const double *param, size_t count, const bf_geom *geom,
     return BF_OK;
 }
 
+/* The engine's kernel: cos ti per configuration is the curve. */
+static void lambert_terms(const bf_kernel *kr, const bf__cset *cs,
+                          double *terms)
+{
+    (void)kr;
+    memcpy(terms, cs->cti, cs->n * sizeof *terms); /* SPEC §6a */
+}
+
+static int lambert_values(const bf__prep *pm, const double *param,
+                          void *work, double *out)
+{
+    (void)param;
+    (void)work;
+    memcpy(out, pm->terms, pm->n * sizeof *out);
+    return BF_OK;
+}
+
+static const bf_kernel lambert_kernel = {1,    0, lambert_terms, NULL,
+                                         lambert_values, NULL,
+                                         BF__BLOCK_NONE, 0, 0, -1, NULL,
+                                         NULL};
+
 static const bf_model_type lambert_type = {
     "LAMBERT", "Lambertian baseline (cos theta_i)", "SPEC §6a", 0, NULL,
-    eval_lambert};
+    eval_lambert, 0, &lambert_kernel, 8, NULL, 0, 0.0};
 
 const bf_model_type *const bf_model_lambert = &lambert_type;

@@ -34,14 +34,19 @@
  * 0.05, sigma 1, theta_i 1.43117, theta_s pi/2, phi_s 0 gives -1.7e-4). A
  * radiance cannot be negative; the term is Oren & Nayar's fit to their
  * numerical model, not physics, and their exact model is non-negative, so
- * 0 is the physically meaningful value there. The clamp never acts on the
- * study: CURET's zeniths stop at 1.464 and its samples' sigma at 0.978,
- * where the formula is positive, so Tables 2 and 3 are unchanged (checked
- * by test_oren_nayar and test_reproduction).
+ * 0 is the physically meaningful value there. The clamp never acts at the
+ * study's tabulated values: CURET's zeniths stop at 1.464 and its samples'
+ * sigma at 0.978, where the formula is positive, so Tables 2 and 3 are
+ * unchanged (checked by test_oren_nayar and test_reproduction). Where ON
+ * is fitted it can (sigma = 1.57 on samples 7, 19, 61: three
+ * configurations); the kernel counts where (on_kclamped) and the analysis
+ * flags those fits (doc/methods.md §8).
  */
 #include <math.h>
 
-#include "internal.h"
+#include <string.h>
+
+#include "fit/engine.h"
 
 /* The geometry-only terms of SPEC §5 at one configuration: everything but
  * rho and sigma. The study path computes them once per configuration and
@@ -73,29 +78,35 @@ void bf__on_terms(const bf_geom *g, bf__on_terms_t *t)
     t->tan_mean = tan(0.5 * (alpha + beta));
 }
 
+/* L1 + L2 of SPEC §5, unclamped, from one configuration's terms (theta_i
+ * < pi/2) and the coefficients of one (rho, sigma). Inline and branch-free
+ * so that the engine's loop vectorises; bf__on_value and the kernel both
+ * use it, so they give the same bits. */
+static inline double on_formula(double ci, double cos_dphi, double sin_alpha,
+                                double b3, double q2, double r2,
+                                double tan_beta, double tan_mean,
+                                const bf__on_coef_t *c)
+{
+    /* C2, SPEC §5: the backward half-plane subtracts (2 beta / pi)^3 */
+    double c2 = (cos_dphi >= 0.0) ? c->c2_scale * sin_alpha
+                                  : c->c2_scale * (sin_alpha - b3);
+    double c3 = c->c3_scale * r2; /* C3, SPEC §5 */
+    double l1 = c->rho_pi * ci
+                * (c->c1 + (cos_dphi * c2 * tan_beta)
+                   + ((1.0 - fabs(cos_dphi)) * c3 * tan_mean));
+    double l2 = c->l2_scale * ci * (1.0 - (cos_dphi * q2)); /* L2 */
+    return l1 + l2;
+}
+
 /* L of SPEC §5 from the terms of one configuration and the coefficients
- * of one (rho, sigma) (bf__on_coef). */
+ * of one (rho, sigma) (bf__on_coef), clamped at 0 (doc/methods.md §8). */
 double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c)
 {
-    double c2;
-    double c3;
-    double l1;
-    double l2;
     if (t->ci == 0.0) {
         return 0.0; /* theta_i = pi/2: cos ti = 0, SPEC §5 */
     }
-    if (t->cos_dphi >= 0.0) {
-        c2 = c->c2_scale * t->sin_alpha; /* C2, SPEC §5 */
-    } else {
-        c2 = c->c2_scale * (t->sin_alpha - t->b3); /* C2, SPEC §5 */
-    }
-    c3 = c->c3_scale * t->r2; /* C3, SPEC §5 */
-    l1 = c->rho_pi * t->ci
-         * (c->c1 + (t->cos_dphi * c2 * t->tan_beta)
-            + ((1.0 - fabs(t->cos_dphi)) * c3 * t->tan_mean));
-    l2 = c->l2_scale * t->ci * (1.0 - (t->cos_dphi * t->q2)); /* L2 */
-    /* L, SPEC §5, clamped at 0 (see the departure noted above) */
-    return fmax(0.0, l1 + l2);
+    return fmax(0.0, on_formula(t->ci, t->cos_dphi, t->sin_alpha, t->b3,
+                                t->q2, t->r2, t->tan_beta, t->tan_mean, c));
 }
 
 /* The coefficients of SPEC §5 that depend on rho and sigma only. */
@@ -111,10 +122,11 @@ void bf__on_coef(double rho, double sigma, bf__on_coef_t *c)
 
 /* Evaluates ON at param = {rho, sigma}; both checked by bf_model_eval. */
 static int eval_on(const double *param, size_t count, const bf_geom *geom,
-                   double *out)
+                   double *out, void *work)
 {
     bf__on_coef_t c;
     size_t k;
+    (void)work;
     bf__on_coef(param[0], param[1], &c);
     for (k = 0; k < count; k++) {
         bf__on_terms_t t;
@@ -124,22 +136,105 @@ static int eval_on(const double *param, size_t count, const bf_geom *geom,
     return BF_OK;
 }
 
+/* ==== the engine's kernel ================================================ */
+
+/* The terms of bf__on_terms as 8 rows of n (SoA); at theta_i = pi/2 only
+ * ci = 0 matters and the others are 0 so the loop stays finite. */
+enum { ON_CI = 0, ON_CDPHI, ON_SA, ON_B3, ON_Q2, ON_R2, ON_TB, ON_TM, ON_NT };
+
+static void on_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
+{
+    size_t n = cs->n;
+    size_t k;
+    (void)kr;
+    for (k = 0; k < n; k++) {
+        bf__on_terms_t t;
+        memset(&t, 0, sizeof t);
+        bf__on_terms(&cs->geom[k], &t);
+        terms[ON_CI * n + k] = t.ci;
+        terms[ON_CDPHI * n + k] = t.cos_dphi;
+        terms[ON_SA * n + k] = t.sin_alpha;
+        terms[ON_B3 * n + k] = t.b3;
+        terms[ON_Q2 * n + k] = t.q2;
+        terms[ON_R2 * n + k] = t.r2;
+        terms[ON_TB * n + k] = t.tan_beta;
+        terms[ON_TM * n + k] = t.tan_mean;
+    }
+}
+
+/* The unclamped formula at every configuration into out. */
+static void on_unclamped(const bf__prep *pm, const double *param, double *out)
+{
+    const double *t = pm->terms;
+    size_t n = pm->n;
+    bf__on_coef_t c;
+    size_t k;
+    bf__on_coef(param[0], param[1], &c); /* rho, sigma: SPEC §5 */
+#pragma omp simd
+    for (k = 0; k < n; k++) {
+        out[k] = on_formula(t[ON_CI * n + k], t[ON_CDPHI * n + k],
+                            t[ON_SA * n + k], t[ON_B3 * n + k],
+                            t[ON_Q2 * n + k], t[ON_R2 * n + k],
+                            t[ON_TB * n + k], t[ON_TM * n + k], &c);
+    }
+}
+
+static int on_kvalues(const bf__prep *pm, const double *param, void *work,
+                      double *out)
+{
+    const double *ci = pm->terms + ON_CI * pm->n;
+    size_t k;
+    (void)work;
+    on_unclamped(pm, param, out);
+#pragma omp simd
+    for (k = 0; k < pm->n; k++) {
+        /* theta_i = pi/2: 0 (SPEC §5); the clamp at 0 (methods.md §8) */
+        out[k] = (ci[k] == 0.0) ? 0.0 : fmax(0.0, out[k]);
+    }
+    return BF_OK;
+}
+
+/* Configurations where SPEC §5's formula is negative at param, so the
+ * clamp acts (doc/methods.md §8). Allocation-free: one pass per config. */
+static size_t on_kclamped(const bf__prep *pm, const double *param)
+{
+    const double *t = pm->terms;
+    size_t n = pm->n;
+    bf__on_coef_t c;
+    size_t k;
+    size_t count = 0;
+    bf__on_coef(param[0], param[1], &c);
+    for (k = 0; k < n; k++) {
+        double v = on_formula(t[ON_CI * n + k], t[ON_CDPHI * n + k],
+                              t[ON_SA * n + k], t[ON_B3 * n + k],
+                              t[ON_Q2 * n + k], t[ON_R2 * n + k],
+                              t[ON_TB * n + k], t[ON_TM * n + k], &c);
+        count += (t[ON_CI * n + k] != 0.0) && (v < 0.0);
+    }
+    return count;
+}
+
+static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
+                                    on_kclamped, BF__BLOCK_NONE, 0, 0, -1,
+                                    NULL, NULL};
+
 /* rho and sigma are fixed inputs of the study (CURET's op.dat, the paper's
- * Table 2), not fitted: no grid. Defaults give Lambert (sigma = 0). */
+ * Table 2), not fitted: no grid. Defaults give Lambert (sigma = 0). The
+ * exact fit (doc/methods.md §6) frees both: rho over [0.05, 1] (rho = 0
+ * gives no radiance to normalise), step 0.05; sigma over [0, 1.57] rad
+ * (SPEC §5's domain is [0, pi/2]), step 0.01. */
 static const bf_param param_on[2] = {
-    {"rho", "albedo rho", "1", 0.0, 1.0, 1.0, 0, 0.0, 0.0, 0},
-    {"sigma", "facet slope sigma", "rad", 0.0, BF__PI_2, 0.0, 0, 0.0, 0.0, 0},
+    {"rho", "albedo rho", "1", 0.0, 1.0, 1.0, 0, 0.0, 0.0, 0, BF_INPUT_ON,
+     0, 0.05, 1.0, 0.05},
+    {"sigma", "facet slope sigma", "rad", 0.0, BF__PI_2, 0.0, 0, 0.0, 0.0, 0,
+     BF_INPUT_ON, 1, 0.0, 1.57, 0.01},
 };
 
+/* At sigma = 0, C1 = 1 and C2 = C3 = L2 = 0: L = rho/pi cos ti, LAMBERT
+ * after normalisation (SPEC §5, §6a). */
 static const bf_model_type on_type = {
     "ON", "Oren-Nayar with interreflections",
-    "Oren & Nayar IJCV 1995 (full model), SPEC §5", 2, param_on, eval_on};
+    "Oren & Nayar IJCV 1995 (full model), SPEC §5", 2, param_on, eval_on, 0,
+    &on_kernel, 2, "LAMBERT", 1, 0.0};
 
 const bf_model_type *const bf_model_on = &on_type;
-
-/* 1 when type is ON (or a copy of it), recognised by its eval function;
- * used by the study path to reuse the geometry terms across samples. */
-int bf__is_on(const bf_model_type *type)
-{
-    return type->eval == eval_on;
-}

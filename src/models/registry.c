@@ -9,6 +9,7 @@
  */
 #include <ctype.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
@@ -86,17 +87,35 @@ static int zenith_ok(double theta)
     return (theta >= 0.0) && (theta <= BF__PI_2);
 }
 
+int bf__geom_check(size_t n, const bf_geom *geom)
+{
+    size_t k;
+    if (n > 0 && geom == NULL) {
+        return BF_EINVAL;
+    }
+    for (k = 0; k < n; k++) {
+        const bf_geom *g = &geom[k];
+        if (!zenith_ok(g->theta_i) || !zenith_ok(g->theta_s)
+            || !isfinite(g->phi_i) || !isfinite(g->phi_s)) {
+            return BF_EINVAL;
+        }
+    }
+    return BF_OK;
+}
+
 /* Checks inputs once (STYLE §4), then calls the model's eval. On BF_EINVAL
  * out (when given) is filled with NaN so no stale value survives. */
-int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
-                  const bf_geom *geom, double *out)
+int bf_model_eval_work(const bf_model_type *type, const double *param,
+                       size_t n, const bf_geom *geom, double *out,
+                       void *work)
 {
     size_t j;
     size_t k;
     int status = BF_OK;
     /* check inputs */
     if ((type == NULL) || (type->eval == NULL) || (type->p > BF_MAX_PARAMS)
-        || ((type->p > 0) && (param == NULL))) {
+        || ((type->p > 0) && (param == NULL))
+        || ((type->work_size > 0) && (work == NULL))) {
         status = BF_EINVAL;
     }
     if ((n > 0) && ((geom == NULL) || (out == NULL))) {
@@ -109,12 +128,8 @@ int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
             status = BF_EINVAL;
         }
     }
-    for (k = 0; (status == BF_OK) && (k < n); k++) {
-        const bf_geom *g = &geom[k];
-        if (!zenith_ok(g->theta_i) || !zenith_ok(g->theta_s)
-            || !isfinite(g->phi_i) || !isfinite(g->phi_s)) {
-            status = BF_EINVAL;
-        }
+    if (status == BF_OK) {
+        status = bf__geom_check(n, geom);
     }
     if (status != BF_OK) {
         for (k = 0; k < n; k++) {
@@ -125,5 +140,25 @@ int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
     if (n == 0) {
         return BF_OK;
     }
-    return type->eval(param, n, geom, out);
+    return type->eval(param, n, geom, out, work);
+}
+
+int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
+                  const bf_geom *geom, double *out)
+{
+    void *work = NULL;
+    size_t k;
+    int rc;
+    if ((type != NULL) && (type->work_size > 0)) {
+        work = aligned_alloc(64, (type->work_size + 63) / 64 * 64);
+        if (work == NULL) {
+            for (k = 0; (out != NULL) && (k < n); k++) {
+                out[k] = NAN;
+            }
+            return BF_ENOMEM;
+        }
+    }
+    rc = bf_model_eval_work(type, param, n, geom, out, work);
+    free(work);
+    return rc;
 }

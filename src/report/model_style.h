@@ -5,11 +5,11 @@
 
 #include "brdffit.h"
 
-/* The style slot (< BF_PLOT_NSTYLES) of a model type, found by its name so
- * that variants (bf_model_variant) keep their base model's style: the
- * paper's six models get slots 0-5, which differ in colour, marker and
- * dash; every registry model gets a slot of its own. The one place that
- * maps models to styles. */
+/* The style slot (< BF_PLOT_NSTYLES) of a model type: its own
+ * bf_model_type.style, which variants (bf_model_variant) keep from their
+ * base model. The paper's six models have slots 0-5, which differ in
+ * colour, marker and dash; every registry model has a slot of its own
+ * (tests/report/test_plot.c). */
 unsigned bf_report_model_style(const bf_model_type *type);
 
 #endif

@@ -16,93 +16,13 @@
 /* The paper's slope grid step (SPEC §7.4). */
 #define GRID_STEP 0.01
 
-/* One CSV file split into a header and rows of fields (static storage). */
-#define MAX_FIELDS 40
-#define MAX_LINES 64
-static char *cells[MAX_LINES][MAX_FIELDS];
+/* fits.csv and ranking.csv are read by header name (tests/cli_run.h). */
 static size_t n_lines;
-static size_t n_cols;
-static char csv_text[1 << 16];
+#define load_csv(dir, name) (n_lines = bf_test_csv_load((dir), (name)))
+#define num(row, name) bf_test_csv_num((row), (name))
+#define row_of(model, param) bf_test_csv_find(NULL, (model), (param))
 
-static void load_csv(const char *dir, const char *name)
-{
-    char path[512];
-    const char *text;
-    char *save = NULL;
-    char *line;
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    text = bf_test_slurp(path, NULL);
-    cr_assert_not_null(text, "%s missing", path);
-    cr_assert_lt(strlen(text), sizeof csv_text);
-    strcpy(csv_text, text);
-    n_lines = 0;
-    for (line = strtok_r(csv_text, "\n", &save); line != NULL;
-         line = strtok_r(NULL, "\n", &save)) {
-        size_t nf = 0;
-        char *p = line;
-        cr_assert_lt(n_lines, MAX_LINES);
-        while (nf < MAX_FIELDS) { /* no quoted fields in these tests */
-            char *e = strchr(p, ',');
-            cells[n_lines][nf++] = p;
-            if (e == NULL) {
-                break;
-            }
-            *e = '\0';
-            p = e + 1;
-        }
-        if (n_lines == 0) {
-            n_cols = nf;
-        }
-        cr_assert_eq(nf, n_cols, "%s line %zu", name, n_lines + 1);
-        n_lines++;
-    }
-}
-
-/* Column index of a header name. */
-static size_t col(const char *name)
-{
-    size_t c;
-    for (c = 0; c < n_cols; c++) {
-        if (strcmp(cells[0][c], name) == 0) {
-            return c;
-        }
-    }
-    cr_assert_fail("no column '%s'", name);
-    return 0;
-}
-
-static double num(size_t row, const char *name)
-{
-    const char *s = cells[row][col(name)];
-    return s[0] != '\0' ? strtod(s, NULL) : NAN;
-}
-
-/* The row of model (and parameter, or "" for none). */
-static size_t row_of(const char *model, const char *param)
-{
-    size_t r;
-    for (r = 1; r < n_lines; r++) {
-        if (strcmp(cells[r][col("model")], model) == 0 &&
-            strcmp(cells[r][col("parameter")], param) == 0) {
-            return r;
-        }
-    }
-    cr_assert_fail("no row for %s %s", model, param);
-    return 0;
-}
-
-static int run(const char **argv)
-{
-    static char data[4096];
-    size_t i;
-    snprintf(data, sizeof data, "%s", bf_test_curet_path("."));
-    for (i = 0; argv[i] != NULL; i++) {
-        if (strcmp(argv[i], "DATA") == 0) {
-            argv[i] = data;
-        }
-    }
-    return bf_test_run_cli(argv, NULL, NULL);
-}
+#define run(argv) bf_test_run_curet(argv)
 
 Test(cli_exact, exact_fit_reports_grid_and_refined_optima_side_by_side)
 {
@@ -116,9 +36,9 @@ Test(cli_exact, exact_fit_reports_grid_and_refined_optima_side_by_side)
     cr_assert_eq(n_lines, 4u, "header + VH-E m + FC-E m, n");
     for (r = 1; r < n_lines; r++) {
         double v = num(r, "value");
-        cr_assert_str_eq(cells[r][col("fit")], "exact");
-        cr_assert_str_eq(cells[r][col("objective")], "max");
-        cr_assert_str_eq(cells[r][col("ci_method")], "profile");
+        cr_assert_str_eq(bf_test_csv_cell(r, "fit"), "exact");
+        cr_assert_str_eq(bf_test_csv_cell(r, "objective"), "max");
+        cr_assert_str_eq(bf_test_csv_cell(r, "ci_method"), "profile");
         bf_assert_rel(v, num(r, "refined_value"), TOL0);
         cr_assert_leq(num(r, "refined_lse"), num(r, "grid_lse"));
         cr_assert(num(r, "ci_low") <= v && v <= num(r, "ci_high"));
@@ -146,7 +66,7 @@ Test(cli_exact, paper_fit_keeps_grid_values_and_adds_the_exact_optimum)
     cr_assert_eq(run(argv), 0);
     load_csv(dir, "fits.csv");
     r = row_of("VH-G", "m");
-    cr_assert_str_eq(cells[r][col("fit")], "paper");
+    cr_assert_str_eq(bf_test_csv_cell(r, "fit"), "paper");
     cr_assert_eq(num(r, "value"), num(r, "grid_value"));
     steps = (num(r, "value") - 0.1) / GRID_STEP; /* on the paper grid */
     cr_assert_lt(fabs(steps - round(steps)), 1e-6);
@@ -169,11 +89,11 @@ Test(cli_exact, paper_fit_without_stats_leaves_the_analysis_columns_empty)
     cr_assert_eq(run(argv), 0);
     load_csv(dir, "fits.csv");
     r = row_of("VH-G", "m");
-    cr_assert_str_eq(cells[r][col("objective")], "max");
-    cr_assert_str_eq(cells[r][col("fit")], "paper");
+    cr_assert_str_eq(bf_test_csv_cell(r, "objective"), "max");
+    cr_assert_str_eq(bf_test_csv_cell(r, "fit"), "paper");
     cr_assert(isfinite(num(r, "value")));
     for (i = 0; i < sizeof empty / sizeof *empty; i++) {
-        cr_assert_str_eq(cells[r][col(empty[i])], "", "%s", empty[i]);
+        cr_assert_str_eq(bf_test_csv_cell(r, empty[i]), "", "%s", empty[i]);
     }
 }
 
@@ -190,7 +110,7 @@ Test(cli_exact, range_widens_the_search_beyond_the_paper_grid)
     load_csv(dir, "fits.csv");
     r = row_of("VH-E", "m");
     cr_assert_gt(num(r, "value"), 5.1);
-    cr_assert_str_eq(cells[r][col("bound_hit")], "0");
+    cr_assert_str_eq(bf_test_csv_cell(r, "bound_hit"), "0");
     cr_assert(isnan(num(r, "cv")), "--folds 0: no cross-validation");
 }
 
@@ -244,7 +164,7 @@ Test(cli_exact, rank_writes_a_ranking_per_sample_and_a_summary)
         bf_assert_rel(num(r, "bic"), n * log(rss / n) + k * log(n), 1e-9);
         cr_assert(num(r, "rank_bic") >= 1 && num(r, "rank_bic") <= 3);
         best += num(r, "rank_bic") == 1;
-        cr_assert_str_eq(cells[r][col("fit")], "exact");
+        cr_assert_str_eq(bf_test_csv_cell(r, "fit"), "exact");
     }
     cr_assert_eq(best, 3u, "one best model per sample");
     snprintf(path, sizeof path, "%s/ranking.md", dir);

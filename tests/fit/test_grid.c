@@ -455,6 +455,12 @@ Test(grid, study_path_finds_the_plain_optimum_on_all_61_samples)
             double param[BF_MAX_PARAMS];
             bf_fit_result plain;
             double bound;
+            if (BF_TEST_SANITIZED && models[i] == bf_model_wno_r &&
+                s % 8 != 0) {
+                /* the sanitizer build: WNO-R's plain quadrature (about 10
+                 * us a value here, 448 grid points) on every 8th sample */
+                continue;
+            }
             defaults(models[i], param);
             if (models[i] == bf_model_on) {
                 param[0] = 0.387;

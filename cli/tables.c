@@ -1,0 +1,532 @@
+/* tables.c: what a study run prints and writes -- the description of the
+ * run (data, configurations, conventions, the fit and its analysis),
+ * Tables 2 and 3 in the paper's layout, the Oren-Nayar comparison of
+ * --fit exact, and the files fits.csv (bf_fits_csv_write), table2.md and
+ * table3.md. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tables.h"
+#include "texttable.h"
+
+/* At most this many left-out configuration numbers are listed. */
+#define LIST_MAX 40
+
+void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
+{
+    const bf_cli_inputs *in = &st->in;
+    const bf_dataset *ds = in->ds;
+    size_t m;
+    if (in->curet) {
+        fprintf(fp, "Data: CURET, %s (%zu samples), %s\n", in->brdf_path,
+                bf_dataset_count(ds), in->table_path);
+        return;
+    }
+    fprintf(fp, "Data: %zu material%s from %zu file%s\n",
+            bf_dataset_count(ds), bf_dataset_count(ds) == 1 ? "" : "s",
+            st->opts.src.n_inputs, st->opts.src.n_inputs == 1 ? "" : "s");
+    for (m = 0; m < bf_dataset_count(ds); m++) {
+        size_t nc = bf_dataset_nchannels(ds, m);
+        char who[256];
+        bf_cli_material_label(ds, m, who, sizeof who);
+        fprintf(fp, "  %s: %s (%s), %zu configurations, %zu channel%s", who,
+                bf_dataset_source(ds, m),
+                bf_format_name(bf_dataset_format(ds, m)),
+                bf_dataset_nconf(ds, m), nc, nc == 1 ? "" : "s");
+        if (nc > 1) {
+            fprintf(fp, " (%s ... %s)", bf_dataset_channel(ds, m, 0),
+                    bf_dataset_channel(ds, m, nc - 1));
+        }
+        fputc('\n', fp);
+    }
+    if (in->configs_path[0] != '\0') {
+        fprintf(fp, "MERL sampled at: %s\n",
+                strcmp(in->configs_path, "all") == 0
+                    ? "every valid cell"
+                    : in->configs_path);
+    }
+}
+
+/* The specular exclusion in words (SPEC §1.4, §1.6). */
+void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
+{
+    double cone = st->opts.cone;
+    if (cone < 0.0 && st->in.curet && st->n_samples > 0) {
+        /* the configurations of SPEC §1.4's test, from the data */
+        size_t m = st->targets[0].material;
+        const bf_geom *g = bf_dataset_geom(st->in.ds, m);
+        size_t n = bf_dataset_nconf(st->in.ds, m);
+        size_t count = 0;
+        size_t k;
+        size_t at;
+        for (k = 0; k < n; k++) {
+            count += (size_t)bf_geom_is_specular(&g[k]);
+        }
+        at = (size_t)snprintf(buf, len, "CURET's %zu specular "
+                                        "configurations (",
+                              count);
+        for (k = 0; k < n && at < len; k++) {
+            if (bf_geom_is_specular(&g[k])) {
+                at += (size_t)snprintf(buf + at, len - at, "%s%zu",
+                                       buf[at - 1] == '(' ? "" : ", ", k + 1);
+            }
+        }
+        if (at < len) {
+            snprintf(buf + at, len - at, "; SPEC §1.4)");
+        }
+    } else if (cone < 0.0) {
+        snprintf(buf, len, "none (no --exclude-specular)");
+    } else if (cone == 0.0) {
+        snprintf(buf, len, "none (--exclude-specular 0)");
+    } else {
+        snprintf(buf, len, "every configuration within %g deg of the "
+                           "mirror direction (SPEC §1.6)",
+                 cone);
+    }
+}
+
+/* One line per group of targets with the same material configuration
+ * list and selection: K, how many the cone left out, and which ones. */
+static void describe_configs(const bf_cli_study *st, FILE *fp)
+{
+    const bf_dataset *ds = st->in.ds;
+    size_t s;
+    size_t *sel = NULL;
+    double *data = NULL;
+    size_t cap = 0;
+    char cone[256];
+    bf_cli_describe_cone(st, cone, sizeof cone);
+    fprintf(fp, "Specular exclusion: %s\n", cone);
+    for (s = 0; s < st->n_samples; s++) {
+        size_t m = st->targets[s].material;
+        size_t nconf = bf_dataset_nconf(ds, m);
+        size_t k;
+        size_t j = 0;
+        size_t c;
+        size_t listed = 0;
+        if (s > 0 && bf_dataset_set(ds, st->targets[s - 1].material) ==
+                         bf_dataset_set(ds, m) &&
+            st->k[s - 1] == st->k[s] && st->n_cone[s - 1] == st->n_cone[s]) {
+            continue; /* the same as the line above */
+        }
+        if (nconf > cap) {
+            free(sel);
+            free(data);
+            cap = nconf;
+            sel = malloc(cap * sizeof *sel);
+            data = malloc(cap * sizeof *data);
+            if (sel == NULL || data == NULL) {
+                break;
+            }
+        }
+        if (bf_cli_target_data(st, s, sel, &k, data) != BF_OK) {
+            continue;
+        }
+        fprintf(fp, "Configurations");
+        if (!st->in.curet || st->n_sel == 0) {
+            fprintf(fp, " (%s)", bf_cli_sample_name(st, s));
+        }
+        fprintf(fp, ": K = %zu of %zu used", k, nconf);
+        if (st->opts.cone >= 0.0 || !st->in.curet) {
+            fprintf(fp, " (%zu in the specular cone)", st->n_cone[s]);
+        }
+        if (nconf - k > LIST_MAX) {
+            fprintf(fp, "; %zu left out\n", nconf - k);
+            continue;
+        }
+        fprintf(fp, "; left out:");
+        for (c = 0; c < nconf; c++) {
+            if (j < k && sel[j] == c) {
+                j++;
+                continue;
+            }
+            fprintf(fp, " %zu", c + 1);
+            listed++;
+        }
+        fprintf(fp, "%s\n", listed == 0 ? " none" : "");
+    }
+    free(sel);
+    free(data);
+}
+
+/* The "Free parameters" line of the exact fit: each model's parameters
+ * the variant fits that the registry's model holds fixed, with their
+ * ranges (bf_model_variant_exact). */
+static void describe_freed(const bf_cli_study *st, FILE *fp)
+{
+    size_t n_freed = 0;
+    size_t m;
+    size_t j;
+    fputs("Free parameters (besides the paper's):", fp);
+    for (m = 0; m < st->n_models; m++) {
+        const bf_model_type *v = st->models[m];
+        const bf_model_type *base = bf_model_find(v->name);
+        int first = 1;
+        for (j = 0; base != NULL && j < v->p && j < base->p; j++) {
+            const bf_param *pj = &v->param[j];
+            if (!pj->fitted || base->param[j].fitted) {
+                continue;
+            }
+            if (first) {
+                fprintf(fp, "%s %s", n_freed > 0 ? ";" : "", v->name);
+            }
+            fprintf(fp, "%s %s in [%g, %g]", first ? "" : ",", pj->name,
+                    pj->grid_lo,
+                    pj->grid_lo + pj->grid_step * (double)(pj->grid_n - 1));
+            first = 0;
+            n_freed++;
+        }
+    }
+    fputs(n_freed == 0 ? " none" : "", fp);
+    if (st->opts.n_given || st->opts.n_file != NULL) {
+        fputs(" (n given: fixed)", fp);
+    }
+    fputc('\n', fp);
+}
+
+/* The fit, objective, interval and selection lines of the description. */
+static void describe_fit(const bf_cli_study *st, FILE *fp)
+{
+    const bf_cli_opts *o = &st->opts;
+    size_t r;
+    if (o->exact) {
+        fprintf(fp, "Fit: exact -- grid optimum, then GSL Brent (1 "
+                    "parameter) or Nelder-Mead (2+) within one grid step, "
+                    "|d param| < %g (doc/methods.md §2)\n",
+                BF_REFINE_TOL);
+        describe_freed(st, fp);
+    }
+    for (r = 0; r < o->n_range; r++) {
+        fprintf(fp, "Search range: %s\n", o->range[r]);
+    }
+    fprintf(fp, "Objective: %s (doc/methods.md §1)\n",
+            bf_objective_name(o->objective));
+    if (st->stats == NULL) {
+        fprintf(fp, "Analysis: none (add --stats for refined optima, "
+                    "intervals, AIC, BIC and CV)\n");
+        return;
+    }
+    fprintf(fp, "Intervals: 95%% profile, n ln(S/S_min) <= 3.841");
+    if (o->n_boot >= 2) {
+        fprintf(fp, "; percentile bootstrap, %zu resamples, seed %lu",
+                o->n_boot, o->seed);
+    }
+    fprintf(fp, " (doc/methods.md §3)\n");
+    fprintf(fp, "Selection: AIC, BIC with Gaussian errors");
+    if (o->folds >= 2) {
+        fprintf(fp, "; %zu-fold cross-validation, seed %lu", o->folds,
+                o->seed);
+    }
+    fprintf(fp, " (doc/methods.md §4-5)\n");
+}
+
+void bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
+{
+    const bf_cli_opts *o = &st->opts;
+    bf_cli_describe_data(st, fp);
+    describe_configs(st, fp);
+    fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided by "
+                "its maximum over the K used configurations (SPEC §2)\n");
+    if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
+        fprintf(fp, "Channel: %s\n", o->channel);
+    }
+    if (!o->exact) {
+        fprintf(fp, "Fit: exhaustive 501-point grids (SPEC §7.4), LSE = sum "
+                    "of squared differences\n");
+    }
+    describe_fit(st, fp);
+    if (o->n_file != NULL) {
+        fprintf(fp, "Refractive index (FC): per sample from %s\n", o->n_file);
+    } else if (!o->exact || o->n_given) {
+        fprintf(fp, "Refractive index (FC): n = %g\n", o->n);
+    }
+    if (o->on_file != NULL) {
+        fprintf(fp, "Oren-Nayar: rho, sigma %s %s\n",
+                o->exact ? "fitted; tabulated values (compared) from"
+                         : "from",
+                o->on_file);
+    }
+    fputc('\n', fp);
+}
+
+static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
+{
+    const bf_study_spec *spec = &st->spec;
+    const bf_study_row *rows = st->rows;
+    size_t ncols2 = 2;
+    size_t m;
+    size_t j;
+    size_t s;
+    size_t c;
+
+    for (m = 0; m < spec->n_models; m++) {
+        for (j = 0; j < spec->models[m]->p; j++) {
+            ncols2 += (size_t)bf_cli_shows_param(spec->models[m], j);
+        }
+    }
+    *t2 = bf_tt_alloc(ncols2);
+    *t3 = bf_tt_alloc(2 + spec->n_models);
+    if (*t2 == NULL || *t3 == NULL) {
+        return -1;
+    }
+    bf_tt_header(*t2, 0, "No.");
+    bf_tt_header(*t2, 1, "Sample");
+    bf_tt_header(*t3, 0, "No.");
+    bf_tt_header(*t3, 1, "Sample");
+    bf_tt_right(*t2, 0);
+    bf_tt_right(*t3, 0);
+    c = 2;
+    for (m = 0; m < spec->n_models; m++) {
+        const bf_model_type *type = spec->models[m];
+        char head[128];
+        for (j = 0; j < type->p; j++) {
+            if (bf_cli_shows_param(type, j)) {
+                snprintf(head, sizeof head, "%s %s", type->name,
+                         type->param[j].label);
+                bf_tt_header(*t2, c, head);
+                bf_tt_right(*t2, c++);
+            }
+        }
+        bf_tt_header(*t3, 2 + m, type->name);
+        bf_tt_right(*t3, 2 + m);
+    }
+    for (s = 0; s < st->n_samples; s++) {
+        int sample = st->samples[s];
+        char title[512];
+        if (bf_tt_add_row(*t2) != 0 || bf_tt_add_row(*t3) != 0) {
+            return -1;
+        }
+        bf_cli_sample_title(st, s, title, sizeof title);
+        bf_tt_set(*t2, 0, "%d", sample);
+        bf_tt_set(*t2, 1, "%s", title);
+        bf_tt_set(*t3, 0, "%d", sample);
+        bf_tt_set(*t3, 1, "%s", title);
+        c = 2;
+        for (m = 0; m < spec->n_models; m++) {
+            const bf_study_row *r = &rows[s * spec->n_models + m];
+            for (j = 0; j < r->type->p; j++) {
+                if (!bf_cli_shows_param(r->type, j)) {
+                    continue;
+                }
+                if (r->status != BF_OK) {
+                    bf_tt_set(*t2, c++, "-");
+                } else if (st->opts.exact && r->type->param[j].fitted) {
+                    /* exact optimum (grid optimum), side by side */
+                    bf_tt_set(*t2, c++, "%.4f (%.2f)%s", r->fit.param[j],
+                              st->stats[s * spec->n_models + m]
+                                  .grid.param[j],
+                              (r->fit.bound_hit & (1u << j)) ? "*" : "");
+                } else {
+                    bf_tt_set(*t2, c++, "%.2f%s", r->fit.param[j],
+                              (r->fit.bound_hit & (1u << j)) ? "*" : "");
+                }
+            }
+            if (r->status != BF_OK) {
+                bf_tt_set(*t3, 2 + m, "-");
+            } else {
+                bf_tt_set(*t3, 2 + m, st->opts.exact ? "%.4f" : "%.2f",
+                          r->fit.lse);
+            }
+        }
+    }
+    return 0;
+}
+
+static int any_bound_hit(const bf_study_spec *spec, const bf_study_row *rows)
+{
+    size_t i;
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
+        if (rows[i].status == BF_OK && rows[i].fit.bound_hit != 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* 1 when type takes a fixed input of kind `kind`. */
+static int needs_input(const bf_model_type *type, bf_input kind)
+{
+    size_t j;
+    for (j = 0; j < type->p; j++) {
+        if (!type->param[j].fitted && type->param[j].input == kind) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static void report_missing(const bf_study_spec *spec,
+                           const bf_study_row *rows)
+{
+    size_t m;
+    size_t s;
+    for (m = 0; m < spec->n_models; m++) {
+        size_t missing = 0;
+        for (s = 0; s < spec->n_targets; s++) {
+            missing += rows[s * spec->n_models + m].status != BF_OK;
+        }
+        if (missing > 0) {
+            bf_cli_err("note: %s not evaluated for %zu of %zu samples (%s)",
+                       spec->models[m]->name, missing, spec->n_targets,
+                       needs_input(spec->models[m], BF_INPUT_ON)
+                           ? "no rho, sigma given: use --on-params"
+                           : "missing per-sample input");
+        }
+    }
+}
+
+static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
+                         const bf_tt *t3)
+{
+    const bf_cli_opts *o = &st->opts;
+    bf_out f[3];
+    size_t i;
+    size_t opened = 0;
+    int rc = bf_cli_make_outdir(o->out_dir);
+    static const char *const names[3] = {"fits.csv", "table2.md",
+                                         "table3.md"};
+    if (rc != BF_EXIT_OK) {
+        return rc;
+    }
+    for (i = 0; i < 3; i++) {
+        rc = bf_out_open(&f[i], o->out_dir, names[i]);
+        if (rc != BF_EXIT_OK) {
+            goto fail;
+        }
+        opened++;
+    }
+    if (bf_fits_csv_write(f[0].fp, &st->spec, st->rows, st->stats,
+                          st->stats != NULL ? &st->analysis : NULL) !=
+        BF_OK) {
+        bf_cli_err("internal error: fits.csv could not be written");
+        rc = BF_EXIT_SOFTWARE;
+        goto fail;
+    }
+    fputs(o->exact ? "Table 2: fitted parameters (exact optimum (grid "
+                     "optimum); * on a bound of the search range)\n\n"
+                   : "Table 2: fitted parameters (grid optima; * on a grid "
+                     "bound)\n\n",
+          f[1].fp);
+    bf_tt_print(t2, f[1].fp);
+    fputs("Table 3: LSE (sum over the K used configurations)\n\n", f[2].fp);
+    bf_tt_print(t3, f[2].fp);
+    for (i = 0; i < 3; i++) {
+        rc = bf_out_commit(&f[i]);
+        if (rc != BF_EXIT_OK) {
+            opened = 3; /* the committed ones stay; abort the rest */
+            for (i = i + 1; i < 3; i++) {
+                bf_out_abort(&f[i]);
+            }
+            return rc;
+        }
+    }
+    return BF_EXIT_OK;
+fail:
+    for (i = 0; i < opened; i++) {
+        bf_out_abort(&f[i]);
+    }
+    return rc;
+}
+
+/* With --fit exact and --on-params: the fitted values of the model whose
+ * inputs are the ON table (rho, sigma; its profile intervals) beside the
+ * tabulated ones. */
+static void on_compare(const bf_cli_study *st, FILE *fp)
+{
+    bf_tt *t;
+    size_t m;
+    size_t s;
+    if (!st->opts.exact || st->in.on_params == NULL || st->stats == NULL) {
+        return;
+    }
+    for (m = 0; m < st->n_models; m++) {
+        const bf_model_type *v = st->models[m];
+        if (v->p == 2 && v->param[0].input == BF_INPUT_ON &&
+            v->param[1].input == BF_INPUT_ON && v->param[0].fitted &&
+            v->param[1].fitted) {
+            break; /* ON with its tabulated inputs fitted */
+        }
+    }
+    if (m == st->n_models || (t = bf_tt_alloc(6)) == NULL) {
+        return;
+    }
+    bf_tt_header(t, 0, "No.");
+    bf_tt_header(t, 1, "Sample");
+    bf_tt_header(t, 2, "rho fitted [95% CI]");
+    bf_tt_header(t, 3, "rho CURET");
+    bf_tt_header(t, 4, "sigma fitted [95% CI]");
+    bf_tt_header(t, 5, "sigma CURET");
+    for (s = 0; s < st->n_samples; s++) {
+        size_t i = s * st->n_models + m;
+        const bf_fit_stats *f = &st->stats[i];
+        double rho;
+        double sigma;
+        if (st->rows[i].status != BF_OK || !f->done ||
+            bf_sample_table_get(st->in.on_params, st->samples[s],
+                                st->models[m]->param[0].input_col, &rho) !=
+                BF_OK ||
+            bf_sample_table_get(st->in.on_params, st->samples[s],
+                                st->models[m]->param[1].input_col, &sigma) != BF_OK ||
+            bf_tt_add_row(t) != 0) {
+            continue;
+        }
+        bf_tt_set(t, 0, "%d", st->samples[s]);
+        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, s));
+        bf_tt_set(t, 2, "%.3f [%.3f, %.3f]", f->refined.param[0],
+                  f->ci_low[0], f->ci_high[0]);
+        bf_tt_set(t, 3, "%.2f", rho);
+        bf_tt_set(t, 4, "%.3f [%.3f, %.3f]", f->refined.param[1],
+                  f->ci_low[1], f->ci_high[1]);
+        bf_tt_set(t, 5, "%.2f", sigma);
+    }
+    fprintf(fp, "\nOren-Nayar fitted (exact) against CURET's tabulated "
+                "rho, sigma\n\n");
+    bf_tt_print(t, fp);
+    bf_tt_free(t);
+}
+
+int bf_cli_study_write_tables(const bf_cli_study *st)
+{
+    bf_tt *t2 = NULL;
+    bf_tt *t3 = NULL;
+    int rc;
+
+    report_missing(&st->spec, st->rows);
+    if (build_tables(st, &t2, &t3) != 0) {
+        bf_cli_err("out of memory");
+        rc = BF_EXIT_SOFTWARE;
+        goto done;
+    }
+    rc = write_outputs(st, t2, t3);
+    if (rc != BF_EXIT_OK || st->opts.quiet) {
+        goto done;
+    }
+    bf_cli_study_describe(st, stdout);
+    printf("Table 2: fitted parameters (%s%s)\n\n",
+           st->opts.exact ? "exact optimum (grid optimum)" : "grid optima",
+           any_bound_hit(&st->spec, st->rows)
+               ? (st->opts.exact ? "; * on a bound of the search range"
+                                 : "; * on a grid bound")
+               : "");
+    bf_tt_print(t2, stdout);
+    if (st->n_sel > 0) {
+        printf("\nTable 3: %s (sum over the K = %zu used configurations)"
+               "\n\n",
+               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S",
+               st->n_sel);
+    } else {
+        printf("\nTable 3: %s (sum over each sample's K used "
+               "configurations)\n\n",
+               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S");
+    }
+    bf_tt_print(t3, stdout);
+    on_compare(st, stdout);
+    printf("\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
+           st->opts.out_dir, st->opts.out_dir, st->opts.out_dir);
+done:
+    bf_tt_free(t2);
+    bf_tt_free(t3);
+    return rc;
+}

@@ -1,0 +1,28 @@
+/* tables.h: what a study run prints and writes -- the description of the
+ * run (data, configurations, conventions, fit), Tables 2 and 3 of the
+ * paper, and the files fits.csv (the library's writer), table2.md and
+ * table3.md. */
+#ifndef BF_CLI_TABLES_H
+#define BF_CLI_TABLES_H
+
+#include <stdio.h>
+
+#include "study.h"
+
+/* Prints the "Data:" lines: CURET's files, or each material's file,
+ * format, configurations and channels. */
+void bf_cli_describe_data(const bf_cli_study *st, FILE *fp);
+
+/* The specular exclusion in words, into buf. */
+void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len);
+
+/* Prints what was run: data, configurations used, conventions, the fit,
+ * its free parameters and the analysis. */
+void bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
+
+/* Writes fits.csv, table2.md and table3.md atomically into the output
+ * folder and, unless quiet, prints the description and both tables. Returns
+ * BF_EXIT_OK or an exit status after printing the error. */
+int bf_cli_study_write_tables(const bf_cli_study *st);
+
+#endif

@@ -1,0 +1,275 @@
+/* engine.c: configuration sets, prepared models and the one
+ * evaluate-and-normalise of the fitting engine (src/fit/engine.h).
+ *
+ * [1] SPEC §2: every model curve is divided by its maximum over the used
+ *     configurations, so constant factors cancel.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+/* ==== configuration sets ================================================= */
+
+int bf__cset_init(bf__cset *cs, size_t n, const bf_geom *geom)
+{
+    size_t k;
+    memset(cs, 0, sizeof *cs);
+    if (n == 0 || geom == NULL) {
+        return BF_EINVAL;
+    }
+    cs->n = n;
+    cs->geom = geom;
+    cs->trig = malloc(n * sizeof *cs->trig);
+    cs->cti = malloc(n * sizeof *cs->cti);
+    if (cs->trig == NULL || cs->cti == NULL) {
+        bf__cset_free(cs);
+        return BF_ENOMEM;
+    }
+    for (k = 0; k < n; k++) {
+        bf__geom_trig(&geom[k], &cs->trig[k]);
+        cs->cti[k] = cs->trig[k].ci; /* bf__zenith_sincos's cos theta_i */
+    }
+    return BF_OK;
+}
+
+void bf__cset_free(bf__cset *cs)
+{
+    if (cs == NULL) {
+        return;
+    }
+    free(cs->trig);
+    free(cs->cti);
+    cs->trig = NULL;
+    cs->cti = NULL;
+}
+
+/* ==== the plain kernel: a model's own eval ============================== */
+
+/* The reference path (bf_fit_grid, bf_fit_lse, bf_model_eval) and types
+ * made outside the library: the configurations are the terms, eval the
+ * loop. */
+static int plain_values(const bf__prep *pm, const double *param, void *work,
+                        double *out)
+{
+    return pm->type->eval(param, pm->n, pm->geom, out, work);
+}
+
+const bf_kernel bf__plain_kernel = {0,    0, NULL, NULL, plain_values,
+                                    NULL, BF__BLOCK_NONE, 0, 0, -1, NULL,
+                                    NULL};
+
+/* ==== prepared models ==================================================== */
+
+int bf__prep_init(bf__prep *pm, const bf_model_type *type,
+                  const bf__cset *cs)
+{
+    int rc = cs != NULL ? bf__prep_plain(pm, type, cs->n, cs->geom)
+                        : BF_EINVAL;
+    if (rc != BF_OK || type->kernel == NULL) {
+        return rc;
+    }
+    pm->kr = type->kernel;
+    pm->cs = cs;
+    if (pm->kr->n_terms + pm->kr->n_extra > 0) {
+        size_t len;
+        if (pm->kr->n_terms > (SIZE_MAX / sizeof(double) - 64) / cs->n) {
+            return BF_ENOMEM;
+        }
+        len = pm->kr->n_terms * cs->n + pm->kr->n_extra;
+        pm->terms = malloc(len * sizeof *pm->terms);
+        if (pm->terms == NULL) {
+            return BF_ENOMEM;
+        }
+        pm->kr->terms(pm->kr, cs, pm->terms);
+    }
+    pm->work_bytes = pm->kr->work_bytes != NULL
+                         ? pm->kr->work_bytes(pm->kr, cs->n)
+                         : 0;
+    return pm->kr->prepare != NULL ? pm->kr->prepare(pm) : BF_OK;
+}
+
+int bf__prep_plain(bf__prep *pm, const bf_model_type *type, size_t n,
+                   const bf_geom *geom)
+{
+    memset(pm, 0, sizeof *pm);
+    if (type == NULL || type->eval == NULL || n == 0 || geom == NULL ||
+        type->p > BF_MAX_PARAMS) {
+        return BF_EINVAL;
+    }
+    pm->type = type;
+    pm->kr = &bf__plain_kernel;
+    pm->n = n;
+    pm->geom = geom;
+    pm->work_bytes = type->work_size;
+    return BF_OK;
+}
+
+void bf__prep_free(bf__prep *pm)
+{
+    if (pm == NULL) {
+        return;
+    }
+    if (pm->kr != NULL && pm->kr->release != NULL && pm->cache != NULL) {
+        pm->kr->release(pm);
+    }
+    pm->cache = NULL;
+    free(pm->terms);
+    pm->terms = NULL;
+}
+
+void *bf__work_alloc(const bf__prep *pm)
+{
+    /* at least one line, so a kernel without workspace still gets a
+     * distinct non-NULL pointer */
+    size_t bytes = (pm->work_bytes + 127) / 64 * 64;
+    void *w = aligned_alloc(64, bytes);
+    if (w != NULL) {
+        memset(w, 0, bytes);
+    }
+    return w;
+}
+
+/* Division by the maximum through its reciprocal, as the grid kernels of
+ * src/fit/kernels.c normalise a block: BF_EDOM when a value is not finite
+ * or the maximum is not positive. */
+static int normalise_recip(size_t n, double *curve)
+{
+    double mx = -INFINITY;
+    double nf = 0.0;
+    double r;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        nf += curve[k] - curve[k]; /* NaN once a value is not finite */
+        mx = curve[k] > mx ? curve[k] : mx;
+    }
+    if (!(nf == 0.0 && mx > 0.0)) {
+        return BF_EDOM;
+    }
+    r = 1.0 / mx;
+    for (k = 0; k < n; k++) {
+        curve[k] = curve[k] * r; /* SPEC §2 */
+    }
+    return BF_OK;
+}
+
+int bf__curve(const bf__prep *pm, const double *param, void *work,
+              double *curve)
+{
+    int rc = pm->kr->values(pm, param, work, curve);
+    if (rc != BF_OK) {
+        return BF_EDOM;
+    }
+    /* SPEC §2. Models with grid kernels (BK, LFTG) normalise as those do,
+     * so a point's curve has the bits of the same grid point's; the others
+     * as bf_normalise, the bits the paper's protocol has for them. */
+    if (pm->kr->block != BF__BLOCK_NONE) {
+        return normalise_recip(pm->n, curve);
+    }
+    return bf_normalise(pm->n, curve, curve);
+}
+
+/* ==== the objective of a fit ============================================= */
+
+int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm)
+{
+    memset(fc, 0, sizeof *fc);
+    fc->pm = pm;
+    fc->work = bf__work_alloc(pm);
+    fc->curve = malloc(3 * pm->n * sizeof *fc->curve);
+    if (fc->work == NULL || fc->curve == NULL) {
+        bf__fitctx_free(fc);
+        return BF_ENOMEM;
+    }
+    fc->scratch = fc->curve + pm->n;
+    fc->log_d = fc->scratch + pm->n;
+    return BF_OK;
+}
+
+void bf__fitctx_free(bf__fitctx *fc)
+{
+    if (fc == NULL) {
+        return;
+    }
+    free(fc->work);
+    free(fc->curve);
+    fc->work = NULL;
+    fc->curve = NULL;
+}
+
+void bf__fitctx_use(bf__fitctx *fc, const bf_problem *pb)
+{
+    size_t k;
+    fc->pb = pb;
+    if (pb->objective != BF_OBJ_LOG || pb->data == NULL) {
+        return;
+    }
+    for (k = 0; k < pb->n; k++) { /* doc/methods.md §1: floored logs */
+        double d = pb->data[k];
+        fc->log_d[k] = log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
+    }
+}
+
+static const double *log_data(const bf__fitctx *fc)
+{
+    return fc->pb->objective == BF_OBJ_LOG ? fc->log_d : NULL;
+}
+
+int bf__fit_value(bf__fitctx *fc, const double *param, double *value)
+{
+    int rc;
+    fc->n_eval++;
+    rc = bf__curve(fc->pm, param, fc->work, fc->curve);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    *value = bf__objective(fc->pb, fc->pm->cs->cti, log_data(fc), fc->curve,
+                           fc->scratch);
+    return BF_OK;
+}
+
+int bf__fit_residuals(bf__fitctx *fc, const double *param, double *resid)
+{
+    int rc = bf__curve(fc->pm, param, fc->work, fc->curve);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    bf__residuals(fc->pb, fc->pm->cs->cti, log_data(fc), fc->curve, resid);
+    return BF_OK;
+}
+
+/* ==== one problem's own engine =========================================== */
+
+int bf__solo_init(bf__solo *s, const bf_problem *pb)
+{
+    int rc;
+    memset(s, 0, sizeof *s);
+    if (pb == NULL || pb->type == NULL || pb->n == 0 || pb->geom == NULL) {
+        return BF_EINVAL;
+    }
+    rc = bf__geom_check(pb->n, pb->geom);
+    if (rc == BF_OK) {
+        rc = bf__cset_init(&s->cs, pb->n, pb->geom);
+    }
+    if (rc == BF_OK) {
+        rc = bf__prep_init(&s->pm, pb->type, &s->cs);
+    }
+    if (rc == BF_OK) {
+        rc = bf__fitctx_init(&s->fc, &s->pm);
+    }
+    if (rc != BF_OK) {
+        bf__solo_free(s);
+        return rc;
+    }
+    bf__fitctx_use(&s->fc, pb);
+    return BF_OK;
+}
+
+void bf__solo_free(bf__solo *s)
+{
+    bf__fitctx_free(&s->fc);
+    bf__prep_free(&s->pm);
+    bf__cset_free(&s->cs);
+}

@@ -1,0 +1,459 @@
+/* engine.h: the fitting engine's private interface -- model kernels over
+ * geometry terms computed once per configuration set, prepared models, the
+ * one evaluate-and-normalise, the objective of a fit, one grid layout and
+ * enumerator, weighted scoring. Never installed (STYLE §1, §3: bf__ names).
+ *
+ * Every fit of the library (the study's grids beyond the paper's kernels,
+ * the exact refinement, the profile intervals, the bootstrap and the
+ * cross-validation) evaluates models through this interface:
+ *
+ *   configuration set (bf__cset): geometry, sines and cosines, cos theta_i
+ *     -> prepared model (bf__prep): the kernel's geometry-only terms
+ *        -> bf__curve: values at one parameter vector from the terms (the
+ *           kernel's loop, caller workspace, no allocation), normalised
+ *           (SPEC §2), the only evaluate-and-normalise of the engine
+ *           -> bf__fitctx: the objective S of a problem (doc/methods.md §1)
+ */
+#ifndef BF_FIT_ENGINE_H
+#define BF_FIT_ENGINE_H
+
+#include <stddef.h>
+
+#include "internal.h"
+
+/* ======================================================================
+ * --- configuration sets ---
+ * ====================================================================== */
+
+/* The configurations a group of fits shares and what every model needs of
+ * them: sines and cosines (bf__geom_trig) and cos theta_i as the zenith
+ * convention gives it (the cosw objective). Owns trig and cti. */
+typedef struct {
+    size_t n;            /* configurations */
+    const bf_geom *geom; /* borrowed */
+    bf__trig_t *trig;    /* n */
+    double *cti;         /* n: cos theta_i (bf__zenith_sincos) */
+} bf__cset;
+
+/* Fills cs for the n configurations geom (borrowed until bf__cset_free).
+ * BF_ENOMEM or BF_EINVAL (n = 0). */
+int bf__cset_init(bf__cset *cs, size_t n, const bf_geom *geom);
+void bf__cset_free(bf__cset *cs);
+
+/* ======================================================================
+ * --- kernels (each model file defines its own) ---
+ * ====================================================================== */
+
+typedef struct bf__prep bf__prep;
+
+/* The grid kernels of src/fit/kernels.c that a model's curves can use
+ * (a block of grid values at once): none, the BK family with the slope m
+ * free, LFTG with n_d free. */
+enum { BF__BLOCK_NONE = 0, BF__BLOCK_BK, BF__BLOCK_LFTG };
+
+/* A model's evaluation in the engine. The engine never looks at a model's
+ * name, eval pointer or parameter names: what it needs is here. */
+struct bf_kernel {
+    /* doubles per configuration of geometry-only terms, and doubles of
+     * terms that do not depend on the configuration (after them) */
+    size_t n_terms;
+    size_t n_extra;
+    /* Fills terms[t * n + k] (t < n_terms) for the n configurations of cs,
+     * then the n_extra doubles at terms[n_terms * n]. Called once per
+     * configuration set and model. */
+    void (*terms)(const bf_kernel *kr, const bf__cset *cs, double *terms);
+    /* Bytes of workspace values() needs on n configurations (a cache of
+     * parameter-dependent terms: FC's Fresnel factor for one n, WNO-R's
+     * quadrature nodes for one sigma). NULL: none. */
+    size_t (*work_bytes)(const bf_kernel *kr, size_t n);
+    /* Values up to a constant factor at param (checked by the caller) into
+     * out (pm->n values). work: work_bytes, zeroed before its first use,
+     * then only ever touched by this function. BF_OK, or BF_EDOM with NaN
+     * where the model is undefined. */
+    int (*values)(const bf__prep *pm, const double *param, void *work,
+                  double *out);
+    /* Number of configurations at which the model's formula was clamped
+     * at param (ON's clamp at 0, doc/methods.md §8); NULL: never. */
+    size_t (*clamped)(const bf__prep *pm, const double *param);
+    int block;  /* BF__BLOCK_*: the grid kernel that applies */
+    int factor; /* block == BF__BLOCK_BK: BF__BK_FACTOR_* */
+    int corr;   /*   and BF__BK_CORR_* */
+    /* The parameter that is cheap to vary while the others stay (its
+     * values need none of the cached terms recomputed: WNO-R's sigma
+     * given its ring sums at n), or -1: the refinement of two parameters
+     * then nests its searches, this one inside. */
+    int cheap;
+    /* Tables a kernel builds for a configuration set on demand (WNO-R's
+     * ring sums in Chebyshev form, one panel of n at a time): prepare
+     * makes pm->cache (BF_OK or BF_ENOMEM), release frees it. The cache is
+     * shared by the threads: values() builds an entry under a lock and
+     * publishes it atomically; an entry is a function of the
+     * configurations alone, so who builds it does not change any bit.
+     * NULL: none. */
+    int (*prepare)(bf__prep *pm);
+    void (*release)(bf__prep *pm);
+};
+
+/* The plain kernel: values() is type->eval on the configurations (no
+ * terms). The reference path and types made outside the library (kernel
+ * NULL) use it. */
+extern const bf_kernel bf__plain_kernel;
+
+/* A model prepared on a configuration set: its kernel's geometry terms.
+ * Read-only once made, so threads share it; each thread has its own
+ * workspace (bf__work_alloc). */
+struct bf__prep {
+    const bf_model_type *type;
+    const bf_kernel *kr;  /* type->kernel, or &bf__plain_kernel */
+    const bf__cset *cs;   /* borrowed; NULL for bf__prep_plain */
+    size_t n;             /* configurations */
+    const bf_geom *geom;  /* borrowed: the n configurations */
+    double *terms;        /* kr->n_terms * n + kr->n_extra, owned */
+    size_t work_bytes;    /* of a workspace */
+    void *cache;          /* the kernel's tables (prepare/release) */
+};
+
+/* Prepares type on cs (borrowed): its kernel's terms, or the plain kernel
+ * when it has none. BF_OK, BF_ENOMEM, BF_EINVAL. */
+int bf__prep_init(bf__prep *pm, const bf_model_type *type,
+                  const bf__cset *cs);
+/* Prepares type's own eval (the plain kernel) on n configurations geom
+ * (borrowed); allocates nothing. BF_OK or BF_EINVAL. */
+int bf__prep_plain(bf__prep *pm, const bf_model_type *type, size_t n,
+                   const bf_geom *geom);
+void bf__prep_free(bf__prep *pm);
+
+/* A zeroed workspace for values() of pm (64-byte aligned; free()), or
+ * NULL when out of memory. Never NULL for a kernel without workspace. */
+void *bf__work_alloc(const bf__prep *pm);
+
+/* The one evaluate-and-normalise of the engine: pm's values at param,
+ * divided by their maximum over the configurations (SPEC §2, as
+ * bf_normalise). param must lie in the model's domain. BF_OK, or BF_EDOM
+ * when the model is undefined at a configuration or not normalisable. */
+int bf__curve(const bf__prep *pm, const double *param, void *work,
+              double *curve);
+
+/* ======================================================================
+ * --- the kernels of the registry's models ---
+ * ====================================================================== */
+
+/* The BK family (SPEC §3; src/fit/kernels.c, the same operations as the
+ * grid kernels): terms, workspace (FC's Fresnel factor for the last n)
+ * and values; kr->factor and kr->corr say the member. */
+void bf__bk_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms);
+size_t bf__bk_kwork(const bf_kernel *kr, size_t n);
+int bf__bk_kvalues(const bf__prep *pm, const double *param, void *work,
+                   double *out);
+#define BF__BK_NTERMS 11
+#define BF__BK_NEXTRA 1
+/* LFTG (P7): the values exp(n_d ln(cos ti cos ts)) (src/fit/kernels.c). */
+int bf__lftg_kvalues(const bf__prep *pm, const double *param, void *work,
+                     double *out);
+
+/* Unpolarised Fresnel factor F_FC^2 of (P6), SPEC §4.2, at n >= 1 for n
+ * configurations given by their sines and cosines (SoA), vectorised, the
+ * same bits as bf__fresnel_fc2_sc (src/fit/kernels.c). */
+void bf__fc2_values(size_t n, const double *si, const double *ci,
+                    const double *ss, const double *cs, double n_index,
+                    double *out);
+
+/* ======================================================================
+ * --- the objective of a fit (doc/methods.md §1) ---
+ * ====================================================================== */
+
+/* What one evaluation of a fitting problem needs: the problem (objective,
+ * data, weights, ranges), its prepared model and the scratch memory of one
+ * thread. Made by bf__fitctx_init for one problem; the refinement, the
+ * profile, the bootstrap and the cross-validation each re-point pb at a
+ * problem with other weights or fixed values of the same model. */
+typedef struct {
+    const bf_problem *pb;
+    const bf__prep *pm;
+    void *work;      /* the kernel's workspace (owned) */
+    double *curve;   /* n */
+    double *scratch; /* n */
+    double *log_d;   /* n: ln max(D, floor) of pb->data (BF_OBJ_LOG) */
+    size_t n_eval;   /* evaluations since init */
+} bf__fitctx;
+
+/* Scratch memory for pm. BF_OK or BF_ENOMEM. */
+int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm);
+void bf__fitctx_free(bf__fitctx *fc);
+
+/* Points fc at pb (same model and configurations as fc->pm; borrowed):
+ * every change of problem, data or weights goes through here, so that
+ * what is derived from the data (the log objective's logs) follows. */
+void bf__fitctx_use(bf__fitctx *fc, const bf_problem *pb);
+
+/* S of fc->pb at param (type->p values in the domain): BF_OK, or BF_EDOM
+ * where the model is undefined or not normalisable. Counts an
+ * evaluation. */
+int bf__fit_value(bf__fitctx *fc, const double *param, double *value);
+
+/* Residuals r_k of fc->pb at param (S = sum w_k r_k^2). */
+int bf__fit_residuals(bf__fitctx *fc, const double *param, double *resid);
+
+/* S of pb on a normalised curve (scratch: n doubles; log_d for
+ * BF_OBJ_LOG, else NULL): sum_k w_k r_k^2 with one fma per term, in index
+ * order. */
+double bf__objective(const bf_problem *pb, const double *cti,
+                     const double *log_d, const double *curve,
+                     double *scratch);
+
+/* sum_k w_k f_k (c_k - d_k)^2 in index order, the rounded squares added
+ * by one fma each (w NULL: an add; f NULL: 1): the max and cosw
+ * objectives (src/fit/kernels.c). */
+double bf__sum_weighted(size_t n, const double *c, const double *d,
+                        const double *w, const double *f);
+
+/* Residuals of pb on a normalised curve (see bf_objective). */
+void bf__residuals(const bf_problem *pb, const double *cti,
+                   const double *log_d, const double *curve, double *resid);
+
+/* One problem's own engine (the public API's fits: bf_fit_refine,
+ * bf_fit_profile_ci, ... called on a bf_problem): a configuration set, the
+ * prepared model and one context, made per call. */
+typedef struct {
+    bf__cset cs;
+    bf__prep pm;
+    bf__fitctx fc;
+} bf__solo;
+
+/* Makes s for pb (its geometry checked) and points s->fc at pb. BF_OK,
+ * BF_EINVAL, BF_ENOMEM (s then needs no free). */
+int bf__solo_init(bf__solo *s, const bf_problem *pb);
+void bf__solo_free(bf__solo *s);
+
+/* ======================================================================
+ * --- exact refinement, minimisation (refine.c) ---
+ * ====================================================================== */
+
+/* bf_fit_refine and bf_fit_minimise on the engine: fc->pb is the problem
+ * (checked by the callers). */
+int bf__refine(bf__fitctx *fc, const bf_fit_result *start,
+               bf_fit_result *result);
+int bf__minimise(bf__fitctx *fc, const double *start, bf_fit_result *result);
+
+/* ======================================================================
+ * --- the analysis of many pairs (analysis.c) ---
+ * ====================================================================== */
+
+/* What bf_study_analyse (or any driver) hands the engine: targets on
+ * configuration sets, models, the inputs of every pair. Borrowed. */
+typedef struct {
+    size_t n_sets;
+    const bf__cset *sets;
+    size_t n_targets;
+    const size_t *set_of;        /* per target: its configuration set */
+    const double *const *data;   /* per target: normalised data (SPEC §2) */
+    size_t n_models;
+    const bf_model_type *const *models;
+    const double *fixed;         /* per unit u = t * n_models + m:
+                                    BF_MAX_PARAMS inputs (fixed values,
+                                    starting values of the free ones) */
+    const int *status;           /* per unit: BF_OK, or why it has no
+                                    inputs (BF_ENOTFOUND) */
+    const bf_fit_result *grid;   /* per unit, the study's grid optima to
+                                    reuse where they are the analysis's
+                                    (n_eval 0: none), or NULL */
+    const bf_analysis_opts *opts;
+    int n_threads;               /* 0 or 1: one */
+} bf__job;
+
+/* Analyses every unit of job into stats (cleared first; done = 1 where
+ * analysed) and unit_status (BF_OK, the unit's input status, or why the
+ * model cannot fit: BF_EDOM). Returns BF_OK or BF_ENOMEM. */
+int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status);
+
+/* ======================================================================
+ * --- grids: one layout, one enumerator ---
+ * ====================================================================== */
+
+/* Builds the layout of type's free parameters (bit j of mask) over the
+ * ranges [lo[j], hi[j]] with each parameter's grid step: points lo + step
+ * t <= hi (1e-9 of a step absorbs the rounding of the span). fixed holds
+ * every parameter's value. The paper's grids are the ranges [grid_lo,
+ * grid_lo + grid_step (grid_n - 1)] and give the same points. BF_EINVAL
+ * when a free parameter has no grid or leaves its domain. */
+int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
+                          unsigned mask, const double *lo, const double *hi,
+                          bf__grid_layout_t *g);
+
+/* ======================================================================
+ * --- grid optima under weights (curves.c) ---
+ * ====================================================================== */
+
+/* The grid optimum of pb's objective on gr's curves (same model,
+ * configurations and free parameters as pb) for each of n_w weight vectors
+ * w[b] (NULL: all 1; pb->weight is not used) into results[b]; ties keep
+ * the first point. A vector under which no point is defined gets lse NaN.
+ * cti: cos theta_i of the configurations (the cosw objective). BF_OK or
+ * BF_ENOMEM. */
+int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t n_w, const double *const *w,
+                    bf_fit_result *results);
+/* The local minima of pb's objective (weights pb->weight) over gr's
+ * points -- no lattice neighbour lower, a plateau once -- the max lowest
+ * in increasing order into results (*count of them). BF_OK, BF_ENOMEM. */
+int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+                    const double *cti, size_t max, bf_fit_result *results,
+                    size_t *count);
+/* The grid of a bf_curves, and BF_OK when c was made for pb's model,
+ * configurations and free parameters (else BF_EINVAL). */
+const bf_grid *bf__curves_grid(const bf_curves *c);
+int bf__curves_check(const bf_curves *c, const bf_problem *pb);
+
+/* ======================================================================
+ * --- intervals and cross-validation on the engine ---
+ * ====================================================================== */
+
+/* bf_fit_profile_ci on fc (fc->pb the problem; restored on return). */
+int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                   double level, double *low, double *high, unsigned *open);
+/* bf_fit_bootstrap on fc with the grid gr of fc->pb's free parameters;
+ * est (n_boot x BF_MAX_PARAMS, parameter-major, sorted per parameter on
+ * return, NULL: not kept) and *n_est (may be NULL) get the estimates;
+ * *split (may be NULL) bit j when parameter j's estimates fall into
+ * separate groups (replicates in different basins). */
+int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
+                  unsigned long seed, double level, double *est,
+                  size_t *n_est, double *low, double *high, unsigned *split);
+/* bf_fit_cv on fc with the grid gr and the folds fold (bf_cv_folds);
+ * fold_grid: the folds' grid optima (results 1.. of
+ * bf__grid_optima_folds), or NULL to compute them. */
+int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+           size_t folds, const bf_fit_result *fold_grid, double *cv);
+
+/* ======================================================================
+ * --- scoring many weight vectors against stored curves (kernels.c) ---
+ * ====================================================================== */
+
+/* S[b * cols + g] = sum_k w[b][k] c[k][g] (r_kg)^2, r = curve - data,
+ * for the transposed curves (curves[k * stride + g], g < cols, cols a
+ * multiple of BF__SCORE_LANES) and n_w weight vectors (w[b] NULL: all
+ * 1), c the per-configuration factor cw (NULL: 1). Sums in index order,
+ * one fma per term, as the engine's objective. */
+void bf__score_weights(size_t n, size_t cols, size_t stride,
+                       const double *curves, const double *data,
+                       const double *cw, size_t n_w, const double *const *w,
+                       double *lse);
+/* The grid optima of the same sums without storing them: for each weight
+ * vector the smallest S over the points g < points with ok[g] and its
+ * first index (bf__argmin's choice; SIZE_MAX when none), from one pass
+ * over the curves for all n_w vectors. BF_OK or BF_ENOMEM. */
+int bf__weights_argmin(size_t n, size_t cols, size_t stride,
+                       const double *curves, const unsigned char *ok,
+                       size_t points, const double *data, const double *cw,
+                       size_t n_w, const double *const *w, double *best_lse,
+                       size_t *best);
+
+/* ======================================================================
+ * --- grids and the study path (grid.c, kernels.c) ---
+ * ====================================================================== */
+
+/* Transposed normalised curves curves[k * stride + g], g < cols, of every
+ * grid point of lay by a block kernel (pm's kernel with block BK and the
+ * slope m free, or LFTG with n_d free on positive values). Returns 1 when
+ * done, 0 when no block kernel applies, -BF_ENOMEM. */
+int bf__curves_fast(const bf__prep *pm, const bf__grid_layout_t *lay,
+                    size_t cols, size_t stride, double *curves,
+                    unsigned char *ok);
+/* The study path without stored curves: the normalised curves of each
+ * block of grid points are computed (same kernels, same bits as
+ * bf__curves_fast) and scored against every sample at once (same sums as
+ * bf__score_all), keeping per sample the smallest LSE of the defined
+ * points and its first index (as bf__argmin; SIZE_MAX when none). Returns
+ * 1 when done, 0 when no block kernel applies, -BF_ENOMEM. */
+int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
+                    const bf__cset *cs, size_t n_samples,
+                    const double *const *data, double *best_lse,
+                    size_t *best);
+
+/* The normalised curves of every point of lay for pm, stored transposed
+ * (block kernels where they apply, else bf__curve per point). NULL with
+ * *status (BF_ENOMEM) on failure. */
+bf_grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
+                       int *status);
+/* The same for type's paper grids (free_mask as bf_fit_grid) on cs. */
+bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                        unsigned free_mask, const bf__cset *cs, int *status);
+/* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
+size_t bf__grid_cols(const bf_grid *gr);
+/* The grid's layout, and its flags (1 where a point's curve is defined). */
+const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr);
+const unsigned char *bf__grid_ok(const bf_grid *gr);
+/* Scores n_samples samples at once: lse must hold n_samples * cols. */
+void bf__grid_score(const bf_grid *gr, size_t n_samples,
+                    const double *const *data, double *lse);
+/* bf__score_weights on the grid's curves: lse holds n_w * cols. */
+void bf__grid_score_weights(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, double *lse);
+/* bf__weights_argmin on the grid's curves: each weight vector's grid
+ * optimum as bf__grid_best reports it (no defined point: lse NaN, n_eval
+ * the points, as bf__grid_optima). BF_OK or BF_ENOMEM. */
+int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+                            const double *cw, size_t n_w,
+                            const double *const *w, bf_fit_result *results);
+/* Row k of the transposed curves and their row pitch. */
+const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
+                                 size_t *stride);
+/* The curve of grid point idx (n values). */
+void bf__grid_curve(const bf_grid *gr, size_t idx, double *curve);
+/* The result of a grid search whose best point is best (SIZE_MAX: none,
+ * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
+ * bf_fit_grid reports them. */
+int bf__grid_result(const bf__grid_layout_t *g, size_t best, double best_lse,
+                    bf_fit_result *result);
+/* The best grid point of one row of LSE values (ties keep the first),
+ * as bf_grid_fit reports it. */
+int bf__grid_best(const bf_grid *gr, const double *lse,
+                  bf_fit_result *result);
+
+/* Models with no fitted parameter (ON, LAMBERT), evaluated once per sample
+ * at its fixed inputs through the engine, bit for bit as bf_fit_grid. */
+typedef struct bf__fixed_model bf__fixed_model;
+/* cs is borrowed until bf__fixed_free. NULL when out of memory. */
+bf__fixed_model *bf__fixed_alloc(const bf_model_type *type,
+                                 const bf__cset *cs);
+int bf__fixed_fit(const bf__fixed_model *fm, const double *fixed,
+                  const double *data, bf_fit_result *result);
+void bf__fixed_free(bf__fixed_model *fm);
+
+/* The full-data scores (lse[g], as bf__score_weights with weights 1, the
+ * same bits) and the training scores of every cross-validation fold
+ * (lse[(f + 1) * cols + g]: all configurations but those with fold[k] ==
+ * f, formed as the full sum minus the fold's) in one pass. */
+void bf__score_folds(size_t n, size_t cols, size_t stride,
+                     const double *curves, const double *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *lse);
+/* The grid optima (values and first indices, SIZE_MAX: none) of n_data
+ * data vectors and of their folds' training sets, best[q * (folds + 1) +
+ * b] (b = 0 the full data, 1 + f fold f), from one pass over the curves
+ * for all of them: bf__score_folds's sums, bf__argmin's choice. Points
+ * with ok 0 never win. */
+void bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                      const double *curves, const unsigned char *ok,
+                      size_t points, size_t n_data, const double *const *data,
+                      const double *cw, const size_t *fold, size_t folds,
+                      double *best_lse, size_t *best);
+/* The same on a grid (folds may be 0: only the full data). BF_OK or
+ * BF_ENOMEM. */
+int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+                          const double *const *data, const double *cw,
+                          const size_t *fold, size_t folds,
+                          bf_fit_result *results);
+/* bf__score_folds on a grid's curves: lse holds (folds + 1) * cols. */
+void bf__grid_score_folds(const bf_grid *gr, const double *data,
+                          const double *cw, const size_t *fold, size_t folds,
+                          double *lse);
+/* The grid optima of pb (no weights) and of each fold's training set
+ * (results[0], results[1 + f]) from one pass (max and cosw objectives;
+ * the others through bf__grid_optima). BF_OK or BF_ENOMEM. */
+int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+                          const double *cti, const size_t *fold,
+                          size_t folds, bf_fit_result *results);
+
+#endif

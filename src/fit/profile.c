@@ -1,0 +1,356 @@
+/* profile.c: profile-likelihood intervals for fitted parameters
+ * (doc/methods.md §3), with inner fits as thorough as the fit itself.
+ *
+ * [1] Y. Pawitan, "In All Likelihood", OUP 2001, §2.6 and §9.2 (profile
+ *     likelihood intervals; Wilks' theorem).
+ * [2] GSL manual, "One Dimensional Root-Finding" (Brent-Dekker,
+ *     gsl_root_fsolver_brent).
+ *
+ * Equations (Gaussian errors of unknown variance, n configurations):
+ *   -2 ln Lambda(theta_j) = n ln(S_p(theta_j) / S_min)       [1] §9.2
+ *   interval: { theta_j : n ln(S_p / S_min) <= chi2_1(level) }  (3.841 at
+ *   95%), S_p(theta_j) = min over the other free parameters of S.
+ *
+ * The inner fit S_p(theta): with theta held, the nuisance parameters get
+ * at least what the fit itself does -- their whole grid, then the exact
+ * refinement, here from each of the grid's lowest local minima -- and,
+ * besides, the refinement from the last point's nuisance optimum; the
+ * lowest counts. Because that
+ * grid fit costs a grid of model curves per point, it is done where the
+ * interval's end is bracketed (the outward steps) and at the end found;
+ * the root finder in between uses the warm-started refinement alone. If
+ * the grid fit at the end found finds a lower S_p than the warm one did
+ * (the warm start followed a local minimum, so the end was too early), the
+ * search goes on from there. The result is the end of the true profile
+ * wherever the nuisance grid resolves its minima.
+ */
+#include <float.h>
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+/* Absolute tolerance of the interval ends (parameter units). */
+#define CI_TOL 1e-7
+/* Iteration limit of the root finder and of the outward bracketing. */
+#define CI_MAXITER 200
+/* How often the end found is re-checked by a grid fit and the search
+ * resumed (each resumption moves the end outwards). */
+#define CI_VERIFY 8
+/* The grid fit is better than the warm one when lower by this relative
+ * amount (rounding of S is far below it). */
+#define CI_BETTER 1e-12
+/* The local minima of the nuisance grid refined at a grid fit. */
+#define CI_STARTS 4
+
+/* The profile of parameter j: the problem with j held at theta. */
+typedef struct {
+    bf__fitctx *fc;
+    bf_problem sub;              /* the problem with j fixed */
+    double start[BF_MAX_PARAMS]; /* nuisance optimum of the last point */
+    double anchor[BF_MAX_PARAMS]; /* the root finder's start: the nuisance
+                                    optimum at the bracket's inside end */
+    size_t j;
+    double s_min;                /* objective at the optimum */
+    double n_w;                  /* sum of the weights */
+    double chi2;                 /* chi2_1(level) */
+    int status;                  /* first failure, BF_OK if none */
+} profile_t;
+
+/* The grid fit of the nuisance parameters at sub's fixed values: their
+ * whole grid, then the refinement from each of its CI_STARTS lowest local
+ * minima (the fit itself refines its grid optimum only; a profile's inner
+ * minimum can lie in a basin whose grid points are not the lowest --
+ * between two grid points a deeper minimum than the best grid point's).
+ * The lowest refined result goes to r. */
+static int grid_fit(profile_t *p, bf_fit_result *r)
+{
+    bf__grid_layout_t lay;
+    bf_fit_result g[CI_STARTS];
+    size_t n_min = 0;
+    size_t i;
+    bf_grid *gr;
+    int found = 0;
+    int rc = bf__grid_layout_range(p->sub.type, p->sub.fixed,
+                                   p->sub.free_mask, p->sub.lo, p->sub.hi,
+                                   &lay);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    gr = bf__grid_make(p->fc->pm, &lay, &rc);
+    if (gr == NULL) {
+        return rc;
+    }
+    rc = bf__grid_minima(gr, &p->sub, p->fc->pm->cs->cti, CI_STARTS, g,
+                         &n_min);
+    bf_grid_free(gr);
+    for (i = 0; rc == BF_OK && i < n_min; i++) {
+        bf_fit_result ri;
+        int st = bf__refine(p->fc, &g[i], &ri);
+        if (st == BF_ENOMEM) {
+            return st;
+        }
+        if ((st == BF_OK || st == BF_ENOCONV) && (!found || ri.lse < r->lse)) {
+            *r = ri;
+            found = 1;
+        }
+    }
+    if (rc != BF_OK) {
+        return rc;
+    }
+    return found ? BF_OK : BF_EDOM;
+}
+
+/* S_p(theta): the warm-started refinement, and with thorough also the
+ * grid fit; *improved = 1 when the grid fit was lower. */
+static int inner(profile_t *p, double theta, int thorough, double *s,
+                 int *improved)
+{
+    bf_fit_result warm;
+    bf_fit_result start;
+    int rc;
+    *improved = 0;
+    p->sub.fixed[p->j] = theta;
+    p->start[p->j] = theta;
+    if (p->sub.free_mask == 0) {
+        return bf__fit_value(p->fc, p->sub.fixed, s);
+    }
+    memset(&start, 0, sizeof start);
+    memcpy(start.param, p->start, sizeof start.param);
+    rc = bf__fit_value(p->fc, start.param, &start.lse);
+    if (rc != BF_OK) {
+        start.lse = HUGE_VAL; /* the refinement keeps a defined point */
+    }
+    rc = bf__refine(p->fc, &start, &warm);
+    if (rc != BF_OK && rc != BF_ENOCONV) {
+        if (!thorough) {
+            return rc;
+        }
+        warm.lse = HUGE_VAL;
+    }
+    if (thorough) {
+        bf_fit_result g;
+        rc = grid_fit(p, &g);
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+        if (rc == BF_OK && g.lse < warm.lse * (1.0 - CI_BETTER)) {
+            warm = g;
+            *improved = 1;
+        }
+    }
+    if (!(warm.lse < HUGE_VAL)) {
+        return BF_EDOM;
+    }
+    memcpy(p->start, warm.param, sizeof p->start);
+    *s = warm.lse;
+    return BF_OK;
+}
+
+/* n ln(S_p(theta) / S_min) - chi2: negative inside the interval. */
+static double crit_at(profile_t *p, double theta, int thorough,
+                      int *improved)
+{
+    double s = HUGE_VAL;
+    int rc = inner(p, theta, thorough, &s, improved);
+    if (rc != BF_OK) {
+        if (p->status == BF_OK) {
+            p->status = rc;
+        }
+        return GSL_POSINF;
+    }
+    return p->n_w * log(s / p->s_min) - p->chi2;
+}
+
+/* The root finder's criterion: every point refined from the same start,
+ * the bracket's inside end's nuisance optimum, so that the function it
+ * sees is one basin's, continuous, whatever order it evaluates in (a start
+ * carried from point to point can hop to another basin between the two
+ * ends of the bracket). */
+static double crit_warm(double theta, void *arg)
+{
+    profile_t *p = arg;
+    int improved;
+    memcpy(p->start, p->anchor, sizeof p->start);
+    return crit_at(p, theta, 0, &improved);
+}
+
+/* Root of the warm criterion in [in, out] (crit(in) <= 0 < crit(out)). */
+static int root(profile_t *p, double in, double out, double *x)
+{
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    gsl_function fn;
+    double lo = in < out ? in : out;
+    double hi = in < out ? out : in;
+    int status;
+    size_t iter = 0;
+    if (s == NULL) {
+        return BF_ENOMEM;
+    }
+    fn.function = crit_warm;
+    fn.params = p;
+    status = gsl_root_fsolver_set(s, &fn, lo, hi);
+    while (status == GSL_SUCCESS && iter++ < CI_MAXITER) {
+        status = gsl_root_fsolver_iterate(s);
+        if (status != GSL_SUCCESS) {
+            break;
+        }
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
+                                        gsl_root_fsolver_x_upper(s), CI_TOL,
+                                        0.0);
+        if (status == GSL_SUCCESS) {
+            break;
+        }
+        status = GSL_SUCCESS;
+    }
+    *x = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    return status == GSL_SUCCESS ? BF_OK : BF_ENOCONV;
+}
+
+/* One end of the interval: walks from the optimum towards limit in steps
+ * that double until the criterion (grid fits) turns positive, finds the
+ * root, and re-checks it with a grid fit (see the file comment). *at_limit
+ * is set when the interval reaches limit. */
+static int one_side(profile_t *p, double theta_hat, double limit, double d0,
+                    double *end, int *at_limit)
+{
+    double x = theta_hat;
+    double d = d0;
+    double nuisance[BF_MAX_PARAMS];
+    double inside[BF_MAX_PARAMS]; /* the nuisance optimum at x */
+    double out = limit;
+    size_t iter;
+    size_t verify;
+    int improved;
+    int rc = BF_OK;
+    memcpy(nuisance, p->start, sizeof nuisance);
+    memcpy(inside, p->start, sizeof inside);
+    *at_limit = 0;
+    if (theta_hat == limit) { /* the optimum is on the search range */
+        *end = limit;
+        *at_limit = 1;
+        return BF_OK;
+    }
+    for (iter = 0; iter < CI_MAXITER; iter++) {
+        double next = limit > theta_hat ? x + d : x - d;
+        double c;
+        if ((limit > theta_hat && next >= limit) ||
+            (limit < theta_hat && next <= limit)) {
+            next = limit;
+        }
+        c = crit_at(p, next, 1, &improved);
+        if (p->status != BF_OK) {
+            return p->status;
+        }
+        if (c > 0.0) {
+            out = next;
+            break;
+        }
+        if (next == limit) {
+            *end = limit;
+            *at_limit = 1;
+            memcpy(p->start, nuisance, sizeof nuisance);
+            return BF_OK;
+        }
+        x = next;
+        memcpy(inside, p->start, sizeof inside);
+        d *= 2.0;
+    }
+    if (iter == CI_MAXITER) {
+        return BF_ENOCONV;
+    }
+    for (verify = 0; verify < CI_VERIFY; verify++) {
+        double c;
+        /* the warm starts begin at the bracket's inside point */
+        memcpy(p->anchor, inside, sizeof inside);
+        rc = root(p, x, out, end);
+        if (rc != BF_OK || p->status != BF_OK) {
+            break;
+        }
+        c = crit_at(p, *end, 1, &improved);
+        if (p->status != BF_OK || !improved || c > 0.0) {
+            break; /* the grid fit agrees: the end stands */
+        }
+        x = *end; /* a lower nuisance minimum: the end lies further out */
+        memcpy(inside, p->start, sizeof inside);
+    }
+    memcpy(p->start, nuisance, sizeof nuisance);
+    return p->status != BF_OK ? p->status : rc;
+}
+
+static double weight_sum(const bf_problem *pb)
+{
+    double s = 0.0;
+    size_t k;
+    if (pb->weight == NULL) {
+        return (double)pb->n;
+    }
+    for (k = 0; k < pb->n; k++) {
+        s += pb->weight[k];
+    }
+    return s;
+}
+
+int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                   double level, double *low, double *high, unsigned *open)
+{
+    const bf_problem *pb = fc->pb;
+    profile_t p;
+    const bf_param *pj = &pb->type->param[j];
+    double theta_hat = best->param[j];
+    double d0;
+    int at_lo = 0;
+    int at_hi = 0;
+    int rc;
+
+    memset(&p, 0, sizeof p);
+    p.fc = fc;
+    p.sub = *pb;
+    p.sub.free_mask &= ~(1u << j);
+    memcpy(p.sub.fixed, best->param, sizeof p.sub.fixed);
+    memcpy(p.start, best->param, sizeof p.start);
+    p.j = j;
+    p.n_w = weight_sum(pb);
+    p.chi2 = gsl_cdf_chisq_Pinv(level, 1.0); /* 3.841 at 95% */
+    rc = bf__fit_value(fc, best->param, &p.s_min);
+    if (rc == BF_OK) {
+        if (!(p.s_min > DBL_MIN)) {
+            p.s_min = DBL_MIN; /* an exact fit: the interval is a point */
+        }
+        bf__fitctx_use(fc, &p.sub);
+        d0 = pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
+        rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
+        if (rc == BF_OK) {
+            rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
+        }
+        bf__fitctx_use(fc, pb);
+    }
+    *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u);
+    return rc;
+}
+
+int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
+                      size_t j, double level, double *low, double *high,
+                      unsigned *open)
+{
+    bf__solo so;
+    int rc;
+    if (pb == NULL || best == NULL || low == NULL || high == NULL ||
+        open == NULL || pb->type == NULL || pb->data == NULL ||
+        j >= pb->type->p || !((pb->free_mask >> j) & 1u) ||
+        !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = bf__profile_ci(&so.fc, best, j, level, low, high, open);
+    bf__solo_free(&so);
+    return rc;
+}

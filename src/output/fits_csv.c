@@ -1,0 +1,93 @@
+/* fits_csv.c: fits.csv -- every fitted parameter of every (target, model)
+ * of a study, with the analysis beyond the paper when it was run (README
+ * "Output files", doc/methods.md). */
+#include <math.h>
+#include <stdint.h>
+
+#include "output/output.h"
+
+/* The analysis columns of row i and parameter j (SIZE_MAX: a model with
+ * no fitted parameter). */
+static void analysis_cols(FILE *fp, const bf_study_row *r,
+                          const bf_fit_stats *s, const bf_analysis_opts *opts,
+                          size_t j)
+{
+    int has = j != SIZE_MAX;
+    char flags[512];
+    fprintf(fp, ",%s,%s",
+            bf_objective_name(opts != NULL ? opts->objective : BF_OBJ_MAX),
+            opts != NULL && opts->exact ? "exact" : "paper");
+    if (s == NULL || !s->done) {
+        fputs(",,,,,,,,,,,,,,,", fp);
+        return;
+    }
+    bf__csv_num(fp, has ? s->grid.param[j] : NAN);
+    bf__csv_num(fp, s->grid.lse);
+    bf__csv_num(fp, has ? s->refined.param[j] : NAN);
+    bf__csv_num(fp, s->refined.lse);
+    bf__csv_num(fp, has ? s->ci_low[j] : NAN);
+    bf__csv_num(fp, has ? s->ci_high[j] : NAN);
+    fprintf(fp, ",%s", has ? "profile" : "");
+    if (has) {
+        fprintf(fp, ",%u", (s->ci_open >> (2 * j)) & 3u);
+    } else {
+        fputc(',', fp);
+    }
+    bf__csv_num(fp, has ? s->boot_low[j] : NAN);
+    bf__csv_num(fp, has ? s->boot_high[j] : NAN);
+    fprintf(fp, ",%zu", s->k);
+    bf__csv_num(fp, s->aic);
+    bf__csv_num(fp, s->bic);
+    bf__csv_num(fp, s->cv);
+    bf_fit_flags_format(r->type, s, flags, sizeof flags);
+    fputc(',', fp);
+    bf__csv_field(fp, flags);
+}
+
+int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      const bf_analysis_opts *opts)
+{
+    size_t i;
+    int rc = bf__csv_check(fp, spec, rows, stats, 0);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
+          "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
+          "ci_low,ci_high,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
+          "bic,cv,flags\n",
+          fp);
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
+        const bf_study_row *r = &rows[i];
+        const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
+        size_t j;
+        int any = 0;
+        if (r->status != BF_OK) {
+            continue;
+        }
+        for (j = 0; j < r->type->p; j++) {
+            if (!r->type->param[j].fitted) {
+                continue;
+            }
+            any = 1;
+            bf__csv_target(fp, spec, r->target);
+            fputc(',', fp);
+            bf__csv_field(fp, r->type->name);
+            fprintf(fp, ",%s,%s,%.10g,%.10g,%d,%zu", r->type->param[j].name,
+                    r->type->param[j].unit, r->fit.param[j], r->fit.lse,
+                    (r->fit.bound_hit & (1u << j)) ? 1 : 0, r->k);
+            analysis_cols(fp, r, s, opts, j);
+            fputc('\n', fp);
+        }
+        if (!any) {
+            bf__csv_target(fp, spec, r->target);
+            fputc(',', fp);
+            bf__csv_field(fp, r->type->name);
+            fprintf(fp, ",,,,%.10g,0,%zu", r->fit.lse, r->k);
+            analysis_cols(fp, r, s, opts, SIZE_MAX);
+            fputc('\n', fp);
+        }
+    }
+    return bf__csv_status(fp);
+}
