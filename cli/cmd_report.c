@@ -15,9 +15,6 @@
 
 #define DEG (M_PI / 180.0)
 
-/* Default incidence angles of the plane-of-incidence figures, degrees:
- * CURET's in-plane configurations lie at multiples of 11.25 degrees. */
-static const double default_incidence[] = {11.25, 33.75, 56.25, 78.75};
 /* Largest incidence angle accepted by --incidence, degrees (the original
  * BK models diverge at grazing incidence, SPEC §3.3). */
 #define MAX_INCIDENCE_DEG 89.0
@@ -73,7 +70,10 @@ static void usage(FILE *fp)
 "  --log             Figure 2(b) on a logarithmic LSE axis\n"
 "  --per-sample      also one scatter figure per sample (scatter_sampleN)\n"
 "  --incidence LIST  incidence angles of the plane-of-incidence figures,\n"
-"                    degrees, at most 4 (default 11.25,33.75,56.25,78.75)\n"
+"                    degrees, at most 4 (default: chosen from the data, the\n"
+"                    incidence angles with the most in-plane measurements,\n"
+"                    spread over their range; 11.25,33.75,56.25,78.75 on\n"
+"                    CURET)\n"
 "\n"
 "--threads N also draws the figures in N processes (the same files for\n"
 "every N). A progress line is printed on stderr when it is a terminal.\n",
@@ -196,7 +196,6 @@ int bf_cmd_report(int argc, char **argv)
     bf_out page;
     int page_open = 0;
     int started = 0;
-    size_t i;
     int rc;
 
     memset(&st, 0, sizeof st);
@@ -205,10 +204,6 @@ int bf_cmd_report(int argc, char **argv)
     memset(&meta, 0, sizeof meta);
     fo.formats = (1u << BF_PLOT_PNG) | (1u << BF_PLOT_PDF);
     fo.width = BF_PLOT_DOUBLE_COLUMN;
-    for (i = 0; i < sizeof default_incidence / sizeof *default_incidence; i++) {
-        fo.incidence[i] = default_incidence[i] * DEG;
-    }
-    fo.n_incidence = i;
     fo.progress = isatty(STDERR_FILENO);
     extra.longopts = report_opts;
     extra.handle = handle;
@@ -223,6 +218,9 @@ int bf_cmd_report(int argc, char **argv)
     meta.fig = &fo;
 
     rc = bf_cli_study_prepare(&st);
+    if (rc == BF_EXIT_OK && fo.n_incidence == 0) {
+        rc = bf_figures_choose_incidence(&st, &fo);
+    }
     if (rc == BF_EXIT_OK) {
         rc = bf_report_checksums(&st, &meta);
     }

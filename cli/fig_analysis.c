@@ -100,7 +100,7 @@ static const char **sample_names(const bf_cli_study *st, bf_fig_desc *d)
         return NULL;
     }
     for (s = 0; s < N; s++) {
-        bf_fig_sample_label(st, s, buf[s], sizeof buf[s]);
+        bf_fig_sample_tick(st, s, buf[s], sizeof buf[s]);
         names[N - 1 - s] = buf[s];
     }
     return names;

@@ -12,8 +12,14 @@
 
 /* Most models in one figure (the registry has 11). */
 #define BF_FIG_MAX_MODELS 16
-/* The plane-of-incidence tolerance and the curves' angular step. */
+/* One degree, radians. */
 #define BF_FIG_DEG (M_PI / 180.0)
+/* A measured configuration is "in the plane of incidence" of a panel when
+ * its viewing direction lies within BF_FIG_PLANE_TOL of that plane and its
+ * theta_i within BF_FIG_PLANE_TOL of the panel's incidence angle (CURET's
+ * in-plane configurations lie exactly in it, at multiples of 11.25
+ * degrees). */
+#define BF_FIG_PLANE_TOL (1.0 * BF_FIG_DEG)
 
 /* One sample's (target's) normalised measured and predicted radiance on
  * its K used configurations (SPEC §2). */

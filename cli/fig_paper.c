@@ -313,7 +313,7 @@ int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     for (a = 0; a < ns; a++) {
         size_t s = s0 + a;
         const bf_fig_sample *r = &D->smp[s];
-        bf_fig_sample_label(st, s, slabel[a], sizeof slabel[a]);
+        bf_fig_sample_tick(st, s, slabel[a], sizeof slabel[a]);
         for (b = 0; b < nm; b++) {
             size_t m = D->idx[b];
             size_t p = one ? b : b * ns + a;

@@ -10,11 +10,6 @@
 #include "fig_internal.h"
 #include "model_style.h"
 
-/* A measured configuration is "in the plane of incidence" when its viewing
- * direction lies within PLANE_TOL of that plane and its theta_i within
- * PLANE_TOL of the panel's incidence angle (CURET's in-plane
- * configurations lie exactly in it, at multiples of 11.25 degrees). */
-#define PLANE_TOL (1.0 * BF_FIG_DEG)
 /* Model curves: theta_s over [-90, 90] degrees in 1-degree steps, with a
  * marker every 30 degrees. */
 #define CURVE_POINTS 181
@@ -61,8 +56,8 @@ static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
     for (k = 0; k < r->K && pd->np < MAX_POINTS; k++) {
         double off;
         double t = bf_geom_plane_angle(&r->geom[k], &off);
-        if (fabs(r->geom[k].theta_i - theta_i) <= PLANE_TOL &&
-            off <= PLANE_TOL) {
+        if (fabs(r->geom[k].theta_i - theta_i) <= BF_FIG_PLANE_TOL &&
+            off <= BF_FIG_PLANE_TOL) {
             pd->px[pd->np] = t;
             pd->pxd[pd->np] = t / BF_FIG_DEG;
             pd->py[pd->np] = r->data[k];
@@ -211,7 +206,7 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              polar ? " as a polar plot: angle \xce\xb8s from the surface "
                      "normal, radius L/L_max"
                    : "",
-             PLANE_TOL / BF_FIG_DEG, D->smp[s].K,
+             BF_FIG_PLANE_TOL / BF_FIG_DEG, D->smp[s].K,
              polar ? "each panel's radius fits its largest value, at most"
                    : "the radiance axis ends at",
              polar ? YMAX_CAP : ymax);

@@ -55,6 +55,90 @@ const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
     return buf;
 }
 
+int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o)
+{
+    size_t total = 0;
+    size_t s;
+    size_t K = 0;
+    bf_geom *g;
+    int rc;
+    /* every configuration of the study's materials, each material once
+     * (targets of one material differ in channel only) */
+    for (s = 0; s < st->n_samples; s++) {
+        if (s == 0 || st->targets[s].material != st->targets[s - 1].material) {
+            total += bf_dataset_nconf(st->in.ds, st->targets[s].material);
+        }
+    }
+    g = malloc((total + 1) * sizeof *g);
+    if (g == NULL) {
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    }
+    for (s = 0; s < st->n_samples; s++) {
+        size_t mat = st->targets[s].material;
+        if (s == 0 || mat != st->targets[s - 1].material) {
+            size_t n = bf_dataset_nconf(st->in.ds, mat);
+            memcpy(g + K, bf_dataset_geom(st->in.ds, mat), n * sizeof *g);
+            K += n;
+        }
+    }
+    rc = bf_geom_plane_incidences(K, g, BF_FIG_PLANE_TOL,
+                                  BF_FIG_MAX_INCIDENCE, o->incidence,
+                                  &o->n_incidence);
+    free(g);
+    if (rc != BF_OK) {
+        bf_cli_err("cannot choose the incidence angles of the figures: %s",
+                   bf_strerror(rc));
+        return rc == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+    }
+    o->incidence_chosen = 1;
+    return BF_EXIT_OK;
+}
+
+/* Byte length of the first n characters of UTF-8 text t (fewer if t is
+ * shorter). */
+static size_t utf8_prefix(const char *t, size_t n)
+{
+    size_t i = 0;
+    while (t[i] != '\0' && n > 0) {
+        i++;
+        while (((unsigned char)t[i] & 0xC0u) == 0x80u) {
+            i++; /* continuation bytes */
+        }
+        n--;
+    }
+    return i;
+}
+
+const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+                               size_t len)
+{
+    char title[256];
+    size_t cut;
+    bf_cli_sample_title(st, s, title, sizeof title);
+    if (title[0] == '\0') {
+        snprintf(buf, len, "sample %d", st->samples[s]);
+        return buf;
+    }
+    cut = utf8_prefix(title, BF_FIG_TICK_CHARS);
+    if (title[cut] != '\0') { /* longer: cut at a space, add an ellipsis */
+        size_t sp = cut;
+        while (sp > cut / 2 && title[sp] != ' ') {
+            sp--;
+        }
+        cut = title[sp] == ' ' ? sp : cut;
+        while (cut > 0 && (title[cut - 1] == ' ' || title[cut - 1] == ',' ||
+                           title[cut - 1] == ';')) {
+            cut--;
+        }
+        snprintf(buf, len, "%.*s\xe2\x80\xa6 (%d)", (int)cut, title,
+                 st->samples[s]);
+    } else {
+        snprintf(buf, len, "%s (%d)", title, st->samples[s]);
+    }
+    return buf;
+}
+
 const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
                               size_t len)
 {
@@ -186,8 +270,21 @@ static long model_index(const bf_cli_study *st, const char *name)
 }
 
 /* The models of the scatter and plane figures: those of --models when it
- * was given, else the paper's ON, LFTG, VH-E, FC-E that the run has (all
- * of the run's models when it has none of them). */
+ * was given, else the paper's ON, LFTG, VH-E, FC-E that the run has and
+ * evaluated for some sample (ON needs tabulated parameters, which data
+ * other than CURET lack), or all of the run's models when none is left. */
+/* 1 when model m was evaluated for at least one sample of st. */
+static int evaluated_anywhere(const bf_cli_study *st, size_t m)
+{
+    size_t s;
+    for (s = 0; s < st->n_samples; s++) {
+        if (bf_fig_row(st, s, m)->status == BF_OK) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static size_t scatter_models(const bf_cli_study *st, size_t *idx)
 {
     size_t n = 0;
@@ -195,7 +292,7 @@ static size_t scatter_models(const bf_cli_study *st, size_t *idx)
     if (st->opts.models == NULL) {
         for (i = 0; i < sizeof paper_scatter / sizeof *paper_scatter; i++) {
             long m = model_index(st, paper_scatter[i]);
-            if (m >= 0) {
+            if (m >= 0 && evaluated_anywhere(st, (size_t)m)) {
                 idx[n++] = (size_t)m;
             }
         }
@@ -256,8 +353,9 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
         int sample = st->samples[s];
         ok = (!D->o->per_sample ||
               add_entry(set, BF_FIG_SAMPLE, s, sample) != NULL) &&
-             add_entry(set, BF_FIG_PLANE, s, sample) != NULL &&
-             add_entry(set, BF_FIG_POLAR, s, sample) != NULL;
+             (D->o->n_incidence == 0 || /* nothing in its plane */
+              (add_entry(set, BF_FIG_PLANE, s, sample) != NULL &&
+               add_entry(set, BF_FIG_POLAR, s, sample) != NULL));
     }
     return ok ? BF_OK : BF_ENOMEM;
 }

@@ -28,7 +28,8 @@ typedef struct {
     int per_sample;    /* also one scatter figure per sample */
     double incidence[BF_FIG_MAX_INCIDENCE]; /* theta_i of the plane-of-
                                                incidence panels, radians */
-    size_t n_incidence;
+    size_t n_incidence; /* 0 until given or chosen */
+    int incidence_chosen; /* chosen from the data, not by --incidence */
     int jobs;          /* processes drawing at once (>= 1) */
     int progress;      /* print a progress line on stderr */
 } bf_fig_opts;
@@ -103,6 +104,21 @@ void bf_figures_free(bf_fig_set *set);
  * s, into buf. */
 const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
                                 size_t len);
+/* Chooses o's incidence angles from the configurations of st's
+ * materials (bf_geom_plane_incidences: those with the most views in their
+ * plane of incidence, within BF_FIG_PLANE_TOL, spread over their range);
+ * none when no configuration lies in its plane. BF_EXIT_OK, or an exit
+ * status after printing the error. */
+int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o);
+
+/* Longest name (characters) a figure shows on an axis or above a panel. */
+#define BF_FIG_TICK_CHARS 24
+/* bf_fig_sample_label for text inside a figure (axis ticks, panel
+ * columns): a name longer than BF_FIG_TICK_CHARS characters is cut at a
+ * space and ends in an ellipsis ("Krylon spray enamel 7205... (4)"); the
+ * page's captions and tables keep the whole name. */
+const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+                               size_t len);
 /* The key of target s in file names and page anchors: "sample16", or
  * "sample16_R" when the study fits single channels (characters other than
  * letters, digits, '.', '-' written as '_'). */

@@ -367,12 +367,23 @@ static void conventions(FILE *fp, const bf_cli_study *st,
         bf_tt_html_text(fp, st->opts.on_file);
         fputs("</code>", fp);
     }
-    fputs(".</li>\n<li>Plane-of-incidence figures: incidence angles", fp);
-    for (a = 0; a < meta->fig->n_incidence; a++) {
-        fprintf(fp, "%s %.2f°", a ? "," : "", meta->fig->incidence[a] / DEG);
+    if (meta->fig->n_incidence == 0) {
+        fputs(".</li>\n<li>Plane-of-incidence figures: none, no measured "
+              "configuration lies in its plane of incidence.</li>\n", fp);
+    } else {
+        fputs(".</li>\n<li>Plane-of-incidence figures: incidence angles", fp);
+        for (a = 0; a < meta->fig->n_incidence; a++) {
+            fprintf(fp, "%s %.2f°", a ? "," : "",
+                    meta->fig->incidence[a] / DEG);
+        }
+        if (meta->fig->incidence_chosen) {
+            fputs(" (chosen from the data: those with the most measured "
+                  "configurations in their plane of incidence, spread over "
+                  "their range)", fp);
+        }
+        fputs("; θ<sub>s</sub> &gt; 0 on the forward (specular) side, "
+              "Beckmann's frame (SPEC §1.2).</li>\n", fp);
     }
-    fputs("; θ<sub>s</sub> &gt; 0 on the forward (specular) side, Beckmann's "
-          "frame (SPEC §1.2).</li>\n", fp);
     fprintf(fp, "<li>Figures are drawn at print size, %s column (%u pt = "
                 "%.1f in wide), with %g-point text; PNG at %d pixels per "
                 "inch, PDF%s vector.</li>\n</ul>\n",

@@ -1021,6 +1021,21 @@ bf_geom bf_geom_in_plane(double theta_i, double t);
  * and that plane, radians. */
 double bf_geom_plane_angle(const bf_geom *g, double *off_plane);
 
+/* The incidence angles at which a figure of the plane of incidence shows
+ * measurements: the configurations of g whose viewing direction lies
+ * within tol of their plane of incidence, grouped by theta_i (angles
+ * within tol of a group's smallest are one; each group is represented by
+ * its median member, a measured angle). The candidates are the groups of
+ * more than half as many configurations as the largest group. At most
+ * max angles, in increasing order, into theta_i, their number in *n (0
+ * when no configuration is in its plane); more candidates than max are
+ * thinned evenly over their range, the first and the last kept (CURET:
+ * 6 or 7 in-plane views at each multiple of 11.25 degrees, 3 at normal
+ * incidence, give 11.25, 33.75, 56.25 and 78.75 for max = 4). BF_OK, BF_EINVAL,
+ * BF_ENOMEM. */
+int bf_geom_plane_incidences(size_t K, const bf_geom *g, double tol,
+                             size_t max, double *theta_i, size_t *n);
+
 /* A model type with some parameters' status or search range changed (n
  * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise
  * with bf_model_variant_init and use &v->type; v must not be moved or

@@ -6,6 +6,7 @@
  * [1] SPEC §1.2 (frame), §2 (normalisation by the maximum over the used
  *     configurations). */
 #include <math.h>
+#include <stdlib.h>
 
 #include "internal.h"
 
@@ -64,4 +65,84 @@ double bf_geom_plane_angle(const bf_geom *g, double *off_plane)
             asin(fmin(1.0, fabs(sin(g->theta_s) * sin(g->phi_s))));
     }
     return cos(g->phi_s) >= 0.0 ? g->theta_s : -g->theta_s;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a;
+    double y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int bf_geom_plane_incidences(size_t K, const bf_geom *g, double tol,
+                             size_t max, double *theta_i, size_t *n)
+{
+    double *v;
+    size_t *start;
+    size_t *count;
+    size_t nv = 0;
+    size_t nc = 0;
+    size_t most = 0;
+    size_t ncand = 0;
+    size_t i;
+    size_t k;
+    if ((K > 0 && g == NULL) || n == NULL || (max > 0 && theta_i == NULL) ||
+        !(tol >= 0.0)) {
+        return BF_EINVAL;
+    }
+    *n = 0;
+    v = malloc((K + 1) * sizeof *v);
+    start = malloc((K + 1) * sizeof *start);
+    count = malloc((K + 1) * sizeof *count);
+    if (v == NULL || start == NULL || count == NULL) {
+        free(v);
+        free(start);
+        free(count);
+        return BF_ENOMEM;
+    }
+    for (k = 0; k < K; k++) {
+        double off;
+        bf_geom_plane_angle(&g[k], &off);
+        if (off <= tol && isfinite(g[k].theta_i)) {
+            v[nv++] = g[k].theta_i;
+        }
+    }
+    qsort(v, nv, sizeof *v, cmp_double);
+    /* clusters of incidence angles within tol of their first */
+    for (i = 0; i < nv; i = start[nc] + count[nc], nc++) {
+        start[nc] = i;
+        count[nc] = 1;
+        while (i + count[nc] < nv && v[i + count[nc]] - v[i] <= tol) {
+            count[nc]++;
+        }
+    }
+    for (i = 0; i < nc; i++) {
+        most = count[i] > most ? count[i] : most;
+    }
+    /* the candidates, groups of more than half the largest group's views:
+     * their angles (each group's median member: a measured value), in
+     * increasing order, into v's front */
+    for (i = 0; i < nc; i++) {
+        if (2 * count[i] > most) {
+            v[ncand++] = v[start[i] + count[i] / 2];
+        }
+    }
+    if (ncand <= max) {
+        for (i = 0; i < ncand; i++) {
+            theta_i[i] = v[i];
+        }
+        *n = ncand;
+    } else if (max == 1) {
+        theta_i[0] = v[0];
+        *n = 1;
+    } else if (max > 1) { /* spread over the range: first, last, between */
+        for (i = 0; i < max; i++) {
+            theta_i[i] = v[(i * (ncand - 1) + (max - 1) / 2) / (max - 1)];
+        }
+        *n = max;
+    }
+    free(v);
+    free(start);
+    free(count);
+    return BF_OK;
 }

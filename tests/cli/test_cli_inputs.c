@@ -188,9 +188,28 @@ Test(inputs, every_cornell_file_runs_through_compare_report_and_rank)
     argv[a + 1] = "VH-E,FC-E,LFTG,LAMBERT";
     argv[a + 2] = "--format";
     argv[a + 3] = "png";
-    argv[a + 4] = NULL;
+    argv[a + 4] = "--stats"; /* the analysis' figures too: the materials'
+                                long names must fit their axes */
+    argv[a + 5] = NULL;
     cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "%s", err);
-    cr_assert_not_null(bf_test_slurp(strcat(out, "/report.html"), NULL));
+    {
+        char fig[PATH_LEN + 32];
+        snprintf(fig, sizeof fig, "%s/figures/delta_bic.png", out);
+        cr_assert_not_null(bf_test_slurp(fig, NULL), "%s", fig);
+        snprintf(fig, sizeof fig, "%s/figures/forest_FC-E.png", out);
+        cr_assert_not_null(bf_test_slurp(fig, NULL), "%s", fig);
+    }
+    {
+        /* Cornell measures the plane of incidence at theta_i = 10, 20, ...,
+         * 80 degrees: the figures take four of the eight, spread evenly
+         * (bf_geom_plane_incidences), not CURET's multiples of 11.25 */
+        const char *page = bf_test_slurp(strcat(out, "/report.html"), NULL);
+        cr_assert_not_null(page);
+        cr_assert(strstr(page, "incidence angles 10.00\xc2\xb0, "
+                               "30.00\xc2\xb0, 60.00\xc2\xb0, "
+                               "80.00\xc2\xb0 (chosen from the data") !=
+                  NULL);
+    }
     argv[0] = "rank";
     snprintf(out, sizeof out, "%s/rank", dir);
     argv[a + 2] = NULL;

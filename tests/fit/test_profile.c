@@ -261,3 +261,97 @@ Test(profile, puts_signed_angles_on_the_forward_and_backward_sides)
     (void)bf_geom_plane_angle(&f, &off);
     bf_assert_abs(off, asin(sin(0.9) * sin(0.4)), TOL1);
 }
+
+/* Degrees to radians. */
+#define RAD(d) ((d) * M_PI / 180.0)
+
+/* CURET: 6 or 7 in-plane configurations at each multiple of 11.25
+ * degrees, 3 at normal incidence (left out: fewer than half of 7); the
+ * seven thinned to four evenly over their range: the report's historical
+ * default, 11.25, 33.75, 56.25, 78.75. */
+Test(profile, picks_curets_four_spread_in_plane_incidence_angles)
+{
+    bf_table *t = bf_test_load_table();
+    size_t K = bf_table_size(t);
+    bf_geom *g = malloc(K * sizeof *g);
+    double th[4];
+    size_t n = 99;
+    size_t k;
+    cr_assert_not_null(g);
+    for (k = 0; k < K; k++) {
+        g[k] = bf_table_geom(t, k);
+    }
+    cr_assert_eq(bf_geom_plane_incidences(K, g, RAD(1.0), 4, th, &n), BF_OK);
+    cr_assert_eq(n, 4u);
+    for (k = 0; k < 4; k++) {
+        bf_assert_abs(th[k], RAD(11.25 + 22.5 * (double)k), 1e-6);
+    }
+    free(g);
+    bf_table_free(t);
+}
+
+/* A hand-made set: incidence 10 (4 in-plane views, one 0.5 degrees off
+ * the others' theta_i: one group), 20 (2 views: not more than half of
+ * 4), 30 (3), 40 (5 views but all 20 degrees out of the plane), 50 (3). */
+Test(profile, groups_counts_and_thins_incidence_angles_by_their_in_plane_views)
+{
+    bf_geom g[32];
+    double th[4];
+    size_t K = 0;
+    size_t n;
+    size_t i;
+    const double ti[] = {10, 10, 10, 10.5, 20, 20, 30, 30, 30, 50, 50, 50};
+    for (i = 0; i < sizeof ti / sizeof *ti; i++) {
+        g[K++] = bf_geom_in_plane(RAD(ti[i]), RAD(-40.0 + 7.0 * (double)i));
+    }
+    for (i = 0; i < 5; i++) {
+        g[K] = bf_geom_in_plane(RAD(40.0), RAD(30.0));
+        /* off the plane by asin(sin ts sin ps) = 20 degrees */
+        g[K++].phi_s = asin(sin(RAD(20.0)) / sin(RAD(30.0)));
+    }
+    cr_assert_eq(bf_geom_plane_incidences(K, g, RAD(1.0), 4, th, &n), BF_OK);
+    cr_assert_eq(n, 3u, "%zu angles", n);
+    bf_assert_abs(th[0], RAD(10.0), 1e-12); /* the group's median member */
+    bf_assert_abs(th[1], RAD(30.0), 1e-12);
+    bf_assert_abs(th[2], RAD(50.0), 1e-12);
+    /* two wanted: the first and the last */
+    cr_assert_eq(bf_geom_plane_incidences(K, g, RAD(1.0), 2, th, &n), BF_OK);
+    cr_assert_eq(n, 2u);
+    bf_assert_abs(th[0], RAD(10.0), 1e-12);
+    bf_assert_abs(th[1], RAD(50.0), 1e-12);
+    /* a tolerance of 0.1 degrees splits 10 (3) and 10.5 (1): the largest
+     * group has 3, so 20 (2) is a candidate now */
+    cr_assert_eq(bf_geom_plane_incidences(K, g, RAD(0.1), 4, th, &n), BF_OK);
+    cr_assert_eq(n, 4u);
+    bf_assert_abs(th[1], RAD(20.0), 1e-12);
+    /* a tolerance of 25 degrees takes the 40-degree views in (one group of
+     * 10-30, one of 40-50 within 25 degrees of its first) */
+    cr_assert_eq(bf_geom_plane_incidences(K, g, RAD(25.0), 4, th, &n), BF_OK);
+    cr_assert_eq(n, 2u);
+    /* 10.5 (1 view), 20 (2), 30 (3): 20 and 30 */
+    cr_assert_eq(bf_geom_plane_incidences(6, g + 3, RAD(1.0), 4, th, &n),
+                 BF_OK);
+    cr_assert_eq(n, 2u);
+    bf_assert_abs(th[0], RAD(20.0), 1e-12);
+    /* one view at each of 10.5 and 20: both */
+    cr_assert_eq(bf_geom_plane_incidences(2, g + 3, RAD(1.0), 4, th, &n),
+                 BF_OK);
+    cr_assert_eq(n, 2u);
+    bf_assert_abs(th[0], RAD(10.5), 1e-12);
+}
+
+Test(profile, has_no_incidence_angle_without_in_plane_views)
+{
+    bf_geom g = bf_geom_in_plane(RAD(30.0), RAD(30.0));
+    double th[4] = {7, 7, 7, 7};
+    size_t n = 9;
+    g.phi_s = RAD(90.0); /* straight across the plane */
+    cr_assert_eq(bf_geom_plane_incidences(1, &g, RAD(1.0), 4, th, &n), BF_OK);
+    cr_assert_eq(n, 0u);
+    cr_assert_eq(th[0], 7.0);
+    cr_assert_eq(bf_geom_plane_incidences(0, NULL, RAD(1.0), 4, th, &n),
+                 BF_OK);
+    cr_assert_eq(n, 0u);
+    cr_assert_eq(bf_geom_plane_incidences(1, &g, -1.0, 4, th, &n), BF_EINVAL);
+    cr_assert_eq(bf_geom_plane_incidences(1, &g, NAN, 4, th, &n), BF_EINVAL);
+}
