@@ -9,7 +9,7 @@
 static void usage(FILE *fp)
 {
     fputs(
-"Usage: brdffit compare [OPTIONS]\n"
+"Usage: brdffit compare [OPTIONS] [FILE...]\n"
 "\n"
 "Fit reflectance models to measured BRDF data (a CURET folder, or --input\n"
 "files: pbrt-v2/Cornell .brdf, ASTM E1392, MERL .binary, tidy CSV) with\n"

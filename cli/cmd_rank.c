@@ -18,7 +18,7 @@ static const bf_cli_defaults rank_defaults = {
 static void usage(FILE *fp)
 {
     fputs(
-"Usage: brdffit rank [OPTIONS]\n"
+"Usage: brdffit rank [OPTIONS] [FILE...]\n"
 "\n"
 "Ranks reflectance models per sample by AIC, BIC and K-fold\n"
 "cross-validated error (doc/methods.md), after fitting each model.\n"

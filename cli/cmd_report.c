@@ -34,7 +34,7 @@ static const struct option report_opts[] = {
 static void usage(FILE *fp)
 {
     fputs(
-"Usage: brdffit report [OPTIONS]\n"
+"Usage: brdffit report [OPTIONS] [FILE...]\n"
 "\n"
 "Run the study of 'brdffit compare' and write into the output folder its\n"
 "tables (fits.csv, table2.md, table3.md), report.html (one page with the\n"

@@ -45,7 +45,8 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --input FILE      measurements in another format (repeatable, at most\n"
 "                    %d): pbrt-v2/Cornell .brdf, ASTM E1392 .astm, MERL\n"
 "                    .binary, tidy CSV; one material per file (CSV: one or\n"
-"                    more), numbered 1, 2, ... in input order\n"
+"                    more), numbered 1, 2, ... in input order; FILE...\n"
+"                    after the options are inputs too, after any --input\n"
 "  --input-format F  force the format of every --input: pbrt, astm, merl,\n"
 "                    csv, curet (default: detected from the content)\n"
 "  --configs FILE|all  where a MERL table is sampled: the angles of a CSV\n"
@@ -345,9 +346,14 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         }
         }
     }
-    if (optind < argc) {
-        return bf_cli_usage_error(hint, "unexpected argument '%s'",
-                                  argv[optind]);
+    /* FILE... after the options: more --input files, in their order */
+    for (; optind < argc; optind++) {
+        if (o->src.n_inputs == BF_CLI_MAX_INPUTS) {
+            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                     "at most %d input files",
+                                     BF_CLI_MAX_INPUTS);
+        }
+        o->src.inputs[o->src.n_inputs++] = argv[optind];
     }
     if (o->n_given && o->n_file != NULL) {
         return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,

@@ -100,7 +100,7 @@ Test(cli, each_kind_of_usage_error_has_its_code_a_one_line_reason_and_a_hint)
     const char *out = NULL;
     const char *cases[][5] = {
         {"compare", "--bogus", NULL, NULL, NULL},
-        {"compare", "extra", NULL, NULL, NULL},
+        {"models", "extra", "more", NULL, NULL},
         {"models", "extra", NULL, NULL, NULL},
         {"nosuchcommand", NULL, NULL, NULL, NULL},
         {"compare", "--samples", NULL, NULL, NULL},

@@ -445,6 +445,48 @@ Test(inputs, several_inputs_are_numbered_in_input_order)
     free(c.text);
 }
 
+/* Files after the options are inputs too, after any --input, in order;
+ * a missing one is named. */
+Test(inputs, files_after_the_options_are_inputs_in_order)
+{
+    char path[PATH_LEN];
+    char out[2][PATH_LEN];
+    char gone[PATH_LEN];
+    char *text[2];
+    const char *err = NULL;
+    const char *flag[] = {"compare", "--input", path, "--input",
+                          cornell_path("mystique"), "--models", "LAMBERT",
+                          "--out", out[0], "-q", NULL};
+    const char *pos[] = {"compare", "--models", "LAMBERT", "--input", path,
+                         "--out", out[1], "-q", cornell_path("mystique"),
+                         NULL};
+    const char *missing[] = {"compare", "--models", "LAMBERT", "-q", gone,
+                             NULL};
+    size_t f;
+    snprintf(path, sizeof path, "%s/hand.csv", bf_test_tmpdir());
+    snprintf(gone, sizeof gone, "%s/no-such-file.brdf", bf_test_tmpdir());
+    write_text(path, hand_csv);
+    for (f = 0; f < 2; f++) {
+        char fits[PATH_LEN + 16];
+        const char *t;
+        snprintf(out[f], sizeof out[f], "%.900s/out%zu", bf_test_tmpdir(), f);
+        cr_assert_eq(bf_test_run_cli(f == 0 ? flag : pos, NULL, &err), 0,
+                     "%s", err);
+        snprintf(fits, sizeof fits, "%.900s/fits.csv", out[f]);
+        t = bf_test_slurp(fits, NULL);
+        cr_assert_not_null(t);
+        text[f] = strdup(t);
+        cr_assert_not_null(text[f]);
+    }
+    cr_assert_str_eq(text[1], text[0]);
+    cr_assert(strstr(text[0], "\n3,\"Ford Mystic lacquer") != NULL);
+    free(text[0]);
+    free(text[1]);
+    cr_assert_eq(bf_test_run_cli(missing, NULL, &err), EXIT_NOINPUT, "%s",
+                 err);
+    cr_assert(strstr(err, "no-such-file.brdf") != NULL, "%s", err);
+}
+
 Test(inputs, convert_reports_missing_input_and_output_folders)
 {
     const char *err = NULL;
