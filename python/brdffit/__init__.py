@@ -8,7 +8,9 @@ every number comes from the library. See python/README.md section
     brdffit.models()                       # the registry
     brdffit.evaluate("FC-E", {"m": 0.3}, theta_i, phi_i, theta_o, phi_o)
     ds = brdffit.load("../shared/data/curet")
-    r = brdffit.fit(ds, "FC-E", material=5)
+    r = brdffit.fit(ds, "FC-E", material=5, fit="exact")
+    fits = brdffit.compare(ds, stats=True)   # the rows of fits.csv
+    ranking = brdffit.rank(ds)               # the rows of ranking.csv
 """
 
 from ._version import VERSION as __version__
@@ -17,16 +19,27 @@ from ._errors import (BrdffitError, ConvergenceError, DomainError,
                       NotFoundError, OutOfMemoryError, ParseError)
 from ._lib import library_candidates
 from ._lib import path as library_path
+from .studies import compare, rank
 from .dataset import Dataset, Material, load
 from .fit import FitResult, fit
 from .models import Model, Parameter, evaluate, model, models
+from .records import Records
 
 __all__ = [
     "BrdffitError", "ConvergenceError", "DomainError", "DomainWarning",
     "InvalidArgumentError", "LoadError", "NotFoundError", "OutOfMemoryError",
-    "ParseError", "Dataset", "Material", "load", "FitResult", "fit", "Model", "Parameter", "evaluate", "model", "models",
-    "library_candidates", "library_path", "library_version",
+    "ParseError", "Dataset", "Material", "load", "FitResult", "fit",
+    "compare", "rank", "Records", "Model", "Parameter", "evaluate",
+    "model", "models", "objectives", "library_candidates", "library_path",
+    "library_version",
 ]
+
+
+def objectives():
+    """The names of the objectives fit(), compare() and rank() accept
+    (the library's bf_objective_name: "max", the paper's LSE, first)."""
+    from ._study import OBJECTIVES
+    return list(OBJECTIVES)
 
 
 def library_version():

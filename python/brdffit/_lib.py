@@ -168,6 +168,7 @@ typedef struct {
 } bf_load_opts;
 int bf_dataset_load(const char *path, const bf_load_opts *opts,
                     bf_dataset **out, bf_error *err);
+int bf_csv_write(const bf_dataset *ds, FILE *fp);
 
 /* --- fitting --- */
 int bf_normalise(size_t n, const double *in, double *out);
@@ -261,6 +262,7 @@ typedef struct {
     bf_model_type type;
     bf_param param[4];
 } bf_model_variant;
+#define BF_VARIANT_MAX_GRID 100001
 void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
 int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
                          double hi, double step);

@@ -1,7 +1,10 @@
-"""_study: one bf_study_spec built from Python arguments, shared by fit(),
-compare() and rank(), and the runs of the library's study on it
-(bf_study_run, bf_study_analyse). Everything the spec points to is kept
-alive by the Spec object.
+"""_study: one run of the library's study built from Python arguments,
+shared by fit(), compare() and rank(): the bf_study_spec (targets x
+models, with the exact fit's and the ranges' model variants,
+bf_model_variant_exact / bf_model_variant_range), the paper's protocol
+(bf_study_run), the analysis (bf_study_analyse) and the library's writers
+of fits.csv and ranking.csv. Everything the spec points to is kept alive
+by the Spec object.
 """
 
 import os
@@ -10,14 +13,30 @@ from collections.abc import Mapping
 import numpy as np
 
 from . import _arrays
-from ._errors import InvalidArgumentError, check, error, new_error
-from ._lib import DEFAULT_N, ffi, lib, libc
+from ._errors import (DomainError, InvalidArgumentError, check, error,
+                      new_error)
+from ._lib import DEFAULT_N, ffi, lib, libc, text
+from ._streams import read_from, written_by
 from .models import _find
 
 #: The 24 CURET samples of Ragheb & Hancock's study (bf_study_samples).
 PAPER_SAMPLES = tuple(int(s) for s in lib.bf_study_samples)
 
-OBJECTIVES = ("max", "scale", "cosw", "log")
+
+def _library_names(name_of):
+    """The names name_of(0), name_of(1), ... up to the first NULL (the
+    library's bf_objective_name and the like)."""
+    out = []
+    while name_of(len(out)) != ffi.NULL:
+        out.append(text(name_of(len(out))))
+    return tuple(out)
+
+
+#: The objectives the library minimises (bf_objective_name).
+OBJECTIVES = _library_names(lib.bf_objective_name)
+#: The model-selection criteria of ranking.csv (bf_criterion_name).
+CRITERIA = _library_names(lib.bf_criterion_name)
+FITS = ("paper", "exact")
 
 
 def _objective(name):
@@ -46,16 +65,10 @@ def _sample_table(kind, value):
             # repr() round-trips every double exactly through strtod.
             rows.append("%d %s" % (int(number),
                                    " ".join(repr(float(x)) for x in vals)))
-        buf = ffi.new("char[]", ("\n".join(rows) + "\n").encode())
         name = b"on_params" if kind == "on" else b"n_file"
-        fp = libc.fmemopen(buf, len(buf) - 1, b"r")
-        if fp == ffi.NULL:
-            raise MemoryError("cannot open an in-memory stream")
-        try:
-            read = lib.bf_on_params_read if kind == "on" else lib.bf_n_file_read
-            rc = read(fp, name, out, err)
-        finally:
-            libc.fclose(fp)
+        read = lib.bf_on_params_read if kind == "on" else lib.bf_n_file_read
+        rc = read_from("\n".join(rows) + "\n",
+                       lambda fp: read(fp, name, out, err))
     else:
         load = lib.bf_on_params_load if kind == "on" else lib.bf_n_file_load
         rc = load(os.fsencode(os.fspath(value)), out, err)
@@ -78,22 +91,74 @@ def _material_indices(dataset, materials):
     return [dataset.material(m).index for m in materials]
 
 
+def _ranges(ranges):
+    """[(name, lo, hi)] of a mapping name -> (lo, hi) (None: none)."""
+    if ranges is None:
+        return []
+    if not isinstance(ranges, Mapping):
+        raise TypeError("ranges: expected a mapping parameter name -> (lo, "
+                        "hi), got %r" % (ranges,))
+    out = []
+    for name, bounds in ranges.items():
+        b = _arrays.real("ranges[%r]" % (name,), bounds)
+        if b.shape != (2,):
+            raise ValueError("ranges[%r]: expected (lo, hi), got %r"
+                             % (name, bounds))
+        out.append((str(name), float(b[0]), float(b[1])))
+    return out
+
+
+class _Progress:
+    """The analysis's progress callback (bf_progress_fn) calling fn(done,
+    total). An exception fn raises is kept (the library cannot be
+    interrupted), fn is not called again, and raise_kept() raises it once
+    the call into the library has returned."""
+
+    def __init__(self, fn):
+        if not callable(fn):
+            raise TypeError("progress: expected a callable (done, total), "
+                            "got %r" % (fn,))
+        self.fn = fn
+        self.exc = None
+        self.c = ffi.callback("bf_progress_fn", self._call,
+                              onerror=self._keep)
+
+    def _call(self, ctx, done, total):
+        if self.exc is None:
+            self.fn(int(done), int(total))
+
+    def _keep(self, exc_type, exc, tb):
+        if self.exc is None:
+            self.exc = exc if exc is not None else exc_type()
+
+    def raise_kept(self):
+        if self.exc is not None:
+            raise self.exc
+
+
 class Spec:
     """A bf_study_spec: targets (materials x channel) x models, the
     configuration selection and the models' inputs.
 
     Args (all as in brdffit.compare):
         dataset, materials, channel, models, n, n_file, on_params, exclude,
-        max_theta, cone, threads.
+        max_theta, cone, threads; exact: the models are the library's
+        exact-fit variants (bf_model_variant_exact, n kept as the input
+        when n or n_file is given); ranges: name -> (lo, hi), applied to
+        every model with that parameter (bf_model_variant_range).
     """
 
     def __init__(self, dataset, materials, channel, models, n=None,
                  n_file=None, on_params=None, exclude=(), max_theta=None,
-                 cone=None, threads=1):
+                 cone=None, threads=1, exact=False, ranges=None):
         self.dataset = dataset
         self.models = [_find(m) for m in models]
         if not self.models:
             raise InvalidArgumentError("no model to fit", 1)
+        if len(set(self.models)) != len(self.models):
+            raise InvalidArgumentError("models: a model is listed twice: %s"
+                                       % ", ".join(m.name for m in
+                                                   self.models), 1)
         index = _material_indices(dataset, materials)
         if not index:
             raise InvalidArgumentError("no material to fit", 1)
@@ -130,8 +195,9 @@ class Spec:
             sel.exclude = arr
             sel.n_exclude = len(exclude)
 
-        types = ffi.new("const bf_model_type *[]",
-                        [m._type for m in self.models])
+        self.types = self._variants(exact, n is not None or
+                                    n_file is not None, _ranges(ranges))
+        types = ffi.new("const bf_model_type *[]", self.types)
         self._keep.append(types)
         spec.models = types
         spec.n_models = len(self.models)
@@ -142,7 +208,43 @@ class Spec:
         spec.on_params = self._keep[-1]
         if threads is None or int(threads) < 0:
             raise InvalidArgumentError("threads must be an integer >= 0", 1)
-        spec.n_threads = int(threads)
+        spec.n_threads = int(threads) or os.cpu_count() or 1
+
+    def _variants(self, exact, n_given, ranges):
+        """The model types fitted: the registry's, or -- with exact or
+        ranges -- variants of them (kept alive and never moved: the types
+        point into them), as CLI's --fit exact and --range make them."""
+        if not exact and not ranges:
+            return [m._type for m in self.models]
+        v = ffi.new("bf_model_variant[]", len(self.models))
+        self._keep.append(v)
+        keep = (1 << lib.BF_INPUT_INDEX) if n_given else 0
+        used = set()
+        out = []
+        for i, m in enumerate(self.models):
+            vi = ffi.addressof(v, i)
+            lib.bf_model_variant_init(vi, m._type)
+            if exact:
+                lib.bf_model_variant_exact(vi, keep)
+            for name, lo, hi in ranges:
+                rc = lib.bf_model_variant_range(vi, name.encode(), lo, hi)
+                if rc == lib.BF_ENOTFOUND:
+                    continue
+                used.add(name)
+                if rc != 0:
+                    (p,) = [q for q in m.parameters if q.name == name]
+                    raise InvalidArgumentError(
+                        "ranges[%r] = (%r, %r): %s's %s must stay in [%g, "
+                        "%g], lo < hi, with at most %d grid points"
+                        % (name, lo, hi, m.name, name, p.min, p.max,
+                           lib.BF_VARIANT_MAX_GRID), rc)
+            out.append(ffi.addressof(vi[0], "type"))
+        unused = [name for name, _, _ in ranges if name not in used]
+        if unused:
+            raise InvalidArgumentError("ranges: no model fitted has a "
+                                       "parameter %s" % ", ".join(
+                                           map(repr, unused)), 1)
+        return out
 
     @property
     def n_rows(self):
@@ -156,21 +258,88 @@ class Spec:
         check(lib.bf_study_run(self.spec, rows, err), err, context)
         return rows
 
-    def analyse(self, rows, objective, exact, level, bootstrap, folds, seed,
-                context):
-        """The analysis (bf_study_analyse) of rows: n_rows bf_fit_stats."""
+    def analysis_opts(self, objective, exact, level, bootstrap, folds,
+                      seed):
+        """A bf_analysis_opts: the library's defaults
+        (bf_analysis_opts_init), with the arguments that are not None."""
         opts = ffi.new("bf_analysis_opts *")
+        lib.bf_analysis_opts_init(opts)
         opts.objective = _objective(objective)
         opts.exact = 1 if exact else 0
-        opts.level = float(level)
-        opts.n_boot = int(bootstrap)
-        opts.folds = int(folds)
-        opts.seed = int(seed)
+        if level is not None:
+            opts.level = float(level)
+        if bootstrap is not None:
+            if int(bootstrap) < 0:
+                raise InvalidArgumentError("bootstrap must be >= 0", 1)
+            opts.n_boot = int(bootstrap)
+        if folds is not None:
+            if int(folds) < 0:
+                raise InvalidArgumentError("folds must be >= 0", 1)
+            opts.folds = int(folds)
+        if seed is not None:
+            opts.seed = int(seed)
+        return opts
+
+    def analyse(self, rows, opts, progress, context):
+        """The analysis (bf_study_analyse) of rows under opts, calling
+        progress(done, total) when it is not None: n_rows bf_fit_stats."""
         stats = ffi.new("bf_fit_stats[]", self.n_rows)
         err = new_error()
-        check(lib.bf_study_analyse(self.spec, opts, rows, stats, err), err,
-              context)
+        cb = None if progress is None else _Progress(progress)
+        if cb is not None:
+            opts.progress = cb.c
+        try:
+            rc = lib.bf_study_analyse(self.spec, opts, rows, stats, err)
+        finally:
+            opts.progress = ffi.NULL
+        if cb is not None:
+            cb.raise_kept()
+        check(rc, err, context)
         return stats
+
+    def check_rows(self, rows, context):
+        """The rows whose model lacks an input (ON without rho, sigma:
+        BF_ENOTFOUND), as indices; any other failed row raises (a model
+        that cannot be normalised on the used configurations)."""
+        missing = []
+        for i in range(self.n_rows):
+            r = rows[i]
+            if r.status == 0:
+                continue
+            if r.status == lib.BF_ENOTFOUND:
+                missing.append(i)
+                continue
+            if r.status != lib.BF_EDOM:
+                raise error(int(r.status), context=context)
+            raise DomainError(
+                "%s: %s cannot be fitted to sample %d: the model is "
+                "undefined at some of the K = %d used configurations or "
+                "zero at all of them, so it cannot be normalised (SPEC §2);"
+                " leave configurations out with exclude=, cone= or "
+                "max_theta=" % (context, text(r.type.name), int(r.sample),
+                                int(r.k)), int(r.status))
+        return missing
+
+    def write(self, writer, rows, stats, opts):
+        """The text the library's writer (bf_fits_csv_write,
+        bf_ranking_csv_write) writes for this study."""
+        rc, out = written_by(lambda fp: writer(
+            fp, self.spec, rows, ffi.NULL if stats is None else stats,
+            ffi.NULL if opts is None else opts))
+        check(rc, context="writing the table")
+        return out
+
+    def wins(self, stats, criterion):
+        """[(model name, wins)] over the targets by criterion
+        (bf_study_wins), most wins first."""
+        c = ffi.new("bf_criterion *")
+        check(lib.bf_criterion_find(criterion.encode(), c))
+        cap = 2 * len(self.models)
+        names = ffi.new("const char *[]", cap)
+        wins = ffi.new("size_t[]", cap)
+        n = ffi.new("size_t *")
+        check(lib.bf_study_wins(self.spec, stats, c[0], names, wins, n))
+        return [(text(names[i]), int(wins[i])) for i in range(n[0])]
 
     def target_data(self, t):
         """(sel, data): the used configurations (0-based) of target t and
@@ -208,3 +377,67 @@ class Spec:
         if rc != 0:
             raise error(rc, context="model curve")
         return out
+
+
+class Study:
+    """One run: the Spec, its rows (bf_study_row), the analysis (stats:
+    bf_fit_stats, and its opts; None without the analysis) and the rows
+    left out for lack of inputs (missing). Arguments as brdffit.compare's;
+    the analysis runs with fit="exact", stats or bootstrap, as in the
+    CLI."""
+
+    def __init__(self, dataset, materials, models, channel="mean",
+                 fit="paper", objective="max", stats=False, bootstrap=0,
+                 folds=None, seed=None, level=None, n=None, n_file=None,
+                 on_params=None, exclude=(), max_theta=None, cone=None,
+                 ranges=None, threads=1, progress=None, context="study"):
+        if fit not in FITS:
+            raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
+                                       "%r" % (fit,), 1)
+        exact = fit == "exact"
+        _objective(objective)
+        if objective != "max" and not exact:
+            raise InvalidArgumentError("objective %r needs fit='exact' (the "
+                                       "paper's grid minimises 'max')"
+                                       % (objective,), 1)
+        self.fit = fit
+        self.objective = objective
+        self.spec = Spec(dataset, materials, channel, models, n=n,
+                         n_file=n_file, on_params=on_params,
+                         exclude=exclude, max_theta=max_theta, cone=cone,
+                         threads=threads, exact=exact, ranges=ranges)
+        self.stats = self.opts = None
+        if exact:  # the analysis is the study (it fills the rows)
+            self.rows = ffi.new("bf_study_row[]", self.spec.n_rows)
+        else:
+            self.rows = self.spec.run(context)
+        if exact or stats or bootstrap:
+            self.opts = self.spec.analysis_opts(objective, exact, level,
+                                                bootstrap, folds, seed)
+            self.stats = self.spec.analyse(self.rows, self.opts, progress,
+                                           context)
+        self.missing = self.spec.check_rows(self.rows, context)
+
+    def fits_csv(self):
+        """fits.csv of the run (bf_fits_csv_write), as text."""
+        return self.spec.write(lib.bf_fits_csv_write, self.rows, self.stats,
+                               self.opts)
+
+    def ranking_csv(self):
+        """ranking.csv of the run (bf_ranking_csv_write), as text; needs
+        the analysis."""
+        return self.spec.write(lib.bf_ranking_csv_write, self.rows,
+                               self.stats, self.opts)
+
+    def missing_note(self):
+        """The CLI's note on models left out for lack of inputs, or ""."""
+        per_model = {}
+        for i in self.missing:
+            m = self.spec.models[i % len(self.spec.models)]
+            per_model[m] = per_model.get(m, 0) + 1
+        return "; ".join(
+            "%s not evaluated for %d of %d samples (no %s given: pass "
+            "on_params=)" % (m.name, count, int(self.spec.spec.n_targets),
+                             ", ".join(p.name for p in m.parameters
+                                       if not p.fitted))
+            for m, count in per_model.items())

@@ -16,6 +16,7 @@ import numpy as np
 from . import _arrays
 from ._errors import InvalidArgumentError, NotFoundError, check, new_error
 from ._lib import ffi, lib, text
+from ._streams import written_by
 
 
 def _format_id(name):
@@ -332,6 +333,30 @@ class Dataset:
         if isinstance(key, str):
             return self[key]
         return self.find(key)
+
+    def to_csv(self, path=None):
+        """The dataset as brdffit's tidy CSV (bf_csv_write; README "Tidy
+        CSV"), the file `brdffit convert --to csv` writes: every material,
+        angles in degrees, values that read back bit for bit, invalid
+        values empty. Written to path (str or os.PathLike) when given,
+        else returned as text. Raises InvalidArgumentError for a dataset
+        that would not read back identically (materials with different
+        channels, two materials under one name, a line break in a name, a
+        channel named like one of the CSV's own columns or ending in
+        "nm"; include/brdffit.h, bf_csv_write)."""
+        rc, out = written_by(lambda fp: lib.bf_csv_write(self._ds, fp))
+        if rc == 1:
+            raise InvalidArgumentError(
+                "to_csv: this dataset cannot be written as tidy CSV so that"
+                " it reads back identically (materials with different "
+                "channels, two under one name, a line break in a name, or a"
+                " channel name the CSV reserves)", rc)
+        check(rc, context="to_csv")
+        if path is None:
+            return out
+        with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
+            f.write(out)
+        return None
 
     def __repr__(self):
         return "Dataset(%d materials)" % len(self)

@@ -1,17 +1,14 @@
 """fit: one model fitted to one material of a dataset, by the library's
 study (bf_study_run: the paper's grid protocol, SPEC §7) and its analysis
 (bf_study_analyse: exact refinement, profile and bootstrap intervals, AIC,
-BIC, cross-validation; doc/methods.md).
+BIC, cross-validation; doc/methods.md). fit="exact" fits the library's
+exact-fit variant of the model (bf_model_variant_exact, the CLI's --fit
+exact) and ranges= moves search ranges (bf_model_variant_range, --range).
 """
 
-import math
-
 from ._errors import InvalidArgumentError, NotFoundError
-from ._lib import CHANNEL_MEAN, ffi, lib
-from ._study import Spec
-from .models import _find
-
-FITS = ("paper", "exact")
+from ._lib import CHANNEL_MEAN, ffi, lib, text
+from ._study import Study
 
 
 def _names(model, mask):
@@ -30,7 +27,8 @@ class FitResult:
     """The outcome of brdffit.fit: one model on one material and channel.
 
     Attributes:
-        model: the Model fitted.
+        model: the Model fitted (the registry's; with fit="exact" its
+            inputs with an exact-fit range were fitted too: see free).
         material: the Material (of the dataset given to fit).
         channel: the channel fitted ("mean", or a channel name).
         fit: "paper" (the grid optimum, SPEC §7.4) or "exact" (refined).
@@ -61,43 +59,60 @@ class FitResult:
         cv: the cross-validated error (NaN with folds=0).
         flags: what the analysis says about the fit, as fits.csv's flags
             column (bf_fit_flags_format: "reduces_to=LAMBERT
-            not_identified=rho", "clamped=3", ...; "" for nothing).
+            not_identified=rho", "clamped=3", ...; "" for nothing), and
+            each of its parts (bf_fit_stats):
+        reduces_to: the model the fit is (ON at sigma = 0 is "LAMBERT"),
+            or None.
+        not_identified: names of the parameters along which the objective
+            is flat at the optimum (ON's rho at sigma = 0).
+        clamped: on how many configurations the model's formula was
+            clamped at 0 at the optimum (ON, doc/methods.md §8), else 0.
+        not_converged: True when the refinement stopped at its iteration
+            limit (the optimum is the best point found).
+        interval_failed, bootstrap_failed: True when a profile interval
+            could not be found (its ends are NaN) / the bootstrap failed.
+        bootstrap_split: names of the parameters whose bootstrap
+            replicates fall into separate basins.
       Without the analysis these are None.
     """
 
-    def __init__(self, spec, rows, stats, fit, objective):
+    def __init__(self, study):
+        spec, rows, stats = study.spec, study.rows, study.stats
         row = rows[0]
         self.model = m = spec.models[0]
+        self._type = spec.types[0]
         self.material = spec.dataset[int(row.material)]
         ch = int(row.channel)
         self.channel = "mean" if ch == CHANNEL_MEAN else \
             self.material.channels[ch]
-        self.fit = fit
-        self.objective_name = objective
+        self.fit = study.fit
+        self.objective_name = study.objective
         p = [float(row.fit.param[j]) for j in range(len(m.parameters))]
         self.parameters = {q.name: p[j] for j, q in enumerate(m.parameters)}
         mask = int(stats[0].free_mask) if stats is not None else sum(
             1 << j for j, q in enumerate(m.parameters) if q.fitted)
         self.free = _names(m, mask)
         self.objective = float(row.fit.lse)
-        self.bound = {name: bool(row.fit.bound_hit & (1 << j))
-                      for j, name in enumerate(q.name for q in m.parameters)
-                      if name in self.free}
+        self.bound = {q.name: bool(row.fit.bound_hit & (1 << j))
+                      for j, q in enumerate(m.parameters)
+                      if mask & (1 << j)}
         self.n_eval = int(row.fit.n_eval)
         self.k = int(row.k)
         self.selected, self.measured = spec.target_data(0)
         self.angles = self.material.angles[self.selected]
-        self.predicted = spec.model_curve(0, m._type, p, self.selected)
+        self.predicted = spec.model_curve(0, self._type, p, self.selected)
         for a in (self.selected, self.measured, self.angles, self.predicted):
             a.flags.writeable = False
         self.grid = self.refined = self.grid_objective = None
         self.refined_objective = self.intervals = self.intervals_open = None
         self.bootstrap = self.n_params = self.aic = self.bic = None
-        self.cv = self.flags = None
+        self.cv = self.flags = self.reduces_to = self.not_identified = None
+        self.clamped = self.not_converged = self.interval_failed = None
+        self.bootstrap_failed = self.bootstrap_split = None
         if stats is not None:
-            self._stats(m, stats[0], mask)
+            self._stats(m, stats[0], mask, int(study.opts.n_boot) > 0)
 
-    def _stats(self, m, st, mask):
+    def _stats(self, m, st, mask, boot):
         self.grid = _by_name(m, st.grid.param, mask)
         self.grid_objective = float(st.grid.lse)
         self.refined = _by_name(m, st.refined.param, mask)
@@ -112,16 +127,28 @@ class FitResult:
                                       float(st.ci_high[j]))
             bits = (int(st.ci_open) >> (2 * j)) & 3
             self.intervals_open[q.name] = (bool(bits & 1), bool(bits & 2))
-            lo, hi = float(st.boot_low[j]), float(st.boot_high[j])
-            if not (math.isnan(lo) and math.isnan(hi)):
-                self.bootstrap[q.name] = (lo, hi)
+            if boot:
+                self.bootstrap[q.name] = (float(st.boot_low[j]),
+                                          float(st.boot_high[j]))
         self.n_params = int(st.k)
         self.aic = float(st.aic)
         self.bic = float(st.bic)
         self.cv = float(st.cv)
-        buf = ffi.new("char[]", 512)
-        lib.bf_fit_flags_format(m._type, ffi.addressof(st), buf, 512)
+        size = lib.bf_fit_flags_format(self._type, ffi.addressof(st),
+                                       ffi.NULL, 0) + 1
+        buf = ffi.new("char[]", size)
+        lib.bf_fit_flags_format(self._type, ffi.addressof(st), buf, size)
         self.flags = ffi.string(buf).decode()
+        f = int(st.flags)
+        self.reduces_to = text(st.reduces_to) if (
+            f & lib.BF_STAT_REDUCED and st.reduces_to != ffi.NULL) else None
+        self.not_identified = _names(m, int(st.refined.flat))
+        self.clamped = int(st.n_clamped) if f & lib.BF_STAT_CLAMPED else 0
+        self.not_converged = bool(f & lib.BF_STAT_NOCONV)
+        self.interval_failed = bool(f & lib.BF_STAT_CI_FAIL)
+        self.bootstrap_failed = bool(f & lib.BF_STAT_BOOT_FAIL)
+        self.bootstrap_split = _names(m, int(st.boot_split)) if (
+            f & lib.BF_STAT_BOOT_SPLIT) else ()
 
     @property
     def residuals(self):
@@ -142,9 +169,9 @@ class FitResult:
 
 
 def fit(dataset, model, material=None, channel="mean", fit="paper",
-        objective="max", stats=True, bootstrap=0, folds=10, seed=1,
-        level=0.95, n=None, n_file=None, on_params=None, exclude=(),
-        max_theta=None, cone=None, threads=1):
+        objective="max", stats=True, bootstrap=0, folds=None, seed=None,
+        level=None, n=None, n_file=None, on_params=None, exclude=(),
+        max_theta=None, cone=None, ranges=None, threads=1, progress=None):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -155,14 +182,18 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         channel: "mean" (default: the mean over the channels, SPEC §2) or
             a channel name ("R", "550").
         fit: "paper" (the paper's grid, SPEC §7.4) or "exact" (the grid,
-            then GSL refinement; FC's n and ON's rho, sigma fitted too).
+            then GSL refinement, with the library's exact-fit policy
+            bf_model_variant_exact: FC's n over [1.2, 2.5] unless n or
+            n_file is given, ON's rho and sigma fitted; doc/methods.md §6).
         objective: "max" (the paper's LSE), "scale", "cosw", "log"
             (doc/methods.md §1; other than "max" needs fit="exact").
         stats: run the analysis (refinement, intervals, AIC, BIC, CV);
-            always on with fit="exact".
+            always on with fit="exact" and with bootstrap.
         bootstrap: N percentile-bootstrap resamples (0: none).
         folds: K-fold cross-validation (0: none); seed: its and the
-            bootstrap's seed. level: the interval level.
+            bootstrap's seed; level: the interval level. None: the
+            library's defaults (bf_analysis_opts_init: 10 folds, seed 1,
+            level 0.95).
         n: refractive index of the FC models (default 1.7, SPEC §4.2);
             n_file: a per-material table, a path ("sample n" rows) or a
             mapping number -> n.
@@ -174,47 +205,41 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             theta_i or theta_o above it (radians); cone: half-angle
             (radians) of the specular cone left out (SPEC §1.6; default:
             the format's own rule, CURET's 7 specular configurations).
-        threads: OpenMP threads (results do not depend on it).
+        ranges: {name: (lo, hi)}: fit parameter name over [lo, hi] with
+            its grid step (bf_model_variant_range, the CLI's --range);
+            optima on a bound are flagged in bound.
+        threads: OpenMP threads (0: one per core; results do not depend
+            on it).
+        progress: None, or a callable progress(done, total) the analysis
+            calls as it goes (from the library's threads; an exception it
+            raises is re-raised when the fit ends).
     Returns a FitResult.
     Raises InvalidArgumentError (bad option), NotFoundError (material,
     channel or model unknown; ON without on_params), DomainError (data
     that cannot be normalised), and the loaders' errors for on_params and
     n_file.
     """
-    if fit not in FITS:
-        raise InvalidArgumentError("fit must be 'paper' or 'exact', got %r"
-                                   % (fit,), 1)
     if material is None:
         if len(dataset) != 1:
             raise InvalidArgumentError(
                 "fit: material is required (the dataset holds %d)"
                 % len(dataset), 1)
         material = dataset[0]
-    if fit == "exact":
-        raise NotImplementedError(
-            "fit='exact' waits for the library's --fit exact variant policy"
-            " (issue 11)")
-    if objective != "max" and fit != "exact":
-        raise InvalidArgumentError("objective %r needs fit='exact' (the "
-                                   "paper's grid minimises 'max')"
-                                   % (objective,), 1)
-    m = _find(model)
-    spec = Spec(dataset, [material], channel, [m], n=n, n_file=n_file,
-                on_params=on_params, exclude=exclude, max_theta=max_theta,
-                cone=cone, threads=threads)
-    context = "fit %s" % m.name
-    rows = spec.run(context)
-    stats_rows = None
-    if stats or bootstrap:
-        stats_rows = spec.analyse(rows, objective, fit == "exact", level,
-                                  bootstrap, folds, seed, context)
-    if rows[0].status != 0:
+    context = "fit %s" % getattr(model, "name", model)
+    study = Study(dataset, [material], [model], channel=channel, fit=fit,
+                  objective=objective, stats=stats, bootstrap=bootstrap,
+                  folds=folds, seed=seed, level=level, n=n, n_file=n_file,
+                  on_params=on_params, exclude=exclude, max_theta=max_theta,
+                  cone=cone, ranges=ranges, threads=threads,
+                  progress=progress, context=context)
+    row = study.rows[0]
+    if study.missing:
+        m = study.spec.models[0]
         inputs = ", ".join(q.name for q in m.parameters if not q.fitted)
         raise NotFoundError(
             "%s: %s needs %s for material %d (%s): pass on_params= (a file "
             "or {number: (rho, sigma)})" % (context, m.name, inputs,
-                                            int(rows[0].sample),
-                                            spec.dataset[int(
-                                                rows[0].material)].name),
-            int(rows[0].status))
-    return FitResult(spec, rows, stats_rows, fit, objective)
+                                            int(row.sample),
+                                            dataset[int(row.material)].name),
+            int(row.status))
+    return FitResult(study)

@@ -35,10 +35,13 @@ class Parameter:
         fitted: True when the paper's protocol fits it.
         grid: (lo, step, n) of the paper's grid lo + step*i, i < n
             (SPEC §7.4), or None when it has none.
+        exact_range: (lo, hi, step) over which fit="exact" fits this input
+            (FC's n, ON's rho and sigma; doc/methods.md §6), or None when
+            the exact fit never frees it.
     """
 
     __slots__ = ("name", "label", "unit", "min", "max", "default", "fitted",
-                 "grid")
+                 "grid", "exact_range")
 
     def __init__(self, p):
         self.name = text(p.name)
@@ -50,6 +53,9 @@ class Parameter:
         self.fitted = bool(p.fitted)
         self.grid = ((float(p.grid_lo), float(p.grid_step), int(p.grid_n))
                      if p.grid_n > 0 else None)
+        self.exact_range = ((float(p.free_lo), float(p.free_hi),
+                             float(p.free_step))
+                            if p.free_lo < p.free_hi else None)
 
     def __repr__(self):
         return ("Parameter(%r, unit=%r, range=[%g, %g], default=%g%s)"

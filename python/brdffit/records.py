@@ -3,9 +3,9 @@ ranking.csv) as Python records.
 
 The library owns the tables' columns and formats: compare() and rank() ask
 its writer for the CSV text and this module only reads it back, column by
-column -- a column whose every value is an integer becomes int, one whose
-values are numbers becomes float, any other stays str; an empty field is
-None (NaN in a DataFrame).
+column, as pandas.read_csv infers types -- a column whose every value is
+an integer becomes int, one whose values are numbers becomes float, any
+other stays str; an empty field is None (NaN in a DataFrame).
 """
 
 import csv
@@ -27,20 +27,30 @@ def _convert(values):
 
 class Records(list):
     """A list of dicts, one per row, keyed by the table's column names
-    (in the table's order: see .columns), plus .to_dataframe()."""
+    (in the table's order: see .columns), plus .to_dataframe().
 
-    def __init__(self, rows=(), columns=()):
+    Attributes:
+        columns: the column names, in the table's order.
+        text: the CSV text the records were read from ("" when built from
+            rows).
+        wins: for brdffit.rank, {criterion: [(model, wins), ...]}; None
+            otherwise.
+    """
+
+    def __init__(self, rows=(), columns=(), text=""):
         super().__init__(rows)
         self.columns = tuple(columns)
+        self.text = text
+        self.wins = None
 
     @classmethod
     def from_csv(cls, text):
         """Records of the CSV text (a header line, then rows)."""
-        reader = csv.reader(io.StringIO(text))
+        reader = csv.reader(io.StringIO(text, newline=""))
         try:
             header = next(reader)
         except StopIteration:
-            return cls()
+            return cls(text=text)
         rows = [r for r in reader if r]
         for r in rows:
             if len(r) != len(header):
@@ -48,7 +58,7 @@ class Records(list):
                                  "%d" % (len(r), len(header)))
         cols = [_convert([r[j] for r in rows]) for j in range(len(header))]
         return cls(({h: cols[j][i] for j, h in enumerate(header)}
-                    for i in range(len(rows))), header)
+                    for i in range(len(rows))), header, text)
 
     def column(self, name):
         """The values of column name, as a list."""
@@ -63,5 +73,9 @@ class Records(list):
             raise ImportError("to_dataframe needs pandas (Debian: "
                               "python3-pandas); the records themselves are "
                               "plain dicts") from exc
-        return pandas.DataFrame.from_records(list(self),
-                                             columns=list(self.columns))
+        df = pandas.DataFrame.from_records(list(self),
+                                           columns=list(self.columns))
+        for col in self.columns:  # every field empty: a number column
+            if all(r[col] is None for r in self):
+                df[col] = df[col].astype(float)
+        return df

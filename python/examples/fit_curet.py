@@ -7,10 +7,15 @@ measured against the predicted normalised radiance (the paper's Figures
     python3 python/examples/fit_curet.py ../shared/data/curet --material 5
     python3 python/examples/fit_curet.py DATA --models VH-E,FC-E,LFTG \\
         --on-params ../shared/reference/oren_nayar_params.tsv --plot fit.png
+    python3 python/examples/fit_curet.py \\
+        ../shared/data/cornell-pbrt-v2/acryl_blue.brdf --channel 550 \\
+        --fit exact --models ON,FC-E,LFTG
 
 DATA is anything brdffit.load reads (a CURET folder, .brdf, .astm, tidy
 CSV). Run from the repository with PYTHONPATH=python, or after
-`pip install ./python`.
+`pip install ./python`. With --fit exact the parameters come with their
+95% profile intervals and the table shows what the fit says about itself
+(flags: reduces_to=LAMBERT, not_identified=rho, ...).
 """
 
 import argparse
@@ -27,6 +32,11 @@ def main(argv=None):
                     "first")
     ap.add_argument("--models", default="VH-G,VH-E,FC-G,FC-E,LFTG",
                     help="comma-separated model names (default %(default)s)")
+    ap.add_argument("--channel", default="mean",
+                    help="channel to fit (default: the mean over them)")
+    ap.add_argument("--fit", choices=("paper", "exact"), default="paper",
+                    help="the paper's grid, or the exact fit (default "
+                    "%(default)s)")
     ap.add_argument("--on-params", default=None,
                     help="Oren-Nayar rho, sigma per sample (to fit ON too)")
     ap.add_argument("--plot", default="fit_curet.png",
@@ -39,20 +49,26 @@ def main(argv=None):
     models = args.models.split(",")
     if args.on_params and "ON" not in models:
         models.insert(0, "ON")
-    results = [brdffit.fit(ds, m, material=material,
-                           on_params=args.on_params) for m in models]
+    results = [brdffit.fit(ds, m, material=material, channel=args.channel,
+                           fit=args.fit, on_params=args.on_params)
+               for m in models]
 
-    print("%s: material %d (%s), K = %d configurations"
-          % (args.data, material.number, material.name, results[0].k))
-    print("%-8s %-26s %10s %10s %10s %10s" % ("model", "parameters", "LSE",
-                                              "AIC", "BIC", "CV"))
+    print("%s: material %d (%s), channel %s, K = %d configurations, fit %s"
+          % (args.data, material.number, material.name, args.channel,
+             results[0].k, args.fit))
+    print("%-8s %-44s %10s %10s %10s %10s  %s"
+          % ("model", "parameters", "LSE", "AIC", "BIC", "CV", "flags"))
     for r in results:
-        par = " ".join("%s=%.4g%s" % (k, v, "*" if r.bound.get(k) else "")
-                       for k, v in r.parameters.items())
-        print("%-8s %-26s %10.6g %10.6g %10.6g %10.6g"
-              % (r.model.name, par, r.objective, r.aic, r.bic, r.cv))
-    print("(* = optimum on a grid bound; LSE of the paper's protocol, "
-          "SPEC §7)")
+        par = " ".join(
+            "%s=%.4g%s%s" % (k, v, "*" if r.bound.get(k) else "",
+                             "[%.3g,%.3g]" % r.intervals[k]
+                             if args.fit == "exact" and k in r.free else "")
+            for k, v in r.parameters.items())
+        print("%-8s %-44s %10.6g %10.6g %10.6g %10.6g  %s"
+              % (r.model.name, par, r.objective, r.aic, r.bic, r.cv,
+                 r.flags or "-"))
+    print("(* = optimum on a bound of its search range; [a,b] = 95%% profile"
+          " interval; LSE = the objective %s)" % results[0].objective_name)
 
     if args.no_plot:
         return 0

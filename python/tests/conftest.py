@@ -7,6 +7,8 @@ BRDFFIT_LIB to the build's libbrdffit.so). Inputs come from environment
 variables that CTest sets (tests/CMakeLists.txt), with the repository's
 defaults otherwise:
   BRDFFIT_CURET_DIR      CURET folder (../shared/data/curet)
+  BRDFFIT_CORNELL_DIR    the five Cornell .brdf files
+                         (../shared/data/cornell-pbrt-v2)
   BRDFFIT_REFERENCE_DIR  published values (../shared/reference)
   BRDFFIT_CLI            the brdffit program (build/brdffit)
   BRDFFIT_INCLUDE        the folder of brdffit.h (include/)
@@ -37,6 +39,23 @@ def curet_dir():
                  "CURET data")
     for f in ("table.txt", "abrdf.dat"):
         _path("BRDFFIT_CURET_DIR", os.path.join(path, f), "CURET " + f)
+    return path
+
+
+#: The Cornell files of ../shared/data/cornell-pbrt-v2 (SOURCES.md there).
+CORNELL_FILES = ("acryl_blue", "cayman", "garnet_red", "krylon_blue",
+                 "mystique")
+
+
+@pytest.fixture(scope="session")
+def cornell_dir():
+    """The folder of the five Cornell .brdf files (pbrt-v2's)."""
+    path = _path("BRDFFIT_CORNELL_DIR",
+                 os.path.join(REPO, "..", "shared", "data",
+                              "cornell-pbrt-v2"), "Cornell data")
+    for f in CORNELL_FILES:
+        _path("BRDFFIT_CORNELL_DIR", os.path.join(path, f + ".brdf"),
+              "Cornell " + f + ".brdf")
     return path
 
 

@@ -6,25 +6,16 @@ import numpy as np
 import pytest
 
 import brdffit
+import synth
 
-RNG = np.random.default_rng(1999)
-N = 150
-# Directions of the upper hemisphere, never grazing (cos theta_i > 0, so
-# BRDF = radiance / cos theta_i is defined; SPEC §2).
-ANGLES = np.column_stack([RNG.uniform(0.0, 1.45, N),
-                          RNG.uniform(-np.pi, np.pi, N),
-                          RNG.uniform(0.0, 1.45, N),
-                          RNG.uniform(-np.pi, np.pi, N)])
+ANGLES = synth.directions(1999)
+N = len(ANGLES)
 TOL_FIT = 1e-6  # fitted parameters (STYLE §7), the refinement's tolerance
 
 
 def synthetic(model, params, noise=0.0, seed=5):
-    """A one-material dataset whose radiance is model at params, with
-    fixed-seed multiplicative noise: BRDF = L (1 + noise e) / cos theta_i."""
-    radiance = brdffit.evaluate(model, params, *ANGLES.T)
-    e = np.random.default_rng(seed).standard_normal(N)
-    brdf = radiance * (1.0 + noise * e) / np.cos(ANGLES[:, 0])
-    return brdffit.Dataset.from_arrays(ANGLES, brdf, names="synthetic")
+    """A one-material dataset of model at params, multiplicative noise."""
+    return synth.dataset(ANGLES, model, params, noise, seed)
 
 
 @pytest.mark.parametrize("model, name, true", [

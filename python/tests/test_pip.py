@@ -2,7 +2,8 @@
 index, no build isolation): the installed package finds the library it was
 installed against with no environment variable. A copy of python/ is
 installed with --target into a temporary folder, so the source tree is not
-written to."""
+written to. And the README's other way, PYTHONPATH=python in a built
+checkout, finds the checkout's build/ with no environment variable."""
 
 import importlib.util
 import os
@@ -98,3 +99,26 @@ def test_setup_without_a_library_fails_saying_what_it_tried(tmp_path,
     text = str(e.value)
     assert "libbrdffit not found" in text and "pkg-config" in text
     assert str(tmp_path / "build") in text and "BRDFFIT_PREFIX" in text
+
+
+def test_the_pythonpath_way_finds_the_checkouts_build_folder(tmp_path):
+    # README: PYTHONPATH=python in a checkout built with make (build/ beside
+    # python/), no environment variable: a checkout's layout is made here,
+    # with this build's library in its build/.
+    checkout = tmp_path / "checkout"
+    shutil.copytree(os.path.join(PYTHON_DIR, "brdffit"),
+                    checkout / "python" / "brdffit",
+                    ignore=shutil.ignore_patterns("__pycache__",
+                                                  "_location.py"))
+    (checkout / "build").mkdir()
+    lib = checkout / "build" / "libbrdffit.so"
+    os.symlink(os.path.abspath(brdffit.library_path), lib)
+    env = _env(PYTHONPATH=str(checkout / "python"))
+    env.pop("LD_LIBRARY_PATH", None)
+    out = subprocess.run(
+        [sys.executable, "-c", "import brdffit; print(brdffit.library_path);"
+         " print(brdffit.fit(brdffit.Dataset.from_arrays([[0.1, 0, 0.2, 3],"
+         " [0.5, 0, 0.3, 1]], [0.4, 0.3]), 'LAMBERT').k)"],
+        env=env, cwd=str(tmp_path), capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == [str(lib), "2"]

@@ -7,7 +7,8 @@ decimals) like tests/test_reproduction.c:
   FC-G, FC-E at n = 1.7                parameters +-0.01, LSE +-0.02,
                                        except Leather (5)
 The exceptions are properties of the published tables: they are reported
-(printed), never tuned around, and their count is checked.
+(printed), never tuned around, and their count is checked. Both fit() and
+compare() (the rows of fits.csv) are checked.
 """
 
 import csv
@@ -83,6 +84,20 @@ def test_fit_reproduces_the_published_tables(curet, reference_dir):
     assert not failures, "\n".join(failures)
     # 2 FC slopes and 2 FC LSE of Leather, ON LSE of Styrofoam (Brick b,
     # 41, is not in the 12-sample subset).
+    assert len(exceptions) == 5, "\n".join(exceptions)
+
+
+def test_compare_reproduces_the_published_tables(curet, reference_dir):
+    on = os.path.join(reference_dir, "oren_nayar_params.tsv")
+    rows = brdffit.compare(curet, on_params=on)  # the paper's study
+    got = {(r["model"], r["sample"]): (r["value"], r["lse"]) for r in rows}
+
+    def obtained(m, s):
+        par, lse = got[(m, s)]
+        return (None if m == "ON" else par), lse
+
+    failures, exceptions = check_against_published(obtained, reference_dir)
+    assert not failures, "\n".join(failures)
     assert len(exceptions) == 5, "\n".join(exceptions)
 
 

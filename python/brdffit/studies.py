@@ -1,0 +1,129 @@
+"""studies: the CLI's studies (`brdffit compare`, `brdffit rank`) from
+Python, returning the rows of fits.csv and ranking.csv as records.
+
+The tables are the library's own: its writers (bf_fits_csv_write,
+bf_ranking_csv_write) write them into an in-memory stream and
+brdffit.records reads the text back, so every column and value is the
+CLI's, byte for byte (records.text).
+"""
+
+import warnings
+
+from ._errors import InvalidArgumentError
+from ._study import CRITERIA, Study
+from .records import Records
+
+#: The models `brdffit compare` fits by default (the paper's six).
+COMPARE_MODELS = ("VH-G", "VH-E", "FC-G", "FC-E", "ON", "LFTG")
+#: The models `brdffit rank` fits by default (with the Lambert baseline
+#: and the two Wolff-Nayar-Oren models).
+RANK_MODELS = COMPARE_MODELS + ("LAMBERT", "WNO", "WNO-R")
+
+
+def _models(models, default):
+    """The list of models: default for None, every registry model for
+    "all", a comma-separated string or a sequence of names/Models."""
+    from .models import models as registry
+    if models is None:
+        return list(default)
+    if isinstance(models, str):
+        if models == "all":
+            return registry()
+        names = models.split(",")
+        if not all(names):
+            raise InvalidArgumentError("models: bad list %r" % models, 1)
+        return names
+    return list(models)
+
+
+def _samples(dataset, samples, default):
+    """samples, with None resolved as the CLI does: the paper's 24 samples
+    on CURET data (default "paper"), every material otherwise."""
+    if samples is None:
+        curet = len(dataset) > 0 and all(m.format == "curet"
+                                         for m in dataset)
+        return default if curet else "all"
+    return samples
+
+
+def _run(kw, default_models, default_samples, context):
+    """The Study of compare's or rank's arguments kw (their locals()),
+    with the command's default models and samples; warns, as the CLI's
+    note does, about models left out for lack of inputs."""
+    kw = dict(kw)
+    dataset = kw.pop("dataset")
+    models = _models(kw.pop("models"), default_models)
+    samples = _samples(dataset, kw.pop("samples"), default_samples)
+    study = Study(dataset, samples, models, context=context, **kw)
+    note = study.missing_note()
+    if note:
+        warnings.warn(note, UserWarning, stacklevel=3)
+    return study
+
+
+def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
+            objective="max", stats=False, bootstrap=0, folds=None,
+            seed=None, level=None, n=None, n_file=None, on_params=None,
+            exclude=(), max_theta=None, cone=None, ranges=None, threads=1,
+            progress=None):
+    """Fits every model to every sample, as `brdffit compare` does, and
+    returns the rows of its fits.csv.
+
+    Args:
+        dataset: a Dataset.
+        models: model names or Models, a comma-separated string, or "all"
+            (every registry model); default the paper's six (VH-G, VH-E,
+            FC-G, FC-E, ON, LFTG), as the CLI's.
+        samples: "paper" (the study's 24 CURET samples), "all", or
+            material numbers, names or Materials; default: "paper" on
+            CURET data, "all" otherwise (the CLI's --samples).
+        channel: "mean" (default), a channel name, or "each" (one target
+            per channel of each material).
+        fit, objective, stats, bootstrap, folds, seed, level, n, n_file,
+        on_params, exclude, max_theta, cone, ranges, threads, progress: as
+            in brdffit.fit (the CLI's --fit, --objective, --stats,
+            --bootstrap, --folds, --seed, --n, --n-file, --on-params,
+            --exclude, --max-theta and --exclude-specular in radians,
+            --range, --threads). The analysis (the columns after k) runs
+            with fit="exact", stats=True or bootstrap > 0; otherwise
+            those columns are empty.
+    Returns:
+        Records: one dict per fits.csv row (sample, name, channel, model,
+        parameter, unit, value, lse, bound_hit, k, objective, fit, ...;
+        README "Output files"), .columns, .text (the CSV as the library
+        wrote it) and .to_dataframe(). A model that lacks its inputs for a
+        sample (ON without on_params) has no rows there, and a
+        UserWarning says so, as the CLI's note does.
+    Raises the errors of brdffit.fit (InvalidArgumentError, NotFoundError,
+    DomainError, the loaders' errors).
+    """
+    study = _run(locals(), COMPARE_MODELS, "paper", "compare")
+    return Records.from_csv(study.fits_csv())
+
+
+def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
+         objective="max", bootstrap=0, folds=None, seed=None, level=None,
+         n=None, n_file=None, on_params=None, exclude=(), max_theta=None,
+         cone=None, ranges=None, threads=1, progress=None):
+    """Ranks models per sample by AIC, BIC and cross-validated error, as
+    `brdffit rank` does, and returns the rows of its ranking.csv.
+
+    Args: as brdffit.compare, with rank's defaults: every material
+        (samples="all"), fit="exact", models VH-G, VH-E, FC-G, FC-E, ON,
+        LFTG, LAMBERT, WNO, WNO-R. The analysis always runs.
+    Returns:
+        Records: one dict per (sample, model) with the columns of
+        ranking.csv (sample, name, channel, model, objective, fit, k, n,
+        objective_value, aic, bic, cv, rank_aic, rank_bic, rank_cv,
+        best_aic, best_bic, best_cv, counts_as, flags, then pJ, pJ_value,
+        pJ_ci_low, pJ_ci_high, pJ_boot_low, pJ_boot_high per fitted
+        parameter; README), .columns, .text, .to_dataframe(), and .wins:
+        {criterion: [(model, wins), ...]} over the samples, most wins
+        first (bf_study_wins; a fit that reduces to a smaller model wins
+        for that model), for "AIC", "BIC" and "CV" (CV empty with
+        folds=0).
+    """
+    study = _run(dict(locals(), stats=True), RANK_MODELS, "all", "rank")
+    out = Records.from_csv(study.ranking_csv())
+    out.wins = {c: study.spec.wins(study.stats, c) for c in CRITERIA}
+    return out

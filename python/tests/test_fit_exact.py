@@ -1,0 +1,124 @@
+"""brdffit.fit(fit="exact"): the library's exact-fit policy (inputs with an
+exact-fit range fitted too, bf_model_variant_exact), every objective,
+ranges=, profile and bootstrap intervals, and the flags of FitResult.
+Round trips: synthesise with evaluate(), build a dataset from the arrays,
+fit, recover the parameters (STYLE §7)."""
+
+import numpy as np
+import pytest
+
+import brdffit
+from brdffit import _lib
+import synth
+
+ANGLES = synth.directions(2024)
+N = len(ANGLES)
+TOL_FIT = 1e-6  # fitted parameters (STYLE §7), the refinement's tolerance
+
+
+def synthetic(model, params, noise=0.0, seed=3):
+    """A one-material dataset of model at params, with absolute noise
+    (homoscedastic, as the profile likelihood assumes)."""
+    return synth.dataset(ANGLES, model, params, noise, seed, relative=False)
+
+
+def test_the_exact_fit_frees_the_inputs_with_an_exact_range():
+    fc = brdffit.model("FC-E")
+    assert fc.parameters[1].name == "n"
+    lo, hi, step = fc.parameters[1].exact_range
+    assert (lo, hi) == (_lib.FREE_N_LO, _lib.FREE_N_HI) and step > 0
+    assert fc.parameters[0].exact_range is None  # m: fitted anyway
+    ds = synthetic("FC-E", {"m": 0.5, "n": 1.7})
+    assert brdffit.fit(ds, "FC-E", fit="exact").free == ("m", "n")
+    # n given: it stays the input, as with the CLI's --n.
+    r = brdffit.fit(ds, "FC-E", fit="exact", n=1.7)
+    assert r.free == ("m",) and r.parameters["n"] == 1.7
+    on = brdffit.fit(synthetic("ON", {"rho": 0.4, "sigma": 0.3}), "ON",
+                     fit="exact")  # no on_params needed
+    assert on.free == ("rho", "sigma")
+
+
+@pytest.mark.parametrize("objective", brdffit.objectives())
+def test_every_objective_recovers_off_grid_parameters(objective):
+    # Every objective is zero at the truth on noiseless data.
+    true = {"m": 0.43217, "n": 1.83}
+    r = brdffit.fit(synthetic("FC-E", true), "FC-E", fit="exact",
+                    objective=objective, folds=0)
+    assert r.objective_name == objective and r.fit == "exact"
+    for name, value in true.items():
+        assert abs(r.parameters[name] - value) < TOL_FIT, name
+        assert r.refined[name] == r.parameters[name]
+    assert r.objective == r.refined_objective < 1e-12 < r.grid_objective
+    assert np.isnan(r.cv)  # folds=0
+    assert r.n_params == (3 if objective == "scale" else 2)  # + the scale
+
+
+@pytest.mark.parametrize("model, true", [
+    ("FC-E", {"m": 0.43217, "n": 1.83}),
+    ("ON", {"rho": 0.4, "sigma": 0.3}),
+])
+def test_with_noise_the_intervals_contain_the_truth(model, true):
+    # objective "scale": a noisy maximum would otherwise scale the whole
+    # normalised curve (doc/methods.md §1).
+    r = brdffit.fit(synthetic(model, true, noise=0.01), model, fit="exact",
+                    objective="scale", bootstrap=40)
+    for name, value in true.items():
+        lo, hi = r.intervals[name]
+        assert lo < value < hi, (name, lo, hi)
+        assert lo <= r.parameters[name] <= hi
+        blo, bhi = r.bootstrap[name]
+        assert blo <= r.parameters[name] <= bhi, (name, blo, bhi)
+    k = r.n_params
+    assert r.bic - r.aic == pytest.approx(k * np.log(N) - 2 * k)
+    assert np.isfinite(r.cv) and not r.not_converged
+    assert not r.interval_failed and not r.bootstrap_failed
+
+
+def test_a_range_moves_the_search_and_flags_the_bound():
+    r = brdffit.fit(synthetic("VH-G", {"m": 0.8}), "VH-G", fit="exact",
+                    ranges={"m": (0.2, 0.5)})
+    assert r.parameters["m"] == 0.5 and r.bound == {"m": True}
+    assert r.intervals["m"][1] == 0.5 and r.intervals_open["m"] == (False,
+                                                                    True)
+    with pytest.raises(brdffit.InvalidArgumentError, match="no model"):
+        brdffit.fit(synthetic("VH-G", {"m": 0.8}), "VH-G",
+                    ranges={"n": (1.2, 2.0)})
+
+
+def test_lambertian_data_reduce_on_to_lambert():
+    r = brdffit.fit(synthetic("LAMBERT", {}), "ON", fit="exact")
+    assert r.reduces_to == "LAMBERT" and "reduces_to=LAMBERT" in r.flags
+    assert r.parameters["sigma"] < 1e-6 and r.bound["sigma"]
+
+
+def test_the_flags_of_curet_fits_are_the_librarys_words(curet):
+    # Felt (1): ON's optimum is sigma = 0, where rho is not identified.
+    r = brdffit.fit(curet, "ON", material=1, fit="exact")
+    assert r.flags == "reduces_to=LAMBERT not_identified=rho"
+    assert r.reduces_to == "LAMBERT" and r.not_identified == ("rho",)
+    assert r.clamped == 0 and r.parameters["sigma"] == 0.0
+    # Velvet (7): both ON parameters on their exact-fit range's ends, the
+    # formula clamped at 0 on some configurations.
+    r = brdffit.fit(curet, "ON", material=7, fit="exact")
+    (rho, sigma) = brdffit.model("ON").parameters
+    assert r.parameters == {"rho": rho.exact_range[0],
+                            "sigma": sigma.exact_range[1]}
+    assert r.bound == {"rho": True, "sigma": True}
+    assert r.clamped > 0 and r.flags == "clamped=%d" % r.clamped
+    assert r.reduces_to is None and r.not_identified == ()
+
+
+def test_progress_reports_the_pair(curet):
+    calls = []
+    brdffit.fit(curet, "VH-E", material=5, fit="exact",
+                progress=lambda done, total: calls.append((done, total)))
+    assert calls == [(1, 1)]
+
+
+def test_an_exception_in_progress_is_raised_after_the_call(curet):
+    def fail(done, total):
+        raise KeyError("stop at %d" % done)
+    with pytest.raises(KeyError, match="stop at 1"):
+        brdffit.fit(curet, "VH-E", material=1, progress=fail)
+    with pytest.raises(TypeError, match="expected a callable"):
+        brdffit.fit(curet, "VH-E", material=1, progress=3)
