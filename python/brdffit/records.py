@@ -5,11 +5,20 @@ The library owns the tables' columns and formats: compare() and rank() ask
 its writer for the CSV text and this module only reads it back, column by
 column, as pandas.read_csv infers types -- a column whose every value is
 an integer becomes int, one whose values are numbers becomes float, any
-other stays str; an empty field is None (NaN in a DataFrame).
+other stays str; an empty field is None (NaN in a DataFrame). Columns that
+hold names and words (TEXT_COLUMNS: a material named "123", a unit "1")
+stay str whatever they hold.
 """
 
 import csv
 import io
+
+# Columns of fits.csv and ranking.csv that name things or hold words: never
+# converted to numbers.
+TEXT_COLUMNS = frozenset(("name", "channel", "model", "parameter", "unit",
+                          "objective", "fit", "ci_method", "flags",
+                          "counts_as") +
+                         tuple("p%d" % i for i in range(1, 17)))
 
 
 def _convert(values):
@@ -56,7 +65,10 @@ class Records(list):
             if len(r) != len(header):
                 raise ValueError("records: a row has %d fields, the header "
                                  "%d" % (len(r), len(header)))
-        cols = [_convert([r[j] for r in rows]) for j in range(len(header))]
+        cols = [[None if r[j] == "" else r[j] for r in rows]
+                if header[j] in TEXT_COLUMNS
+                else _convert([r[j] for r in rows])
+                for j in range(len(header))]
         return cls(({h: cols[j][i] for j, h in enumerate(header)}
                     for i in range(len(rows))), header, text)
 
