@@ -12,8 +12,8 @@
 
 /* rank's defaults: every sample of the data, the exact fit, the paper's
  * six models, the Lambert baseline and the two Wolff-Nayar-Oren models. */
-static const bf_cli_defaults rank_defaults = {
-    "all", "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO,WNO-R", 1, 1};
+static const bf_cli_defaults rank_defaults = {"all", BF_MODELS_RANKING, 1,
+                                              1};
 
 static void usage(FILE *fp)
 {

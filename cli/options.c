@@ -7,8 +7,8 @@
 #include "options.h"
 
 /* The paper's models (Ragheb & Hancock, Table 3) and samples (Table 2). */
-const bf_cli_defaults bf_cli_compare_defaults = {
-    NULL, "VH-G,VH-E,FC-G,FC-E,ON,LFTG", 0, 0};
+const bf_cli_defaults bf_cli_compare_defaults = {NULL, BF_MODELS_PAPER, 0,
+                                                 0};
 
 /* Prints text wrapped at column 76, continuation lines indented to
  * column 21 (the help's value column); breaks after commas or spaces. */
@@ -81,7 +81,7 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "Models and fitting:\n"
 "  --models LIST     comma-separated model names, or 'all'; see 'brdffit\n"
 "                    models' (default ", fp);
-    wrapped(fp, d->models, 38);
+    wrapped(fp, bf_model_set_names(d->models), 38);
     fprintf(fp, ")\n"
 "  --n VALUE         refractive index of the FC models (default %.1f)\n"
 "  --n-file FILE     per-sample refractive index, rows 'sample n'\n"

@@ -51,7 +51,7 @@ typedef struct {
 /* What a command assumes when an option is not given. */
 typedef struct bf_cli_defaults {
     const char *samples;  /* NULL: 'paper' on CURET, 'all' otherwise */
-    const char *models;   /* the --models list */
+    bf_model_set models;  /* the --models list (bf_model_set_names) */
     int exact;            /* 1: --fit exact */
     int stats;            /* 1: the analysis always runs */
 } bf_cli_defaults;

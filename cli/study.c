@@ -103,7 +103,9 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             list[(*n)++] = bf_model_get(i);
         }
     } else {
-        const char *p = o->models != NULL ? o->models : o->defaults->models;
+        const char *p = o->models != NULL
+                            ? o->models
+                            : bf_model_set_names(o->defaults->models);
         while (*p != '\0') {
             char name[64];
             size_t len = strcspn(p, ",");

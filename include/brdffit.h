@@ -237,6 +237,14 @@ const bf_model_type *bf_model_get(size_t i);
 /* Finds a model by name (case-insensitive); NULL if unknown. */
 const bf_model_type *bf_model_find(const char *name);
 
+/* The default models of a study, as a comma-separated list of registry
+ * names (static storage): for BF_MODELS_PAPER the paper's six,
+ * "VH-G,VH-E,FC-G,FC-E,ON,LFTG" (its Tables 2-3; `compare`, `report`);
+ * for BF_MODELS_RANKING those and the baselines LAMBERT, WNO and WNO-R
+ * (`rank`). NULL for another value. */
+typedef enum { BF_MODELS_PAPER = 0, BF_MODELS_RANKING } bf_model_set;
+const char *bf_model_set_names(bf_model_set set);
+
 /* Index of the parameter called name in type, or -1. */
 int bf_model_param_index(const bf_model_type *type, const char *name);
 

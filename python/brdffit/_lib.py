@@ -89,6 +89,8 @@ typedef struct {
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);
 const bf_model_type *bf_model_find(const char *name);
+typedef enum { BF_MODELS_PAPER = 0, BF_MODELS_RANKING } bf_model_set;
+const char *bf_model_set_names(bf_model_set set);
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
                   const bf_geom *geom, double *out);
 int bf_model_param_index(const bf_model_type *type, const char *name);

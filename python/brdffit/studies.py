@@ -13,11 +13,20 @@ from ._errors import InvalidArgumentError
 from ._study import CRITERIA, Study
 from .records import Records
 
-#: The models `brdffit compare` fits by default (the paper's six).
-COMPARE_MODELS = ("VH-G", "VH-E", "FC-G", "FC-E", "ON", "LFTG")
+def _model_set(which):
+    """The library's default model list (bf_model_set_names) as a tuple;
+    which is the name of a bf_model_set value."""
+    from ._lib import lib, text
+    return tuple(text(lib.bf_model_set_names(getattr(lib, which)))
+                 .split(","))
+
+
+#: The models `brdffit compare` fits by default (the paper's six), from
+#: the library (bf_model_set_names).
+COMPARE_MODELS = _model_set("BF_MODELS_PAPER")
 #: The models `brdffit rank` fits by default (with the Lambert baseline
 #: and the two Wolff-Nayar-Oren models).
-RANK_MODELS = COMPARE_MODELS + ("LAMBERT", "WNO", "WNO-R")
+RANK_MODELS = _model_set("BF_MODELS_RANKING")
 
 
 def _models(models, default):

@@ -28,6 +28,16 @@ static const bf_model_type *const *const registry[] = {
 
 #define REGISTRY_N (sizeof registry / sizeof registry[0])
 
+const char *bf_model_set_names(bf_model_set set)
+{
+    switch (set) {
+    case BF_MODELS_PAPER: return "VH-G,VH-E,FC-G,FC-E,ON,LFTG";
+    case BF_MODELS_RANKING:
+        return "VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO,WNO-R";
+    }
+    return NULL;
+}
+
 size_t bf_model_count(void)
 {
     return REGISTRY_N;

@@ -218,3 +218,35 @@ Test(registry, eval_reports_a_domain_error_and_still_fills_the_rest)
     /* specular closed form 1/(4 m^2 ci^2), see test_bk.c */
     bf_assert_rel(out[1], 1.0 / (4.0 * 0.25 * cos(0.7313) * cos(0.7313)), TOL1);
 }
+
+/* The default model sets name registry models, each once: the paper's six
+ * (its Tables 2-3), and for a ranking those six first, then the
+ * baselines. */
+Test(registry, default_model_sets_name_registry_models)
+{
+    static const char *const paper[] = {"VH-G", "VH-E", "FC-G",
+                                        "FC-E", "ON",   "LFTG"};
+    const bf_model_set sets[] = {BF_MODELS_PAPER, BF_MODELS_RANKING};
+    size_t i;
+    for (i = 0; i < 2; i++) {
+        char buf[256];
+        char *save = NULL;
+        char *tok;
+        size_t n = 0;
+        const char *list = bf_model_set_names(sets[i]);
+        cr_assert_not_null(list);
+        cr_assert_lt(strlen(list), sizeof buf);
+        strcpy(buf, list);
+        for (tok = strtok_r(buf, ",", &save); tok != NULL;
+             tok = strtok_r(NULL, ",", &save), n++) {
+            cr_assert_not_null(bf_model_find(tok), "%s", tok);
+            cr_assert(strstr(list, tok) == list + (tok - buf),
+                      "%s listed twice", tok); /* its first occurrence */
+            if (n < 6) {
+                cr_assert_str_eq(tok, paper[n]);
+            }
+        }
+        cr_assert_eq(n, i == 0 ? 6u : 9u, "%zu models", n);
+    }
+    cr_assert_null(bf_model_set_names((bf_model_set)7));
+}
