@@ -15,10 +15,11 @@ set -eu
 # parses report.html; curl: `make run` fetches the CURET files when they
 # are not on the machine (scripts/curet-data.sh).
 # python3-numpy, python3-cffi, python3-pytest: the Python package (python/)
-# and its tests; python3-pip: `pip install ./python`.
+# and its tests; python3-pandas: the test of Records.to_dataframe (the
+# package itself never needs pandas); python3-pip: `pip install ./python`.
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
 plplot-driver-cairo fonts-dejavu-core zlib1g-dev python3-html5lib curl \
-python3-numpy python3-cffi python3-pytest python3-pip"
+python3-numpy python3-cffi python3-pytest python3-pandas python3-pip"
 for group in "$@"; do
     case $group in
     # bench/numpy_baseline.py; ../shared/peers/rank_baseline.py (scipy)
