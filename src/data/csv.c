@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "output/output.h"
 
 /* The angle columns, in the header's order (SPEC §1.5). */
 static const char *const angle_col[4] = {"theta_i", "phi_i", "theta_o",
@@ -519,32 +520,15 @@ int bf_configs_load(const char *path, double **angles, size_t *n,
 
 /* ==== writing ==== */
 
-/* 1 when a name or channel must be quoted to be read back as it is: it is
- * empty, holds a comma or a quote, starts or ends with a blank, or starts
- * with '#' (a comment line when in the first column). */
-static int needs_quotes(const char *text)
-{
-    size_t n = strlen(text);
-    return n == 0 || strpbrk(text, ",\"") != NULL || text[0] == '#' ||
-           text[0] == ' ' || text[0] == '\t' || text[n - 1] == ' ' ||
-           text[n - 1] == '\t';
-}
-
-/* Writes text as one field (quoted when needed; "" for a quote). */
+/* Writes a name or channel as one field: quoted when needed
+ * (bf__csv_field), "" when empty (read back as empty, not as missing). */
 static void put_field(FILE *fp, const char *text)
 {
-    if (!needs_quotes(text)) {
-        fputs(text, fp);
-        return;
+    if (text[0] == '\0') {
+        fputs("\"\"", fp);
+    } else {
+        bf__csv_field(fp, text);
     }
-    putc('"', fp);
-    for (; *text != '\0'; text++) {
-        if (*text == '"') {
-            putc('"', fp);
-        }
-        putc(*text, fp);
-    }
-    putc('"', fp);
 }
 
 /* 1 when text cannot stand in one CSV line: a line break (the reader

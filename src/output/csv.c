@@ -11,9 +11,21 @@
 
 #include "output/output.h"
 
+/* 1 when text must be quoted to be read back as it is: it holds a comma,
+ * a quote or a line break, starts or ends with a blank (readers trim
+ * them), or starts with '#' (a comment line in a tidy CSV's first
+ * column). */
+static int needs_quotes(const char *text)
+{
+    size_t n = strlen(text);
+    return strpbrk(text, ",\"\n\r") != NULL ||
+           (n > 0 && (text[0] == '#' || text[0] == ' ' || text[0] == '\t' ||
+                      text[n - 1] == ' ' || text[n - 1] == '\t'));
+}
+
 void bf__csv_field(FILE *fp, const char *text)
 {
-    if (strpbrk(text, ",\"\n\r") == NULL) {
+    if (!needs_quotes(text)) {
         fputs(text, fp);
         return;
     }

@@ -8,7 +8,9 @@
 #include "internal.h"
 
 /* Writes text as one CSV field, quoted (RFC 4180, "" for a quote) when it
- * holds a comma, a quote or a line break. */
+ * holds a comma, a quote or a line break, starts or ends with a blank, or
+ * starts with '#'; the empty text as nothing (an empty field). Every CSV
+ * the library writes (fits.csv, ranking.csv, tidy CSV) quotes with it. */
 void bf__csv_field(FILE *fp, const char *text);
 
 /* Writes ",x" with %.10g, or "," alone when x is not finite. */
