@@ -321,10 +321,15 @@ static void data_section(FILE *fp, const bf_cli_study *st)
             lo = st->k[s] < lo ? st->k[s] : lo;
             hi = st->k[s] > hi ? st->k[s] : hi;
         }
-        fprintf(fp, "<li>Configurations used: K from %zu to %zu per sample "
-                    "(each sample's list is in the run's description, "
-                    "under Conventions).</li>\n",
-                lo, hi);
+        if (lo == hi) { /* different configurations, as many of each */
+            fprintf(fp, "<li>Configurations used: K = %zu for every "
+                        "sample", lo);
+        } else {
+            fprintf(fp, "<li>Configurations used: K from %zu to %zu per "
+                        "sample", lo, hi);
+        }
+        fputs(" (each sample's list is in the run's description, under "
+              "Conventions).</li>\n", fp);
     }
     fputs("</ul>\n", fp);
 }
