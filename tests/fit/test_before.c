@@ -85,6 +85,19 @@ static ref_row *find(int sample, const char *model, const char *param)
 }
 
 /* |a - b| <= tol * scale, NaN equal to NaN. */
+/* 1 when the fixture has rows of model (models added after it have
+ * none: they have no "before"). */
+static int in_fixture(const char *model)
+{
+    size_t i;
+    for (i = 0; i < n_ref; i++) {
+        if (strcmp(ref[i].model, model) == 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static void close_to(double now, double before, double tol, double scale,
                      const ref_row *r, const char *what)
 {
@@ -132,6 +145,9 @@ Test(before, the_engine_gives_the_analysis_of_the_code_before_it,
         const bf_model_type *base = bf_model_get(i);
         if (strcmp(base->name, "WNO-R") == 0) {
             continue; /* new quadrature rule (doc/methods.md §7) */
+        }
+        if (!in_fixture(base->name)) {
+            continue; /* added after the fixture */
         }
         cr_assert_lt(n_models, 64);
         bf_model_variant_init(&variants[n_models], base);
