@@ -116,9 +116,8 @@ static size_t readers_where(int (*keep)(const bf__reader *),
     size_t n = 0;
     size_t i;
     for (i = 0; i < N_FORMATS; i++) {
-        size_t j = n++;
+        size_t j = n;
         if (formats[i].reader == NULL || !keep(formats[i].reader)) {
-            n--;
             continue;
         }
         while (j > 0 && before(formats[i].reader, formats[idx[j - 1]].reader)) {
@@ -126,6 +125,7 @@ static size_t readers_where(int (*keep)(const bf__reader *),
             j--;
         }
         idx[j] = i;
+        n++;
     }
     return n;
 }
