@@ -435,7 +435,11 @@ int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
  * input is copied). */
 typedef struct bf_dataset bf_dataset;
 
-/* The formats brdffit reads (SPEC §8). */
+/* The formats brdffit reads (SPEC §8). A format's value is its position
+ * in the registry of readers (src/data/format.c): the constants below keep
+ * their values, and a format added later takes the next value after
+ * BF_FORMAT_MEMORY without a constant here (bf_format_find gives it by
+ * name; bf_format_name is NULL past the last one). */
 typedef enum {
     BF_FORMAT_AUTO = 0, /* detect from the content (bf_format_detect) */
     BF_FORMAT_CURET,    /* folder: table.txt + abrdf.dat (or r/g/bbrdf.dat),
@@ -448,24 +452,26 @@ typedef enum {
 } bf_format;
 
 /* Name of a format: "auto", "curet", "pbrt", "astm", "merl", "csv",
- * "memory" (static storage), NULL for an unknown value. */
+ * "memory", then any later reader's (static storage), NULL for an unknown
+ * value. */
 const char *bf_format_name(bf_format f);
 
-/* Finds a format by name (case-insensitive; also "brdf" for pbrt and
- * "binary" for merl). BF_ENOTFOUND when unknown. */
+/* Finds a format by name (case-insensitive; also a reader's aliases:
+ * "brdf" for pbrt, "binary" for merl). BF_ENOTFOUND when unknown. */
 int bf_format_find(const char *name, bf_format *f);
 
 /* Detects the format of path from its content, never from its name alone
- * (src/data/format.c): a folder holding table.txt is CURET; MERL by its
- * first 12 bytes, the little-endian int32 dimensions 90, 90, 180 (the
- * file size they imply is checked by bf_merl_read, which names it); ASTM
- * by its header keywords (NUM_POINTS, VARS); CSV by a header row naming
- * theta_i, phi_i, theta_o, phi_o; pbrt by a first number token that is a
- * plausible wavelength count (an integer in [1, 65536]). BF_OK and *f, or
- * BF_EIO (cannot open; a folder without table.txt; a pipe, which cannot
- * be read twice: name its format instead) / BF_EPARSE (empty, binary or
- * no format recognised: err names the file and says which formats were
- * tried). */
+ * (src/data/format.c asks each reader, strongest evidence first; each
+ * reader's file says what it looks for): a folder holding table.txt is
+ * CURET; MERL by its first 12 bytes, the little-endian int32 dimensions
+ * 90, 90, 180 (the file size they imply is checked by bf_merl_read, which
+ * names it); CSV by a first line naming theta_i, phi_i, theta_o, phi_o;
+ * ASTM by its header keywords (NUM_POINTS, VARS); pbrt by a first number
+ * token that is a plausible wavelength count (an integer in [1, 65536]).
+ * BF_OK and *f, or BF_EIO (cannot open; a folder without table.txt; a
+ * pipe, which cannot be read twice: name its format instead) / BF_EPARSE
+ * (empty, binary or no format recognised: err names the file and says
+ * which formats were tried). */
 int bf_format_detect(const char *path, bf_format *f, bf_error *err);
 
 /* ---- building a dataset (readers, tests, Python) ---- */

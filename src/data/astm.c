@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/reader.h"
 #include "internal.h"
 
 /* Most channels accepted (Cornell's spectral exports have 31 or 65). */
@@ -70,18 +71,20 @@ static void state_free(astm_state *s)
 
 /* ==== the header ==== */
 
-/* Length of the header keyword starting line (0 when it is none). */
-static size_t keyword_len(const char *line)
+/* Length of the header keyword starting line[0..len) (0 when it is
+ * none): a capital letter, then capitals, digits or underscores, then a
+ * blank or the end. */
+static size_t keyword_len(const char *line, size_t len)
 {
     size_t k = 0;
-    if (!isupper((unsigned char)line[0])) {
+    if (len == 0 || !isupper((unsigned char)line[0])) {
         return 0;
     }
-    while (isupper((unsigned char)line[k]) || isdigit((unsigned char)line[k])
-           || line[k] == '_') {
+    while (k < len && (isupper((unsigned char)line[k]) ||
+                       isdigit((unsigned char)line[k]) || line[k] == '_')) {
         k++;
     }
-    return (line[k] == '\0' || line[k] == ' ' || line[k] == '\t') ? k : 0;
+    return (k == len || line[k] == ' ' || line[k] == '\t') ? k : 0;
 }
 
 /* The channels of the VARS line, whose value starts at r->buf (moved
@@ -151,7 +154,7 @@ static int header_line(astm_state *s, bf__lines *r, int *done,
                        bf_error *err)
 {
     char *line = r->buf + strspn(r->buf, " \t");
-    size_t k = keyword_len(line);
+    size_t k = keyword_len(line, strlen(line));
     char *value = line + k;
     value += strspn(value, " \t");
     if (k == 0) {
@@ -346,3 +349,39 @@ int bf_astm_load(const char *path, bf_dataset **out, bf_error *err)
 {
     return bf__load_dataset(path, bf_astm_read, out, err);
 }
+
+/* ==== the reader (reader.h) ==== */
+
+/* Detection: the first lines (after blank and '#' lines) are header lines
+ * "KEY value" among which NUM_POINTS or VARS appears. */
+static int detect(const char *text, size_t n)
+{
+    size_t pos = 0;
+    const char *line;
+    size_t len;
+    size_t k;
+    while (bf__detect_content_line(text, n, &pos, &line, &len) &&
+           (k = keyword_len(line, len)) > 0) {
+        if ((k == 10 && memcmp(line, "NUM_POINTS", 10) == 0) ||
+            (k == 4 && memcmp(line, "VARS", 4) == 0)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
+                bf_error *err)
+{
+    (void)opts;
+    return bf_astm_load(path, out, err);
+}
+
+const bf__reader bf__astm_reader = {
+    .name = "astm",
+    .title = "ASTM",
+    .detect = detect,
+    .rank = BF__RANK_KEYWORD,
+    .miss = "not ASTM (no NUM_POINTS or VARS header)",
+    .load = load,
+};

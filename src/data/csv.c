@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/reader.h"
 #include "internal.h"
 #include "output/output.h"
 
@@ -666,3 +667,67 @@ int bf_csv_write(const bf_dataset *ds, FILE *fp)
     }
     return (fflush(fp) != 0 || ferror(fp)) ? BF_EIO : BF_OK;
 }
+
+/* ==== the reader (reader.h) ==== */
+
+/* 1 when the comma-separated line[0..len) names the four angle columns
+ * (blanks and double quotes around a name left out, any case). */
+static int is_header(const char *line, size_t len)
+{
+    unsigned found = 0;
+    size_t k = 0;
+    while (k <= len) {
+        char name[16];
+        size_t a = k;
+        size_t b;
+        size_t j;
+        while (a < len && (line[a] == ' ' || line[a] == '\t' ||
+                           line[a] == '"')) {
+            a++;
+        }
+        b = a;
+        while (b < len && line[b] != ',') {
+            b++;
+        }
+        k = b + 1;
+        while (b > a && (line[b - 1] == ' ' || line[b - 1] == '\t' ||
+                         line[b - 1] == '"')) {
+            b--;
+        }
+        if (b - a < sizeof name) {
+            memcpy(name, line + a, b - a);
+            name[b - a] = '\0';
+            for (j = 0; j < 4; j++) {
+                found |= bf__same_nocase(name, angle_col[j]) ? 1u << j : 0u;
+            }
+        }
+    }
+    return found == 15u;
+}
+
+/* Detection: the first line (after blank and '#' lines) is a header
+ * naming theta_i, phi_i, theta_o and phi_o as comma-separated columns. */
+static int detect(const char *text, size_t n)
+{
+    size_t pos = 0;
+    const char *line;
+    size_t len;
+    return bf__detect_content_line(text, n, &pos, &line, &len) &&
+           is_header(line, len);
+}
+
+static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
+                bf_error *err)
+{
+    (void)opts;
+    return bf_csv_load(path, out, err);
+}
+
+const bf__reader bf__csv_reader = {
+    .name = "csv",
+    .title = "tidy CSV",
+    .detect = detect,
+    .rank = BF__RANK_HEADER,
+    .miss = "not tidy CSV (no header theta_i,phi_i,theta_o,phi_o)",
+    .load = load,
+};

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "data/reader.h"
 #include "internal.h"
 
 /* The channel a CURET BRDF file holds, from its base name: abrdf.dat is
@@ -166,3 +167,19 @@ int bf_curet_load(const char *dir, const char *brdf_path, bf_dataset **out,
     bf_names_free(names);
     return rc;
 }
+
+/* ==== the reader (reader.h) ==== */
+
+static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
+                bf_error *err)
+{
+    (void)opts;
+    return bf_curet_load(path, NULL, out, err);
+}
+
+const bf__reader bf__curet_reader = {
+    .name = "curet",
+    .title = "CURET",
+    .folder_file = "table.txt",
+    .load = load,
+};

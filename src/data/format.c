@@ -1,239 +1,263 @@
-/* format.c: the formats brdffit reads -- their names, detection from the
- * content, and loading any of them into a dataset (SPEC §8); plus the
- * one-material dataset the single-material readers build.
+/* format.c: the formats brdffit reads -- the registry of their readers
+ * (reader.h), and through it their names, detection from the content and
+ * loading any of them into a dataset (SPEC §8); plus the one-material
+ * dataset the single-material readers build.
  *
  * [1] SPEC §8 (the formats and what identifies each).
  *
- * Detection looks at the content, never at the name: a folder holding
- * table.txt is CURET; a file whose first 12 bytes are the little-endian
- * int32 dimensions 90, 90, 180 is MERL (bf_merl_read then checks the size
- * they imply); any other file with a NUL byte in its first DETECT_MAX
- * bytes is binary and unknown; a text file is ASTM when its first lines
- * (after blank and '#' lines) are header lines "KEY value" among which
- * NUM_POINTS or VARS appears, tidy CSV when its first line names theta_i,
- * phi_i, theta_o and phi_o as comma-separated columns, and pbrt when its
- * first number (comments removed) is a wavelength count, an integer in
- * [1, 65536]. */
-#include <ctype.h>
+ * Detection looks at the content, never at the name: a folder is the
+ * folder format whose file it holds (CURET: table.txt); of a file, the
+ * first BF__DETECT_MAX bytes go to each reader's detect by increasing
+ * rank -- the binary formats' magic first (MERL), then, unless a NUL byte
+ * makes the file binary, the text formats (tidy CSV's header line, ASTM's
+ * header keywords, pbrt's first number). Each reader's file says what its
+ * detect looks for. */
 #include <errno.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
+#include "data/reader.h"
 #include "internal.h"
 
-/* Bytes of a file read to detect its format. */
-#define DETECT_MAX 65536
+/* The registry, one line per format: its position is its bf_format value
+ * (brdffit.h; Python's cdef relies on the first seven), so a new reader
+ * goes at the end. "auto" and "memory" are names without a reader. Adding
+ * a format is its reader file in src/data/ (the build takes every file
+ * there) defining `const bf__reader bf__<name>_reader`, and one READER()
+ * line here; detection order is the readers' rank, not this order. */
+#define BF_FORMATS(NAME, READER)                                            \
+    NAME("auto")                                                            \
+    READER(bf__curet_reader)                                                \
+    READER(bf__pbrt_reader)                                                 \
+    READER(bf__astm_reader)                                                 \
+    READER(bf__merl_reader)                                                 \
+    READER(bf__csv_reader)                                                  \
+    NAME("memory")
 
-/* The MERL dimensions (SPEC §8) as they start a file. */
-static const unsigned char merl_magic[12] = {90, 0, 0, 0, 90, 0, 0, 0,
-                                             180, 0, 0, 0};
+#define FORMAT_NONE(n)
+#define FORMAT_DECLARE(v) extern const bf__reader v;
+#define FORMAT_NAME(n) {n, NULL},
+#define FORMAT_READER(v) {NULL, &v},
+BF_FORMATS(FORMAT_NONE, FORMAT_DECLARE)
 
-/* Largest wavelength count of a plausible pbrt file (pbrt.c's W_MAX). */
-#define PBRT_W_MAX 65536
+static const struct {
+    const char *name; /* a format without a reader */
+    const bf__reader *reader;
+} formats[] = {BF_FORMATS(FORMAT_NAME, FORMAT_READER)};
 
-static const char *const format_names[] = {"auto", "curet", "pbrt", "astm",
-                                           "merl", "csv",   "memory"};
+#define N_FORMATS (sizeof formats / sizeof formats[0])
 
-#define N_FORMATS (sizeof format_names / sizeof format_names[0])
+size_t bf__format_count(void)
+{
+    return N_FORMATS;
+}
+
+const bf__reader *bf__reader_of(bf_format f)
+{
+    return ((int)f >= 0 && (size_t)f < N_FORMATS) ? formats[f].reader : NULL;
+}
+
+bf_format bf__reader_format(const bf__reader *r)
+{
+    size_t i;
+    for (i = 0; i < N_FORMATS; i++) {
+        if (formats[i].reader == r) {
+            return (bf_format)i;
+        }
+    }
+    return BF_FORMAT_AUTO;
+}
 
 const char *bf_format_name(bf_format f)
 {
-    return ((int)f >= 0 && (size_t)f < N_FORMATS) ? format_names[f] : NULL;
+    if ((int)f < 0 || (size_t)f >= N_FORMATS) {
+        return NULL;
+    }
+    return formats[f].reader != NULL ? formats[f].reader->name
+                                     : formats[f].name;
 }
 
 int bf_format_find(const char *name, bf_format *f)
 {
     size_t i;
+    size_t k;
     if (name == NULL || f == NULL) {
         return BF_EINVAL;
     }
     for (i = 0; i < N_FORMATS; i++) {
-        if (bf__same_nocase(name, format_names[i])) {
+        if (bf__same_nocase(name, bf_format_name((bf_format)i))) {
             *f = (bf_format)i;
             return BF_OK;
         }
     }
-    if (bf__same_nocase(name, "brdf")) {
-        *f = BF_FORMAT_PBRT;
-        return BF_OK;
-    }
-    if (bf__same_nocase(name, "binary")) {
-        *f = BF_FORMAT_MERL;
-        return BF_OK;
+    for (i = 0; i < N_FORMATS; i++) {
+        const bf__reader *r = formats[i].reader;
+        for (k = 0; r != NULL && r->aliases != NULL && r->aliases[k] != NULL;
+             k++) {
+            if (bf__same_nocase(name, r->aliases[k])) {
+                *f = (bf_format)i;
+                return BF_OK;
+            }
+        }
     }
     return BF_ENOTFOUND;
 }
 
 /* ==== detection ==== */
 
-/* The next line of text[0..n) from *pos (its end excluded, CR too). */
-static int next_line(const char *text, size_t n, size_t *pos,
-                     const char **line, size_t *len)
+/* Registry positions of the readers for which keep(r) is 1, ordered by
+ * before(a, b) (ties: registry order) into idx; their count. */
+static size_t readers_where(int (*keep)(const bf__reader *),
+                            int (*before)(const bf__reader *,
+                                          const bf__reader *),
+                            size_t idx[N_FORMATS])
 {
-    size_t start = *pos;
-    size_t end = start;
-    if (start >= n) {
-        return 0;
-    }
-    while (end < n && text[end] != '\n') {
-        end++;
-    }
-    *pos = end + 1;
-    *line = text + start;
-    *len = end;
-    while (*len > start && (text[*len - 1] == '\r' || text[*len - 1] == ' ' ||
-                            text[*len - 1] == '\t')) {
-        (*len)--;
-    }
-    *len -= start;
-    return 1;
-}
-
-/* Length of the first token of line (up to a blank, or a comma). */
-static size_t token_len(const char *line, size_t len, int comma)
-{
-    size_t k = 0;
-    while (k < len && line[k] != ' ' && line[k] != '\t' &&
-           !(comma && line[k] == ',')) {
-        k++;
-    }
-    return k;
-}
-
-/* 1 when line[0..len) starts with an ASTM header keyword: a capital
- * letter, then capitals, digits or underscores, then a blank or the end. */
-static int is_keyword(const char *line, size_t len)
-{
-    size_t k = token_len(line, len, 0);
-    size_t j;
-    if (k == 0 || !isupper((unsigned char)line[0])) {
-        return 0;
-    }
-    for (j = 1; j < k; j++) {
-        if (!isupper((unsigned char)line[j]) &&
-            !isdigit((unsigned char)line[j]) && line[j] != '_') {
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/* 1 when the comma-separated line names the four angle columns. */
-static int is_csv_header(const char *line, size_t len)
-{
-    static const char *const need[4] = {"theta_i", "phi_i", "theta_o",
-                                        "phi_o"};
-    unsigned found = 0;
-    size_t k = 0;
-    while (k <= len) {
-        char name[16];
-        size_t a = k;
-        size_t b;
-        size_t j;
-        while (a < len && (line[a] == ' ' || line[a] == '\t' ||
-                           line[a] == '"')) {
-            a++;
-        }
-        b = a;
-        while (b < len && line[b] != ',') {
-            b++;
-        }
-        k = b + 1;
-        while (b > a && (line[b - 1] == ' ' || line[b - 1] == '\t' ||
-                         line[b - 1] == '"')) {
-            b--;
-        }
-        if (b - a < sizeof name) {
-            memcpy(name, line + a, b - a);
-            name[b - a] = '\0';
-            for (j = 0; j < 4; j++) {
-                found |= bf__same_nocase(name, need[j]) ? 1u << j : 0u;
-            }
-        }
-    }
-    return found == 15u;
-}
-
-/* 1 when the first number of the text (comments cut) is a plausible
- * wavelength count. */
-static int is_pbrt(const char *text, size_t n)
-{
-    size_t pos = 0;
-    const char *line;
-    size_t len;
-    while (next_line(text, n, &pos, &line, &len)) {
-        char tok[16];
-        const char *hash = memchr(line, '#', len);
-        size_t k;
-        long w;
-        if (hash != NULL) {
-            len = (size_t)(hash - line);
-        }
-        while (len > 0 && (*line == ' ' || *line == '\t')) {
-            line++;
-            len--;
-        }
-        if (len == 0) {
+    size_t n = 0;
+    size_t i;
+    for (i = 0; i < N_FORMATS; i++) {
+        size_t j = n;
+        if (formats[i].reader == NULL || !keep(formats[i].reader)) {
             continue;
         }
-        k = token_len(line, len, 0);
-        if (k >= sizeof tok) {
-            return 0;
+        while (j > 0 && before(formats[i].reader, formats[idx[j - 1]].reader)) {
+            idx[j] = idx[j - 1];
+            j--;
         }
-        memcpy(tok, line, k);
-        tok[k] = '\0';
-        return bf__parse_long(tok, 1, PBRT_W_MAX, &w) == BF__NUM_OK;
+        idx[j] = i;
+        n++;
     }
+    return n;
+}
+
+static int is_file_format(const bf__reader *r)
+{
+    return r->detect != NULL;
+}
+
+static int is_folder_format(const bf__reader *r)
+{
+    return r->folder_file != NULL;
+}
+
+static int is_text_format(const bf__reader *r)
+{
+    return r->detect != NULL && !r->binary;
+}
+
+static int is_binary_format(const bf__reader *r)
+{
+    return r->detect != NULL && r->binary;
+}
+
+static int by_rank(const bf__reader *a, const bf__reader *b)
+{
+    return a->rank < b->rank;
+}
+
+static int by_name(const bf__reader *a, const bf__reader *b)
+{
+    return strcmp(a->name, b->name) < 0;
+}
+
+static int in_registry_order(const bf__reader *a, const bf__reader *b)
+{
+    (void)a;
+    (void)b;
     return 0;
 }
 
-/* The text formats, from the first DETECT_MAX bytes. */
-static int detect_text(const char *text, size_t n, bf_format *f)
+/* Appends text to buf (size BF_ERROR_MSG_MAX, truncated). */
+static void append(char *buf, const char *a, const char *b)
 {
-    size_t pos = 0;
-    const char *line;
-    size_t len;
-    int first = 1;
-    int astm = 0;
-    if (n >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) {
-        pos = 3; /* a UTF-8 byte order mark (lineio.c) */
-    }
-    while (next_line(text, n, &pos, &line, &len)) {
-        while (len > 0 && (*line == ' ' || *line == '\t')) {
-            line++;
-            len--;
+    size_t used = strlen(buf);
+    snprintf(buf + used, BF_ERROR_MSG_MAX - used, "%s%s", a, b);
+}
+
+/* The folder format whose file dir holds; with fallback, the first folder
+ * format when none does (its reader then names the file it lacks), else
+ * BF_FORMAT_AUTO. */
+static bf_format folder_format(const char *dir, int fallback)
+{
+    char file[BF_ERROR_FILE_MAX + 64];
+    size_t idx[N_FORMATS];
+    size_t n = readers_where(is_folder_format, in_registry_order, idx);
+    struct stat st;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        snprintf(file, sizeof file, "%s/%s", dir,
+                 formats[idx[k]].reader->folder_file);
+        if (stat(file, &st) == 0) {
+            return (bf_format)idx[k];
         }
-        if (len == 0 || line[0] == '#') {
-            continue;
-        }
-        if (first && is_csv_header(line, len)) {
-            *f = BF_FORMAT_CSV;
-            return 1;
-        }
-        first = 0;
-        if (!is_keyword(line, len)) {
-            break; /* the end of a header, if any */
-        }
-        astm |= token_len(line, len, 0) == 10 &&
-                memcmp(line, "NUM_POINTS", 10) == 0;
-        astm |= token_len(line, len, 0) == 4 && memcmp(line, "VARS", 4) == 0;
     }
-    if (astm) {
-        *f = BF_FORMAT_ASTM;
-        return 1;
+    return fallback && n > 0 ? (bf_format)idx[0] : BF_FORMAT_AUTO;
+}
+
+static int folder_error(bf_error *err)
+{
+    char files[BF_ERROR_MSG_MAX] = "";
+    char titles[BF_ERROR_MSG_MAX] = "";
+    size_t idx[N_FORMATS];
+    size_t n = readers_where(is_folder_format, in_registry_order, idx);
+    size_t k;
+    for (k = 0; k < n; k++) {
+        append(files, k > 0 ? " or " : "", formats[idx[k]].reader->folder_file);
+        append(titles, k > 0 ? " or " : "", formats[idx[k]].reader->title);
     }
-    if (is_pbrt(text, n)) {
-        *f = BF_FORMAT_PBRT;
-        return 1;
+    return bf__error_set(err, BF_EIO, 0,
+                         "a folder without %s (only %s data is a folder)",
+                         files, titles);
+}
+
+/* What no reader recognised in buf: a binary file (a NUL byte) is none of
+ * the binary formats; a text file is none of them all. */
+static int unknown_error(int binary, bf_error *err)
+{
+    char msg[BF_ERROR_MSG_MAX] = "";
+    size_t idx[N_FORMATS];
+    size_t n;
+    size_t k;
+    if (binary) {
+        n = readers_where(is_binary_format, by_name, idx);
+        for (k = 0; k < n; k++) {
+            append(msg, k > 0 ? " or " : "", formats[idx[k]].reader->miss);
+        }
+        return bf__error_set(err, BF_EPARSE, 0,
+                             "a binary file that is not %s", msg);
     }
-    return 0;
+    n = readers_where(is_text_format, by_name, idx);
+    for (k = 0; k < n; k++) {
+        append(msg, k > 0 ? ", " : "", formats[idx[k]].reader->miss);
+    }
+    n = readers_where(is_binary_format, by_name, idx);
+    for (k = 0; k < n; k++) {
+        append(msg, msg[0] != '\0' ? ", not " : "not ",
+               formats[idx[k]].reader->title);
+    }
+    return bf__error_set(err, BF_EPARSE, 0, "no format recognised: %s", msg);
+}
+
+/* The format of the n >= 1 bytes of buf, by rank; an error when none. */
+static int detect_bytes(const char *buf, size_t n, bf_format *f,
+                        bf_error *err)
+{
+    int binary = memchr(buf, '\0', n) != NULL;
+    size_t idx[N_FORMATS];
+    size_t m = readers_where(is_file_format, by_rank, idx);
+    size_t k;
+    for (k = 0; k < m; k++) {
+        const bf__reader *r = formats[idx[k]].reader;
+        if ((r->binary || !binary) && r->detect(buf, n)) {
+            *f = (bf_format)idx[k];
+            return BF_OK;
+        }
+    }
+    return unknown_error(binary, err);
 }
 
 int bf_format_detect(const char *path, bf_format *f, bf_error *err)
 {
-    char table[BF_ERROR_FILE_MAX + 16];
     struct stat st;
     FILE *fp = NULL;
     char *buf;
@@ -249,14 +273,12 @@ int bf_format_detect(const char *path, bf_format *f, bf_error *err)
                              strerror(errno));
     }
     if (S_ISDIR(st.st_mode)) {
-        snprintf(table, sizeof table, "%s/table.txt", path);
-        if (stat(table, &st) == 0) {
-            *f = BF_FORMAT_CURET;
-            return BF_OK;
+        bf_format g = folder_format(path, 0);
+        if (g == BF_FORMAT_AUTO) {
+            return folder_error(err);
         }
-        return bf__error_set(err, BF_EIO, 0,
-                             "a folder without table.txt (only CURET data "
-                             "is a folder)");
+        *f = g;
+        return BF_OK;
     }
     if (S_ISFIFO(st.st_mode)) {
         return bf__error_set(err, BF_EIO, 0,
@@ -267,31 +289,19 @@ int bf_format_detect(const char *path, bf_format *f, bf_error *err)
     if (rc != BF_OK) {
         return rc;
     }
-    buf = malloc(DETECT_MAX);
+    buf = malloc(BF__DETECT_MAX);
     if (buf == NULL) {
         fclose(fp);
         return bf__error_set(err, BF_ENOMEM, 0, "out of memory");
     }
-    n = fread(buf, 1, DETECT_MAX, fp);
+    n = fread(buf, 1, BF__DETECT_MAX, fp);
     if (ferror(fp)) {
         rc = bf__error_set(err, BF_EIO, 0, "read error: %s", strerror(errno));
     } else if (n == 0) {
         rc = bf__error_set(err, BF_EPARSE, 0,
                            "empty file (no format recognised)");
-    } else if (n >= sizeof merl_magic &&
-               memcmp(buf, merl_magic, sizeof merl_magic) == 0) {
-        *f = BF_FORMAT_MERL;
-    } else if (memchr(buf, '\0', n) != NULL) {
-        rc = bf__error_set(err, BF_EPARSE, 0,
-                           "a binary file that is not a MERL table (it "
-                           "does not start with the int32 dimensions 90, "
-                           "90, 180)");
-    } else if (!detect_text(buf, n, f)) {
-        rc = bf__error_set(err, BF_EPARSE, 0,
-                           "no format recognised: not ASTM (no NUM_POINTS "
-                           "or VARS header), not tidy CSV (no header "
-                           "theta_i,phi_i,theta_o,phi_o), not pbrt (no "
-                           "wavelength count first), not MERL");
+    } else {
+        rc = detect_bytes(buf, n, f, err);
     }
     free(buf);
     fclose(fp);
@@ -306,36 +316,11 @@ static int is_dir(const char *path)
     return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
-/* A MERL file at the configurations of opts (checked first: nothing is
- * read without them). */
-static int load_merl(const char *path, const bf_load_opts *opts,
-                     bf_dataset **out, bf_error *err)
-{
-    char stem[BF_ERROR_FILE_MAX];
-    bf_merl *t = NULL;
-    int rc;
-    if (opts == NULL || (!opts->all_cells &&
-                         (opts->at == NULL || opts->n_at == 0))) {
-        bf__error_clear(err, path);
-        return bf__error_set(err, BF_EINVAL, 0,
-                             "a MERL table is fitted at chosen "
-                             "configurations, and none were given");
-    }
-    rc = bf_merl_load(path, &t, err);
-    if (rc == BF_OK) {
-        bf__stem(path, stem, sizeof stem);
-        rc = bf_merl_dataset(t, opts->all_cells ? 0 : opts->n_at,
-                             opts->all_cells ? NULL : opts->at, stem, path,
-                             out, err);
-    }
-    bf_merl_free(t);
-    return rc;
-}
-
 int bf_dataset_load(const char *path, const bf_load_opts *opts,
                     bf_dataset **out, bf_error *err)
 {
     bf_format f = opts != NULL ? opts->format : BF_FORMAT_AUTO;
+    const bf__reader *r;
     int rc;
     if (out != NULL) {
         *out = NULL;
@@ -345,7 +330,7 @@ int bf_dataset_load(const char *path, const bf_load_opts *opts,
         return bf__error_set(err, BF_EINVAL, 0, "no file name or no output");
     }
     if (f == BF_FORMAT_AUTO && is_dir(path)) {
-        f = BF_FORMAT_CURET; /* a folder is read as CURET (brdffit.h) */
+        f = folder_format(path, 1); /* a folder is read, not detected */
     }
     if (f == BF_FORMAT_AUTO) {
         rc = bf_format_detect(path, &f, err);
@@ -353,23 +338,14 @@ int bf_dataset_load(const char *path, const bf_load_opts *opts,
             return rc;
         }
     }
-    switch (f) {
-    case BF_FORMAT_CURET:
-        return bf_curet_load(path, NULL, out, err);
-    case BF_FORMAT_PBRT:
-        return bf_pbrt_load(path, out, err);
-    case BF_FORMAT_ASTM:
-        return bf_astm_load(path, out, err);
-    case BF_FORMAT_CSV:
-        return bf_csv_load(path, out, err);
-    case BF_FORMAT_MERL:
-        return load_merl(path, opts, out, err);
-    default:
+    r = bf__reader_of(f);
+    if (r == NULL) {
         return bf__error_set(err, BF_EINVAL, 0,
                              "no reader for the format \"%s\"",
                              bf_format_name(f) != NULL ? bf_format_name(f)
                                                        : "?");
     }
+    return r->load(path, opts, out, err);
 }
 
 /* ==== the one-material dataset of the readers ==== */

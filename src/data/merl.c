@@ -39,6 +39,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/reader.h"
 #include "internal.h"
 
 /* The dimensions (theta_h, theta_d, phi_d) of [1]. */
@@ -75,6 +76,13 @@ static long le32(const unsigned char *b)
     uint32_t u = (uint32_t)b[0] | ((uint32_t)b[1] << 8) |
                  ((uint32_t)b[2] << 16) | ((uint32_t)b[3] << 24);
     return u <= INT32_MAX ? (long)u : (long)u - 4294967296L;
+}
+
+/* 1 when the 12 bytes of head are the dimensions 90, 90, 180. */
+static int dims_ok(const unsigned char *head)
+{
+    return le32(head) == N_TH && le32(head + 4) == N_TD &&
+           le32(head + 8) == N_PD;
 }
 
 /* 1 on a little-endian host (the file's byte order). */
@@ -173,8 +181,7 @@ int bf_merl_read(FILE *fp, const char *name, bf_merl **out, bf_error *err)
                                         "dimensions)",
                              got);
     }
-    if (le32(head) != N_TH || le32(head + 4) != N_TD ||
-        le32(head + 8) != N_PD) {
+    if (!dims_ok(head)) {
         return bf__error_set(err, BF_EPARSE, 0,
                              "byte 0: dimensions %ld x %ld x %ld; a MERL "
                              "table has 90 x 90 x 180 (theta_h, theta_d, "
@@ -504,3 +511,52 @@ int bf_merl_dataset(const bf_merl *t, size_t n, const double *at,
     free(valid);
     return rc;
 }
+
+/* ==== the reader (reader.h) ==== */
+
+/* Detection: the file starts with the dimensions (bf_merl_read checks the
+ * size they imply, and names it). */
+static int detect(const char *buf, size_t n)
+{
+    return n >= HEADER_BYTES && dims_ok((const unsigned char *)buf);
+}
+
+/* A MERL file at the configurations of opts (checked first: nothing is
+ * read without them). */
+static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
+                bf_error *err)
+{
+    char stem[BF_ERROR_FILE_MAX];
+    bf_merl *t = NULL;
+    int rc;
+    if (opts == NULL || (!opts->all_cells &&
+                         (opts->at == NULL || opts->n_at == 0))) {
+        bf__error_clear(err, path);
+        return bf__error_set(err, BF_EINVAL, 0,
+                             "a MERL table is fitted at chosen "
+                             "configurations, and none were given");
+    }
+    rc = bf_merl_load(path, &t, err);
+    if (rc == BF_OK) {
+        bf__stem(path, stem, sizeof stem);
+        rc = bf_merl_dataset(t, opts->all_cells ? 0 : opts->n_at,
+                             opts->all_cells ? NULL : opts->at, stem, path,
+                             out, err);
+    }
+    bf_merl_free(t);
+    return rc;
+}
+
+static const char *const aliases[] = {"binary", NULL};
+
+const bf__reader bf__merl_reader = {
+    .name = "merl",
+    .aliases = aliases,
+    .title = "MERL",
+    .detect = detect,
+    .binary = 1,
+    .rank = BF__RANK_MAGIC,
+    .miss = "a MERL table (it does not start with the int32 dimensions 90, "
+            "90, 180)",
+    .load = load,
+};

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/reader.h"
 #include "internal.h"
 
 /* Most wavelengths accepted: far above any spectrometer's (Cornell's
@@ -336,3 +337,60 @@ int bf_pbrt_load(const char *path, bf_dataset **out, bf_error *err)
 {
     return bf__load_dataset(path, bf_pbrt_read, out, err);
 }
+
+/* ==== the reader (reader.h) ==== */
+
+/* Detection: the first number of the text (comments cut) is a plausible
+ * wavelength count, an integer in [1, W_MAX]. */
+static int detect(const char *text, size_t n)
+{
+    size_t pos = 0;
+    const char *line;
+    size_t len;
+    while (bf__detect_line(text, n, &pos, &line, &len)) {
+        char tok[16];
+        const char *hash = memchr(line, '#', len);
+        size_t k;
+        long w;
+        if (hash != NULL) {
+            len = (size_t)(hash - line);
+        }
+        while (len > 0 && (*line == ' ' || *line == '\t')) {
+            line++;
+            len--;
+        }
+        if (len == 0) {
+            continue;
+        }
+        k = 0;
+        while (k < len && line[k] != ' ' && line[k] != '\t') {
+            k++;
+        }
+        if (k >= sizeof tok) {
+            return 0;
+        }
+        memcpy(tok, line, k);
+        tok[k] = '\0';
+        return bf__parse_long(tok, 1, W_MAX, &w) == BF__NUM_OK;
+    }
+    return 0;
+}
+
+static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
+                bf_error *err)
+{
+    (void)opts;
+    return bf_pbrt_load(path, out, err);
+}
+
+static const char *const aliases[] = {"brdf", NULL};
+
+const bf__reader bf__pbrt_reader = {
+    .name = "pbrt",
+    .aliases = aliases,
+    .title = "pbrt",
+    .detect = detect,
+    .rank = BF__RANK_GUESS,
+    .miss = "not pbrt (no wavelength count first)",
+    .load = load,
+};

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "cli_run.h"
+#include "data/reader.h"
 #include "internal.h"
 #include "support.h"
 
@@ -89,7 +90,8 @@ Test(format, names_and_aliases)
         cr_assert_eq(bf_format_find(names[k], &f), BF_OK);
         cr_assert_eq(f, (bf_format)k);
     }
-    cr_assert_null(bf_format_name((bf_format)(BF_FORMAT_MEMORY + 1)));
+    cr_assert_null(bf_format_name((bf_format)bf__format_count()));
+    cr_assert_null(bf_format_name((bf_format)-1));
     cr_assert_eq(bf_format_find("BRDF", &f), BF_OK);
     cr_assert_eq(f, BF_FORMAT_PBRT);
     cr_assert_eq(bf_format_find("Binary", &f), BF_OK);
@@ -98,6 +100,51 @@ Test(format, names_and_aliases)
     cr_assert_eq(f, BF_FORMAT_CSV);
     cr_assert_eq(bf_format_find("tsv", &f), BF_ENOTFOUND);
     cr_assert_eq(bf_format_find("", &f), BF_ENOTFOUND);
+}
+
+Test(format, every_format_of_the_registry_round_trips_and_is_detected)
+{
+    /* each reader's fixture (tests/fixtures/formats/<name>) is detected
+     * as that reader, and the registry's values and names agree */
+    size_t n = bf__format_count();
+    size_t i;
+    size_t readers = 0;
+    cr_assert_gt(n, (size_t)BF_FORMAT_MEMORY, "the public values stay");
+    for (i = 0; i < n; i++) {
+        bf_format f = (bf_format)i;
+        const bf__reader *r = bf__reader_of(f);
+        const char *name = bf_format_name(f);
+        char rel[64];
+        bf_format g = BF_FORMAT_AUTO;
+        bf_error err;
+        size_t k;
+        cr_assert_not_null(name, "format %zu has a name", i);
+        cr_assert_eq(bf_format_find(name, &g), BF_OK, "%s", name);
+        cr_assert_eq(g, f, "%s found as %s", name, bf_format_name(g));
+        if (r == NULL) {
+            cr_assert(f == BF_FORMAT_AUTO || f == BF_FORMAT_MEMORY,
+                      "%s has no reader", name);
+            continue;
+        }
+        readers++;
+        cr_assert_eq(bf__reader_format(r), f, "%s", name);
+        cr_assert_not_null(r->load, "%s", name);
+        cr_assert_not_null(r->title, "%s", name);
+        cr_assert((r->detect != NULL) != (r->folder_file != NULL),
+                  "%s: a file or a folder format", name);
+        cr_assert((r->detect != NULL) == (r->miss != NULL), "%s", name);
+        for (k = 0; r->aliases != NULL && r->aliases[k] != NULL; k++) {
+            cr_assert_eq(bf_format_find(r->aliases[k], &g), BF_OK);
+            cr_assert_eq(g, f, "alias %s of %s", r->aliases[k], name);
+        }
+        snprintf(rel, sizeof rel, "formats/%s", name);
+        g = BF_FORMAT_AUTO;
+        cr_assert_eq(bf_format_detect(bf_test_fixture_path(rel), &g, &err),
+                     BF_OK, "%s: %s (every reader needs a fixture)", rel,
+                     err.msg);
+        cr_assert_eq(g, f, "%s detected as %s", rel, bf_format_name(g));
+    }
+    cr_assert_eq(readers, n - 2, "every format but auto and memory reads");
 }
 
 /* ==== detection ==== */
