@@ -5,7 +5,10 @@
 # sh and ls, are not followed). Any memory error or any leaked block
 # (definite, indirect or possible) fails the run with valgrind's report.
 #
-#   tests/valgrind.sh BUILD
+#   tests/valgrind.sh BUILD [JOBS]
+#
+# JOBS executables run at once (default: the number of cores); their
+# verdicts are printed in the executables' order.
 #
 # Left out (VALGRIND_SKIP, space-separated): whole executables by name, or
 # single tests as suite/test (Criterion globs). These are the sweeps and
@@ -32,13 +35,17 @@
 # all-cells load of test_format, test_csv's hundreds of thousands of random
 # angles, and test_convert's fits of the five Cornell files in three
 # formats; the smaller tests of the same files run every reader path under
-# valgrind.
+# valgrind. inputs/every_cornell_file... runs compare, report --stats and
+# rank on the five Cornell files (1379 configurations each); the same
+# commands run under valgrind on smaller data in test_cli_inputs' other
+# tests and in test_cmd_report.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
 set -eu
 
 build=$1
+jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     test_uncertainty
@@ -63,11 +70,13 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     degrees/random_angles_round_trip_bit_for_bit_in_at_most_17_digits
     degrees/the_writer_uses_the_fewest_digits
     convert/cornell_files_as_csv_read_back_identically
-    convert/cornell_files_as_astm_read_back_identically"}
+    convert/cornell_files_as_astm_read_back_identically
+    inputs/every_cornell_file_runs_through_compare_report_and_rank"}
 
-status=0
-for exe in "$build"/tests/test_*; do
-    [ -x "$exe" ] || continue
+# run_one EXE: runs EXE under valgrind, writes its verdict line to
+# BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
+run_one() {
+    exe=$1
     name=$(basename "$exe")
     filter=""
     whole=0
@@ -77,9 +86,10 @@ for exe in "$build"/tests/test_*; do
         "$name") whole=1 ;;
         esac
     done
+    verdict=$build/valgrind-$name.verdict
     if [ $whole -eq 1 ]; then
-        echo "valgrind: $name skipped (VALGRIND_SKIP)"
-        continue
+        echo "valgrind: $name skipped (VALGRIND_SKIP)" > "$verdict"
+        return 0
     fi
     log=$build/valgrind-$name.log
     set -- "$exe" --jobs=1
@@ -96,11 +106,49 @@ for exe in "$build"/tests/test_*; do
         --errors-for-leak-kinds=definite,indirect,possible \
         "$@" > "$log" 2>&1 || rc=$?
     if [ $rc -eq 0 ] && ! grep -q '^==[0-9]*==' "$log"; then
-        echo "valgrind: $name ok ($(tail -n 1 "$log" | sed 's/.*Tested: \([0-9]*\).*/\1 tests/'))"
+        echo "valgrind: $name ok ($(tail -n 1 "$log" | sed 's/.*Tested: \([0-9]*\).*/\1 tests/'))" > "$verdict"
     else
-        cat "$log" >&2
-        echo "valgrind: $name FAILED (log: $log)" >&2
-        status=1
+        echo "valgrind: $name FAILED (log: $log)" > "$verdict"
     fi
+}
+
+# JOBS at a time: start one, and wait for the oldest when JOBS run.
+pids=""
+n=0
+for exe in "$build"/tests/test_*; do
+    [ -x "$exe" ] || continue
+    run_one "$exe" &
+    pids="$pids $!"
+    n=$((n + 1))
+    if [ "$n" -ge "$jobs" ]; then
+        set -- $pids
+        wait "$1" || true
+        shift
+        pids="$*"
+        n=$((n - 1))
+    fi
+done
+for p in $pids; do
+    wait "$p" || true
+done
+
+status=0
+for exe in "$build"/tests/test_*; do
+    [ -x "$exe" ] || continue
+    name=$(basename "$exe")
+    verdict=$build/valgrind-$name.verdict
+    if [ ! -f "$verdict" ]; then
+        echo "valgrind: $name gave no verdict" >&2
+        status=1
+        continue
+    fi
+    if grep -q FAILED "$verdict"; then
+        cat "$build/valgrind-$name.log" >&2
+        cat "$verdict" >&2
+        status=1
+    else
+        cat "$verdict"
+    fi
+    rm -f "$verdict"
 done
 exit $status
