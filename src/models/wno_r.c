@@ -526,24 +526,37 @@ static void series_sums(const double *restrict c, size_t m, size_t deg,
     }
 }
 
-/* The workspace: the ring sums of the last WNOR_SLOTS indices n (ring-
- * major rows of the configurations, b[i * K + k]) and the weights of the
- * last sigma. A slot's content is a function of its n alone, so hits and
- * misses give the same bits. */
-#define WNOR_SLOTS 2
+/* The workspace: the ring sums of the most recently used indices n (ring-
+ * major rows of the configurations, b[i * K + k]; up to WNOR_SLOTS of
+ * them, fewer for large K: slots()) and the weights of the last sigma. A
+ * refinement comes back to the same few n -- its start, the grid values
+ * either side, the bound -- replicate after replicate, so the least
+ * recently used slot is the one replaced. A slot's content is a function
+ * of its n alone, so hits and misses give the same bits. */
+#define WNOR_SLOTS 8
+#define WNOR_SLOT_BYTES (4u << 20) /* all slots of a workspace, at most */
 typedef struct {
     double sigma;             /* the weights' sigma (0: none yet) */
     double c[WNOR_NT];
     double n[WNOR_SLOTS];
-    int used[WNOR_SLOTS];
-    size_t next;
-    double b[];               /* WNOR_SLOTS x WNOR_NT x K */
+    unsigned long last[WNOR_SLOTS]; /* use stamp, 0: empty */
+    unsigned long clock;
+    double b[];               /* slots(K) x WNOR_NT x K */
 } wnor_work;
+
+/* Slots of a workspace on n configurations: as many as fit
+ * WNOR_SLOT_BYTES, between 2 and WNOR_SLOTS. */
+static size_t slots(size_t n)
+{
+    size_t per = WNOR_NT * n * sizeof(double);
+    size_t s = WNOR_SLOT_BYTES / per;
+    return s < 2 ? 2 : (s > WNOR_SLOTS ? WNOR_SLOTS : s);
+}
 
 static size_t wnor_work_bytes(const bf_kernel *kr, size_t n)
 {
     (void)kr;
-    return sizeof(wnor_work) + WNOR_SLOTS * WNOR_NT * n * sizeof(double);
+    return sizeof(wnor_work) + slots(n) * WNOR_NT * n * sizeof(double);
 }
 
 /* The ring sums of every configuration at index n_index: from its panel's
@@ -552,18 +565,22 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
                                wnor_work *w)
 {
     size_t n = pm->n;
+    size_t count = slots(n);
     size_t slot;
+    size_t old = 0;
     double lo;
     double hi;
     size_t deg;
     int p;
     double *b;
-    for (slot = 0; slot < WNOR_SLOTS; slot++) {
-        if (w->used[slot] && w->n[slot] == n_index) {
+    for (slot = 0; slot < count; slot++) {
+        if (w->last[slot] != 0 && w->n[slot] == n_index) {
+            w->last[slot] = ++w->clock;
             return w->b + slot * WNOR_NT * n;
         }
+        old = w->last[slot] < w->last[old] ? slot : old;
     }
-    slot = w->next;
+    slot = old; /* the least recently used (or an empty one) */
     b = w->b + slot * WNOR_NT * n;
     p = n_panel(n_index, &lo, &hi, &deg);
     if (p < 0) {
@@ -576,8 +593,7 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
         series_sums(c, WNOR_NT * n, deg, (2.0 * n_index - lo - hi) / (hi - lo),
                     b);
     }
-    w->next = (w->next + 1) % WNOR_SLOTS;
-    w->used[slot] = 1;
+    w->last[slot] = ++w->clock;
     w->n[slot] = n_index;
     return b;
 }
