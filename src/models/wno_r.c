@@ -393,7 +393,7 @@ static int n_panel(double n, double *lo, double *hi, size_t *deg)
 
 typedef struct {
     int built[WNOR_NPANEL];   /* published with an atomic write */
-    double *coef[WNOR_NPANEL]; /* (deg + 1) x WNOR_NT x K, degree-major */
+    double *coef[WNOR_NPANEL]; /* blocks of (deg + 1) x WNOR_EB */
 } wnor_tables;
 
 static int wnor_prepare(bf__prep *pm)
@@ -434,21 +434,36 @@ static void exact_sums(const bf__prep *pm, double n_index, double *b)
     }
 }
 
+/* Elements (ring sums) per block of a panel's table: each block holds its
+ * coefficients of every degree together, highest degree first, c[(blk *
+ * (deg + 1) + deg - d) * EB + j], so that series_sums reads one ascending
+ * stream and keeps a block's sums in registers over the degrees. */
+#define WNOR_EB 32
+
+/* Blocks of a table of m elements. */
+static size_t table_blocks(size_t m)
+{
+    return (m + WNOR_EB - 1) / WNOR_EB;
+}
+
 /* Builds panel p's table: the exact sums at its deg + 1 Chebyshev nodes,
  * then c_d = (2 - [d = 0]) / (deg + 1) sum_j B(n_j) cos(pi d (j + 1/2) /
- * (deg + 1)). NULL when out of memory. */
+ * (deg + 1)), stored by blocks (WNOR_EB; the last one padded with 0).
+ * NULL when out of memory. */
 static double *build_panel(const bf__prep *pm, double lo, double hi,
                            size_t deg)
 {
     size_t m = WNOR_NT * pm->n;
     size_t nodes = deg + 1;
     double *vals = malloc(nodes * m * sizeof *vals);
-    double *coef = calloc(nodes * m, sizeof *coef);
+    double *cd = calloc(m, sizeof *cd);
+    double *coef = calloc(table_blocks(m) * nodes * WNOR_EB, sizeof *coef);
     size_t j;
     size_t d;
     size_t e;
-    if (vals == NULL || coef == NULL) {
+    if (vals == NULL || cd == NULL || coef == NULL) {
         free(vals);
+        free(cd);
         free(coef);
         return NULL;
     }
@@ -458,7 +473,7 @@ static double *build_panel(const bf__prep *pm, double lo, double hi,
     }
     for (d = 0; d < nodes; d++) {
         double f = (d == 0 ? 1.0 : 2.0) / (double)nodes;
-        double *cd = coef + d * m;
+        memset(cd, 0, m * sizeof *cd);
         for (j = 0; j < nodes; j++) {
             double w = f * cos(BF__PI * (double)d * ((double)j + 0.5) /
                                (double)nodes);
@@ -467,8 +482,13 @@ static double *build_panel(const bf__prep *pm, double lo, double hi,
                 cd[e] += w * vj[e];
             }
         }
+        for (e = 0; e < m; e++) {
+            coef[((e / WNOR_EB) * nodes + (deg - d)) * WNOR_EB +
+                 e % WNOR_EB] = cd[e];
+        }
     }
     free(vals);
+    free(cd);
     return coef;
 }
 
@@ -500,28 +520,48 @@ static const double *panel_table(const bf__prep *pm, int p, double lo,
 
 /* The ring sums at n from panel table c (degree deg, on [lo, hi]): the
  * Chebyshev series sum_d c_d T_d(y), y the position in the panel, added
- * from the highest degree down. */
+ * from the highest degree down (b = 0, then b += c_d T_d), one block of
+ * WNOR_EB sums at a time. */
 BF__CLONES
 static void series_sums(const double *restrict c, size_t m, size_t deg,
                         double y, double *restrict b)
 {
     double tdeg[WNOR_DEG_MAX + 1];
+    size_t nodes = deg + 1;
+    size_t blk;
     size_t d;
-    size_t e;
+    size_t j;
     tdeg[0] = 1.0;
     tdeg[1] = y;
     for (d = 2; d <= deg; d++) {
         tdeg[d] = 2.0 * y * tdeg[d - 1] - tdeg[d - 2]; /* T_d(y) */
     }
-    for (e = 0; e < m; e++) {
-        b[e] = 0.0;
-    }
-    for (d = deg + 1; d-- > 0;) {
-        const double *restrict cd = c + d * m;
-        double td = tdeg[d];
+    for (blk = 0; blk < table_blocks(m); blk++) {
+        const double *restrict cb = c + blk * nodes * WNOR_EB;
+        size_t width = m - blk * WNOR_EB < WNOR_EB ? m - blk * WNOR_EB
+                                                   : WNOR_EB;
+        double acc[WNOR_EB];
 #pragma omp simd
-        for (e = 0; e < m; e++) {
-            b[e] += cd[e] * td;
+        for (j = 0; j < WNOR_EB; j++) {
+            acc[j] = 0.0 + cb[j] * tdeg[deg]; /* b = 0, b += c_deg T_deg */
+        }
+        for (d = deg; d-- > 0;) {
+            const double *restrict cd = cb + (deg - d) * WNOR_EB;
+            double td = tdeg[d];
+#pragma omp simd
+            for (j = 0; j < WNOR_EB; j++) {
+                acc[j] += cd[j] * td;
+            }
+        }
+        if (width == WNOR_EB) {
+#pragma omp simd
+            for (j = 0; j < WNOR_EB; j++) {
+                b[blk * WNOR_EB + j] = acc[j];
+            }
+        } else {
+            for (j = 0; j < width; j++) {
+                b[blk * WNOR_EB + j] = acc[j];
+            }
         }
     }
 }
@@ -598,6 +638,9 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
     return b;
 }
 
+/* Configurations whose values wnor_values sums at once (in registers). */
+#define WNOR_KB 32
+
 /* The values of eval_wnor from the terms: the rings' sums at n (cached),
  * their weights at sigma (cached), one pass over the rings. */
 BF__CLONES
@@ -611,6 +654,7 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
     const double *b;
     size_t i;
     size_t k;
+    size_t k0;
     if (param[0] == 0.0) { /* level facets: WNO, [2], (P6) */
         bf__fc2_values(n, t + R_SI * n, t + R_CI * n, t + R_SS * n,
                        t + R_CS * n, param[1], out);
@@ -627,15 +671,30 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
         wnor_weights(r, param[0], w->c);
         w->sigma = param[0];
     }
-    for (k = 0; k < n; k++) {
-        out[k] = 0.0;
-    }
-    for (i = 0; i < WNOR_NT; i++) { /* the same order as wnor_combine */
-        const double *bi = b + i * n;
-        double ci = w->c[i];
+    for (k0 = 0; k0 < n; k0 += WNOR_KB) { /* wnor_combine's order */
+        double acc[WNOR_KB];
+        size_t width = n - k0 < WNOR_KB ? n - k0 : WNOR_KB;
+        if (width < WNOR_KB) {
+            for (k = 0; k < width; k++) {
+                out[k0 + k] = wnor_combine(w->c, b + k0 + k, n);
+            }
+            break;
+        }
 #pragma omp simd
-        for (k = 0; k < n; k++) {
-            out[k] += ci * bi[k];
+        for (k = 0; k < WNOR_KB; k++) {
+            acc[k] = 0.0 + w->c[0] * b[k0 + k]; /* s = 0, s += c_0 B_0 */
+        }
+        for (i = 1; i < WNOR_NT; i++) {
+            const double *restrict bi = b + i * n + k0;
+            double ci = w->c[i];
+#pragma omp simd
+            for (k = 0; k < WNOR_KB; k++) {
+                acc[k] += ci * bi[k];
+            }
+        }
+#pragma omp simd
+        for (k = 0; k < WNOR_KB; k++) {
+            out[k0 + k] = acc[k];
         }
     }
     return BF_OK;
