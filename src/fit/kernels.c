@@ -364,26 +364,18 @@ static int terms_alloc(terms_t *t, size_t n)
 
 /* ==== curve kernels ====================================================== */
 
-/* Normalises a block (SPEC §2) -- every value finite, maximum positive --
- * by one reciprocal per lane, and sets ok per lane. nf[j] is the sum of
- * v - v over the lane's values: 0 when all are finite, NaN otherwise. */
-static inline void normalise_block(size_t n, size_t stride,
-                                   double *restrict c, const double *mx,
-                                   const double *nf, unsigned char *ok)
+/* The normalisation of a block (SPEC §2) -- every value finite, maximum
+ * positive -- by one reciprocal per lane: r[j] = 1 / mx[j] and ok[j]. The
+ * normalised value is v * r[j] (gen_block stores it; the streaming scorer
+ * forms it as it reads v). nf[j] is the sum of v - v over the lane's
+ * values: 0 when all are finite, NaN otherwise. */
+static inline void block_recip(const double *mx, const double *nf,
+                               double *r, unsigned char *ok)
 {
-    double r[CURVE_LANES];
     size_t j;
-    size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
         r[j] = 1.0 / mx[j];
         ok[j] = (unsigned char)((nf[j] == 0.0) && (mx[j] > 0.0));
-    }
-    for (k = 0; k < n; k++) {
-        double *restrict ck = c + (k * stride);
-#pragma omp simd simdlen(CURVE_LANES)
-        for (j = 0; j < CURVE_LANES; j++) {
-            ck[j] = ck[j] * r[j]; /* SPEC §2 */
-        }
     }
 }
 
@@ -391,11 +383,12 @@ static inline void normalise_block(size_t n, size_t stride,
  * l = a exp(b / m^2), one multiply, one exp and one multiply per value. */
 BF__CLONES
 static void block_gauss(size_t n, const terms_t *t, const double *m,
-                        size_t stride, double *restrict c, unsigned char *ok)
+                        size_t stride, double *restrict c, double *mx_out,
+                        double *nf_out)
 {
-    double inv_m2[CURVE_LANES];
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
+    double inv_m2[CURVE_LANES];
     size_t j;
     size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
@@ -415,7 +408,8 @@ static void block_gauss(size_t n, const terms_t *t, const double *m,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* Exponential correlation (P2), SPEC §3.2, in bk.c's form:
@@ -423,11 +417,12 @@ static void block_gauss(size_t n, const terms_t *t, const double *m,
  * division per value). */
 BF__CLONES
 static void block_exp(size_t n, const terms_t *t, const double *m,
-                      size_t stride, double *restrict c, unsigned char *ok)
+                      size_t stride, double *restrict c, double *mx_out,
+                      double *nf_out)
 {
-    double m2[CURVE_LANES];
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
+    double m2[CURVE_LANES];
     size_t j;
     size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
@@ -449,7 +444,8 @@ static void block_exp(size_t n, const terms_t *t, const double *m,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* LFTG (P7), SPEC §6: l = (cos ti cos ts)^n_d = exp(n_d L), L = ln(cos ti
@@ -462,7 +458,8 @@ static void block_exp(size_t n, const terms_t *t, const double *m,
  * normalised value v by at most a few v |n_d L| eps <= a few eps / e. */
 BF__CLONES
 static void block_lftg(size_t n, const terms_t *t, const double *n_d,
-                       size_t stride, double *restrict c, unsigned char *ok)
+                       size_t stride, double *restrict c, double *mx_out,
+                       double *nf_out)
 {
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
@@ -491,7 +488,8 @@ static void block_lftg(size_t n, const terms_t *t, const double *n_d,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* The factors exp(j step L_k) of block_lftg for j < CURVE_LANES. */
@@ -600,19 +598,42 @@ static void gen_ok(const gen_t *g, size_t g0, unsigned char *ok)
     }
 }
 
+/* The raw values (before the normalisation) of the block at g0 into c,
+ * with the reciprocals r[j] of the lanes' maxima and their flags ok[j]:
+ * the normalised curve is c[k * stride + j] * r[j] (the streaming scorer
+ * forms it as it reads c). */
+static void gen_block_raw(const gen_t *g, size_t n, size_t g0, size_t stride,
+                          double *c, double *r, unsigned char *ok)
+{
+    double x[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    gen_x(g, g0, x);
+    if (g->is_lftg) {
+        block_lftg(n, &g->t, x, stride, c, mx, nf);
+    } else if (g->corr == BF__BK_CORR_GAUSS) {
+        block_gauss(n, &g->t, x, stride, c, mx, nf);
+    } else {
+        block_exp(n, &g->t, x, stride, c, mx, nf);
+    }
+    block_recip(mx, nf, r, ok);
+    gen_ok(g, g0, ok);
+}
+
 static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
                       double *c, unsigned char *ok)
 {
-    double x[CURVE_LANES];
-    gen_x(g, g0, x);
-    if (g->is_lftg) {
-        block_lftg(n, &g->t, x, stride, c, ok);
-    } else if (g->corr == BF__BK_CORR_GAUSS) {
-        block_gauss(n, &g->t, x, stride, c, ok);
-    } else {
-        block_exp(n, &g->t, x, stride, c, ok);
+    double r[CURVE_LANES];
+    size_t j;
+    size_t k;
+    gen_block_raw(g, n, g0, stride, c, r, ok);
+    for (k = 0; k < n; k++) { /* SPEC §2 */
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            ck[j] = ck[j] * r[j];
+        }
     }
-    gen_ok(g, g0, ok);
 }
 
 /* Fills the transposed normalised curves of every grid point with a
@@ -776,7 +797,7 @@ double bf__sum_weighted(size_t n, const double *c, const double *d,
 /* ==== evaluate-and-normalise (src/fit/engine.c) ========================= */
 
 /* Division by the maximum through its reciprocal, as the grid kernels
- * normalise a block (normalise_block): BF_EDOM when a value is not finite
+ * normalise a block (block_recip): BF_EDOM when a value is not finite
  * or the maximum is not positive. Vectorised: the sum of v - v is +0 when
  * every value is finite and NaN otherwise in any order, and the maximum
  * of finite values does not depend on the order, so the decision and the
@@ -829,16 +850,19 @@ typedef struct {
     size_t every;
 } erows_t;
 
-/* LSE of the CURVE_LANES grid points of one block (curves c[k *
- * CURVE_LANES + j], contiguous) against ns samples d[q]:
- * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
- * order with one fma per term, as score_tile forms it. When e is not
- * NULL, also the rows of e (see erows_t). */
+/* LSE of the CURVE_LANES grid points of one block (raw values c[k *
+ * CURVE_LANES + j], contiguous, normalised as they are read: c * rs[j],
+ * gen_block's product) against ns samples d[q]: lse[q * CURVE_LANES + j],
+ * each the sum of bf__sum_sq_diff in index order with one fma per term,
+ * as score_tile forms it. When e is not NULL, also the rows of e (see
+ * erows_t). Scaling here instead of in a pass of its own saves a read and
+ * a write of the block (which leaves the caches at large K). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline void score_stream(size_t ns, size_t n,
                                 const double *restrict c,
+                                const double *restrict rs,
                                 const double *const *d,
                                 double *restrict lse, erows_t *restrict e)
 {
@@ -873,7 +897,8 @@ static inline void score_stream(size_t ns, size_t n,
         for (q = 0; q < ns; q++) {
 #pragma omp simd simdlen(CURVE_LANES)
             for (j = 0; j < CURVE_LANES; j++) {
-                double r = ck[j] - x[q]; /* SPEC §7.3 */
+                /* the normalised value, SPEC §2 (gen_block's) */
+                double r = (ck[j] * rs[j]) - x[q]; /* SPEC §7.3 */
                 a[q][j] = fma(r, r, a[q][j]);
             }
         }
@@ -907,18 +932,20 @@ static inline void score_stream(size_t ns, size_t n,
 /* score_stream with the sample count a constant (its sums in registers). */
 BF__CLONES
 static void score_stream_wide(size_t n, const double *restrict c,
+                              const double *restrict rs,
                               const double *const *d, double *restrict lse,
                               erows_t *restrict e)
 {
-    score_stream(STREAM_SAMPLES, n, c, d, lse, e);
+    score_stream(STREAM_SAMPLES, n, c, rs, d, lse, e);
 }
 
 BF__CLONES
 static void score_stream_narrow(size_t n, const double *restrict c,
+                                const double *restrict rs,
                                 const double *const *d,
                                 double *restrict lse, erows_t *restrict e)
 {
-    score_stream(STREAM_SAMPLES_NARROW, n, c, d, lse, e);
+    score_stream(STREAM_SAMPLES_NARROW, n, c, rs, d, lse, e);
 }
 
 /* Samples per pass on this processor: STREAM_SAMPLES with AVX-512's 32
@@ -954,6 +981,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t *best)
 {
     double lse[STREAM_SAMPLES * CURVE_LANES];
+    double rs[CURVE_LANES]; /* the current block's reciprocal maxima */
     unsigned char ok[CURVE_LANES];
     double pen[CURVE_LANES];
     erows_t e;
@@ -993,7 +1021,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         best_lse[s] = INFINITY;
         best[s] = SIZE_MAX;
     }
-    gen_block(&g, n, 0, CURVE_LANES, c, ok);
+    gen_block_raw(&g, n, 0, CURVE_LANES, c, rs, ok);
     for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
         int more = pipe && g0 + CURVE_LANES < g.points;
         for (s = 0; s < CURVE_LANES; s++) {
@@ -1021,9 +1049,9 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             }
             e.first = s / ns; /* rows spread over the tiles */
             if (ns == STREAM_SAMPLES) {
-                score_stream_wide(n, c, d, lse, more ? &e : NULL);
+                score_stream_wide(n, c, rs, d, lse, more ? &e : NULL);
             } else {
-                score_stream_narrow(n, c, d, lse, more ? &e : NULL);
+                score_stream_narrow(n, c, rs, d, lse, more ? &e : NULL);
             }
             if (left > ns) {
                 left = ns;
@@ -1047,12 +1075,12 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         }
         if (more) { /* the next block is complete: normalise, swap */
             double *tmp = c;
-            normalise_block(n, CURVE_LANES, nxt, e.mx, e.nf, ok);
+            block_recip(e.mx, e.nf, rs, ok); /* scaled as it is read */
             gen_ok(&g, g0 + CURVE_LANES, ok);
             c = nxt;
             nxt = tmp;
         } else if (g0 + CURVE_LANES < g.points) {
-            gen_block(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, ok);
+            gen_block_raw(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, rs, ok);
         }
     }
     free(c < nxt ? c : nxt);
