@@ -331,7 +331,7 @@ int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid, double *cv);
 
 /* ======================================================================
- * --- scoring many weight vectors against stored curves (kernels.c) ---
+ * --- scoring many weight vectors against stored curves (weights.c) ---
  * ====================================================================== */
 
 /* S[b * cols + g] = sum_k w[b][k] c[k][g] (r_kg)^2, r = curve - data,
