@@ -132,29 +132,6 @@ void *bf__work_alloc(const bf__prep *pm)
     return w;
 }
 
-/* Division by the maximum through its reciprocal, as the grid kernels of
- * src/fit/kernels.c normalise a block: BF_EDOM when a value is not finite
- * or the maximum is not positive. */
-static int normalise_recip(size_t n, double *curve)
-{
-    double mx = -INFINITY;
-    double nf = 0.0;
-    double r;
-    size_t k;
-    for (k = 0; k < n; k++) {
-        nf += curve[k] - curve[k]; /* NaN once a value is not finite */
-        mx = curve[k] > mx ? curve[k] : mx;
-    }
-    if (!(nf == 0.0 && mx > 0.0)) {
-        return BF_EDOM;
-    }
-    r = 1.0 / mx;
-    for (k = 0; k < n; k++) {
-        curve[k] = curve[k] * r; /* SPEC §2 */
-    }
-    return BF_OK;
-}
-
 int bf__curve(const bf__prep *pm, const double *param, void *work,
               double *curve)
 {
@@ -166,7 +143,7 @@ int bf__curve(const bf__prep *pm, const double *param, void *work,
      * so a point's curve has the bits of the same grid point's; the others
      * as bf_normalise, the bits the paper's protocol has for them. */
     if (pm->kr->block != BF__BLOCK_NONE) {
-        return normalise_recip(pm->n, curve);
+        return bf__normalise_recip(pm->n, curve);
     }
     return bf_normalise(pm->n, curve, curve);
 }

@@ -133,6 +133,11 @@ void *bf__work_alloc(const bf__prep *pm);
  * when the model is undefined at a configuration or not normalisable. */
 int bf__curve(const bf__prep *pm, const double *param, void *work,
               double *curve);
+/* The normalisation of bf__curve for the block-kernel models (BK, LFTG):
+ * multiplied by the reciprocal of the maximum, as the grid kernels do
+ * (src/fit/kernels.c). BF_EDOM when a value is not finite or the maximum
+ * is not positive. */
+int bf__normalise_recip(size_t n, double *curve);
 
 /* ======================================================================
  * --- the kernels of the registry's models ---
@@ -326,7 +331,7 @@ int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid, double *cv);
 
 /* ======================================================================
- * --- scoring many weight vectors against stored curves (kernels.c) ---
+ * --- scoring many weight vectors against stored curves (weights.c) ---
  * ====================================================================== */
 
 /* S[b * cols + g] = sum_k w[b][k] c[k][g] (r_kg)^2, r = curve - data,
@@ -347,6 +352,15 @@ int bf__weights_argmin(size_t n, size_t cols, size_t stride,
                        size_t points, const double *data, const double *cw,
                        size_t n_w, const double *const *w, double *best_lse,
                        size_t *best);
+/* One tile of those sums (src/fit/weights.c): out[q * 8 + j] = sum_k
+ * w[q][k] rho[k * 128 + j] for 6 weight rows and 8 columns, one fma per
+ * term in index order, unless every candidate column's (cand[j] != 0)
+ * partial sum exceeds its row's bound[q] at a test (returns 0; NaN never
+ * does; else 1). generic: the portable C kernel instead of the
+ * processor's (the same bits; tests compare them). */
+int bf__weights_tile(int generic, size_t n, const double *rho,
+                     const double *const *w, const double *bound,
+                     const int *cand, double *out);
 
 /* ======================================================================
  * --- grids and the study path (grid.c, kernels.c) ---

@@ -211,6 +211,28 @@ size_t bf__bk_kwork(const bf_kernel *kr, size_t n)
                : 0;
 }
 
+/* bk_abc's a-terms in place of f2 = F_FC^2 (as[k]), vectorised: the same
+ * operations per configuration, so the same bits. Its b-terms depend on
+ * the geometry alone, checked once in the terms (bf__bk_kterms's flag, which
+ * every use of these terms is combined with). Returns 1 when every a is
+ * finite (a - a == 0). */
+BF__CLONES
+static int fc_a_terms(size_t n, int gauss, const double *restrict vz2,
+                      const double *restrict abs_vz, double *restrict as)
+{
+    int ok = 1;
+    size_t k;
+#pragma omp simd reduction(& : ok)
+    for (k = 0; k < n; k++) {
+        double f2 = as[k];
+        double a = gauss ? f2 / vz2[k] : f2 * abs_vz[k]; /* (P1), (P2) */
+        a = vz2[k] == 0.0 ? 0.0 : a; /* the limit 0, SPEC §3.3 */
+        as[k] = a;
+        ok &= (a - a) == 0.0;
+    }
+    return ok;
+}
+
 /* The a-terms of FC at index n_index (F_FC^2 of (P6), SPEC §4.2), as
  * bf__bk_terms_trig and the grid form them, from w's slots or into one;
  * *a points at them. Returns 0 when a term is not finite. */
@@ -220,7 +242,6 @@ static int fc_terms(const bf__prep *pm, double n_index, fc_work *w,
     size_t n = pm->n;
     const double *t = pm->terms;
     size_t slot;
-    size_t k;
     double *as;
     for (slot = 0; slot < FC_SLOTS; slot++) {
         if (w->used[slot] && w->n[slot] == n_index) {
@@ -233,14 +254,8 @@ static int fc_terms(const bf__prep *pm, double n_index, fc_work *w,
     as = w->a + slot * n;
     bf__fc2_values(n, t + T_SI * n, t + T_CI * n, t + T_SS * n, t + T_CS * n,
                    n_index, as);
-    w->ok[slot] = 1;
-    for (k = 0; k < n; k++) {
-        double b;
-        double c;
-        w->ok[slot] &= bk_abc(pm->kr->corr, as[k], t[T_VZ2 * n + k],
-                              t[T_VXY2 * n + k], t[T_AVZ * n + k], &as[k],
-                              &b, &c);
-    }
+    w->ok[slot] = fc_a_terms(n, pm->kr->corr == BF__BK_CORR_GAUSS,
+                             t + T_VZ2 * n, t + T_AVZ * n, as);
     w->used[slot] = 1;
     w->n[slot] = n_index;
     *a = as;
@@ -349,26 +364,18 @@ static int terms_alloc(terms_t *t, size_t n)
 
 /* ==== curve kernels ====================================================== */
 
-/* Normalises a block (SPEC §2) -- every value finite, maximum positive --
- * by one reciprocal per lane, and sets ok per lane. nf[j] is the sum of
- * v - v over the lane's values: 0 when all are finite, NaN otherwise. */
-static inline void normalise_block(size_t n, size_t stride,
-                                   double *restrict c, const double *mx,
-                                   const double *nf, unsigned char *ok)
+/* The normalisation of a block (SPEC §2) -- every value finite, maximum
+ * positive -- by one reciprocal per lane: r[j] = 1 / mx[j] and ok[j]. The
+ * normalised value is v * r[j] (gen_block stores it; the streaming scorer
+ * forms it as it reads v). nf[j] is the sum of v - v over the lane's
+ * values: 0 when all are finite, NaN otherwise. */
+static inline void block_recip(const double *mx, const double *nf,
+                               double *r, unsigned char *ok)
 {
-    double r[CURVE_LANES];
     size_t j;
-    size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
         r[j] = 1.0 / mx[j];
         ok[j] = (unsigned char)((nf[j] == 0.0) && (mx[j] > 0.0));
-    }
-    for (k = 0; k < n; k++) {
-        double *restrict ck = c + (k * stride);
-#pragma omp simd simdlen(CURVE_LANES)
-        for (j = 0; j < CURVE_LANES; j++) {
-            ck[j] = ck[j] * r[j]; /* SPEC §2 */
-        }
     }
 }
 
@@ -376,11 +383,12 @@ static inline void normalise_block(size_t n, size_t stride,
  * l = a exp(b / m^2), one multiply, one exp and one multiply per value. */
 BF__CLONES
 static void block_gauss(size_t n, const terms_t *t, const double *m,
-                        size_t stride, double *restrict c, unsigned char *ok)
+                        size_t stride, double *restrict c, double *mx_out,
+                        double *nf_out)
 {
-    double inv_m2[CURVE_LANES];
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
+    double inv_m2[CURVE_LANES];
     size_t j;
     size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
@@ -400,7 +408,8 @@ static void block_gauss(size_t n, const terms_t *t, const double *m,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* Exponential correlation (P2), SPEC §3.2, in bk.c's form:
@@ -408,11 +417,12 @@ static void block_gauss(size_t n, const terms_t *t, const double *m,
  * division per value). */
 BF__CLONES
 static void block_exp(size_t n, const terms_t *t, const double *m,
-                      size_t stride, double *restrict c, unsigned char *ok)
+                      size_t stride, double *restrict c, double *mx_out,
+                      double *nf_out)
 {
-    double m2[CURVE_LANES];
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
+    double m2[CURVE_LANES];
     size_t j;
     size_t k;
     for (j = 0; j < CURVE_LANES; j++) {
@@ -434,7 +444,8 @@ static void block_exp(size_t n, const terms_t *t, const double *m,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* LFTG (P7), SPEC §6: l = (cos ti cos ts)^n_d = exp(n_d L), L = ln(cos ti
@@ -447,7 +458,8 @@ static void block_exp(size_t n, const terms_t *t, const double *m,
  * normalised value v by at most a few v |n_d L| eps <= a few eps / e. */
 BF__CLONES
 static void block_lftg(size_t n, const terms_t *t, const double *n_d,
-                       size_t stride, double *restrict c, unsigned char *ok)
+                       size_t stride, double *restrict c, double *mx_out,
+                       double *nf_out)
 {
     double mx[CURVE_LANES];
     double nf[CURVE_LANES];
@@ -476,7 +488,8 @@ static void block_lftg(size_t n, const terms_t *t, const double *n_d,
             mx[j] = (v > mx[j]) ? v : mx[j];
         }
     }
-    normalise_block(n, stride, c, mx, nf, ok);
+    memcpy(mx_out, mx, sizeof mx);
+    memcpy(nf_out, nf, sizeof nf);
 }
 
 /* The factors exp(j step L_k) of block_lftg for j < CURVE_LANES. */
@@ -585,19 +598,42 @@ static void gen_ok(const gen_t *g, size_t g0, unsigned char *ok)
     }
 }
 
+/* The raw values (before the normalisation) of the block at g0 into c,
+ * with the reciprocals r[j] of the lanes' maxima and their flags ok[j]:
+ * the normalised curve is c[k * stride + j] * r[j] (the streaming scorer
+ * forms it as it reads c). */
+static void gen_block_raw(const gen_t *g, size_t n, size_t g0, size_t stride,
+                          double *c, double *r, unsigned char *ok)
+{
+    double x[CURVE_LANES];
+    double mx[CURVE_LANES];
+    double nf[CURVE_LANES];
+    gen_x(g, g0, x);
+    if (g->is_lftg) {
+        block_lftg(n, &g->t, x, stride, c, mx, nf);
+    } else if (g->corr == BF__BK_CORR_GAUSS) {
+        block_gauss(n, &g->t, x, stride, c, mx, nf);
+    } else {
+        block_exp(n, &g->t, x, stride, c, mx, nf);
+    }
+    block_recip(mx, nf, r, ok);
+    gen_ok(g, g0, ok);
+}
+
 static void gen_block(const gen_t *g, size_t n, size_t g0, size_t stride,
                       double *c, unsigned char *ok)
 {
-    double x[CURVE_LANES];
-    gen_x(g, g0, x);
-    if (g->is_lftg) {
-        block_lftg(n, &g->t, x, stride, c, ok);
-    } else if (g->corr == BF__BK_CORR_GAUSS) {
-        block_gauss(n, &g->t, x, stride, c, ok);
-    } else {
-        block_exp(n, &g->t, x, stride, c, ok);
+    double r[CURVE_LANES];
+    size_t j;
+    size_t k;
+    gen_block_raw(g, n, g0, stride, c, r, ok);
+    for (k = 0; k < n; k++) { /* SPEC §2 */
+        double *restrict ck = c + (k * stride);
+#pragma omp simd simdlen(CURVE_LANES)
+        for (j = 0; j < CURVE_LANES; j++) {
+            ck[j] = ck[j] * r[j];
+        }
     }
-    gen_ok(g, g0, ok);
 }
 
 /* Fills the transposed normalised curves of every grid point with a
@@ -758,360 +794,36 @@ double bf__sum_weighted(size_t n, const double *c, const double *d,
     return sum;
 }
 
-/* ==== many weight vectors against stored curves (bootstrap, CV) ========= */
+/* ==== evaluate-and-normalise (src/fit/engine.c) ========================= */
 
-/* Grid columns whose squared residuals are formed at once (in L2), lanes of
- * one accumulator block, weight vectors per tile: WTILE x WLANES
- * accumulators stay in registers (8 of AVX2's 16). */
-#define WSUPER 128
-#define WLANES 4
-#define WTILE 8
-
-/* acc[q][j] = sum_k w[q][k] rho[k * WSUPER + j] for WTILE weight rows,
- * one fma per term in index order. */
+/* Division by the maximum through its reciprocal, as the grid kernels
+ * normalise a block (block_recip): BF_EDOM when a value is not finite
+ * or the maximum is not positive. Vectorised: the sum of v - v is +0 when
+ * every value is finite and NaN otherwise in any order, and the maximum
+ * of finite values does not depend on the order, so the decision and the
+ * bits are those of the loop in index order. */
 BF__CLONES
-static void weights_tile(size_t n, const double *restrict rho,
-                         const double *const *w, double *restrict out,
-                         size_t out_stride)
+int bf__normalise_recip(size_t n, double *curve)
 {
-    double acc[WTILE][WLANES];
-    const double *restrict w0 = w[0];
-    const double *restrict w1 = w[1];
-    const double *restrict w2 = w[2];
-    const double *restrict w3 = w[3];
-    const double *restrict w4 = w[4];
-    const double *restrict w5 = w[5];
-    const double *restrict w6 = w[6];
-    const double *restrict w7 = w[7];
-    size_t j;
+    double mx = -INFINITY;
+    double nf = 0.0;
+    double r;
     size_t k;
-    size_t q;
-    for (q = 0; q < WTILE; q++) {
-        for (j = 0; j < WLANES; j++) {
-            acc[q][j] = 0.0;
-        }
-    }
+#pragma omp simd reduction(max : mx) reduction(+ : nf)
     for (k = 0; k < n; k++) {
-        const double *restrict rk = rho + (k * WSUPER);
+        double v = curve[k];
+        nf += v - v; /* NaN once a value is not finite */
+        mx = v > mx ? v : mx;
+    }
+    if (!(nf == 0.0 && mx > 0.0)) {
+        return BF_EDOM;
+    }
+    r = 1.0 / mx;
 #pragma omp simd
-        for (j = 0; j < WLANES; j++) {
-            double r = rk[j];
-            acc[0][j] = fma(w0[k], r, acc[0][j]);
-            acc[1][j] = fma(w1[k], r, acc[1][j]);
-            acc[2][j] = fma(w2[k], r, acc[2][j]);
-            acc[3][j] = fma(w3[k], r, acc[3][j]);
-            acc[4][j] = fma(w4[k], r, acc[4][j]);
-            acc[5][j] = fma(w5[k], r, acc[5][j]);
-            acc[6][j] = fma(w6[k], r, acc[6][j]);
-            acc[7][j] = fma(w7[k], r, acc[7][j]);
-        }
-    }
-    for (q = 0; q < WTILE; q++) {
-        for (j = 0; j < WLANES; j++) {
-            out[(q * out_stride) + j] = acc[q][j];
-        }
-    }
-}
-
-/* rho[k * WSUPER + j] = cw_k (c[k][g0 + j] - d_k)^2, j < WSUPER. */
-BF__CLONES
-static void squared_residuals(size_t n, size_t stride,
-                              const double *restrict c,
-                              const double *restrict d,
-                              const double *restrict cw,
-                              double *restrict rho)
-{
-    size_t j;
-    size_t k;
     for (k = 0; k < n; k++) {
-        const double *restrict ck = c + (k * stride);
-        double dk = d[k];
-        double f = cw != NULL ? cw[k] : 1.0;
-#pragma omp simd
-        for (j = 0; j < WSUPER; j++) {
-            double r = ck[j] - dk;
-            rho[(k * WSUPER) + j] = f * (r * r);
-        }
+        curve[k] = curve[k] * r; /* SPEC §2 */
     }
-}
-
-/* rho for the super-block of columns g0 .. g0 + width (a padded copy when
- * width < WSUPER: the columns past the grid score 0 - d_k). */
-static void super_rho(size_t n, size_t stride, const double *curves,
-                      const double *data, const double *cw, size_t g0,
-                      size_t width, double *rho)
-{
-    size_t k;
-    size_t j;
-    if (width == WSUPER) {
-        squared_residuals(n, stride, curves + g0, data, cw, rho);
-        return;
-    }
-    for (k = 0; k < n; k++) {
-        for (j = 0; j < WSUPER; j++) {
-            double r = (j < width ? curves[k * stride + g0 + j] : 0.0) -
-                       data[k];
-            rho[k * WSUPER + j] = (cw != NULL ? cw[k] : 1.0) * (r * r);
-        }
-    }
-}
-
-/* The WTILE weight rows of tile b (the last repeated past n_w; NULL rows
- * are ones); returns how many are real. */
-static size_t tile_rows(size_t n_w, const double *const *w, size_t b,
-                        const double *ones, const double **wt)
-{
-    size_t left = n_w - b < WTILE ? n_w - b : WTILE;
-    size_t q;
-    for (q = 0; q < WTILE; q++) {
-        const double *row = w[b + (q < left ? q : left - 1)];
-        wt[q] = row != NULL ? row : ones;
-    }
-    return left;
-}
-
-/* What one pass of the weights kernel does with the sums of a tile:
- * tmp[q * WLANES + j] of weight vector b + q (q < left) at column g0 + j. */
-typedef struct {
-    void (*sink)(void *ctx, size_t b, size_t left, size_t g0,
-                 const double *tmp);
-    void *ctx;
-    size_t limit; /* columns scored: < limit (the rest is padding) */
-} weights_sink;
-
-/* The one pass over the curves for n_w weight vectors: each super-block's
- * squared residuals once, every tile of weight vectors against them. 1
- * when done, 0 when out of memory. */
-static int weights_pass(size_t n, size_t cols, size_t stride,
-                        const double *curves, const double *data,
-                        const double *cw, size_t n_w, const double *const *w,
-                        const weights_sink *out)
-{
-    double *rho = aligned_alloc(64, n * WSUPER * sizeof *rho);
-    double *ones = malloc(n * sizeof *ones);
-    double tmp[WTILE * WLANES];
-    size_t g0;
-    size_t k;
-    if (rho == NULL || ones == NULL) {
-        free(rho);
-        free(ones);
-        return 0;
-    }
-    for (k = 0; k < n; k++) {
-        ones[k] = 1.0;
-    }
-    for (g0 = 0; g0 < cols; g0 += WSUPER) {
-        size_t width = cols - g0 < WSUPER ? cols - g0 : WSUPER;
-        size_t b;
-        super_rho(n, stride, curves, data, cw, g0, width, rho);
-        for (b = 0; b < n_w; b += WTILE) {
-            const double *wt[WTILE];
-            size_t left = tile_rows(n_w, w, b, ones, wt);
-            size_t j0;
-            for (j0 = 0; j0 < width && g0 + j0 < out->limit; j0 += WLANES) {
-                weights_tile(n, rho + j0, wt, tmp, WLANES);
-                out->sink(out->ctx, b, left, g0 + j0, tmp);
-            }
-        }
-    }
-    free(rho);
-    free(ones);
-    return 1;
-}
-
-typedef struct {
-    double *lse;
-    size_t cols;
-} store_ctx;
-
-static void store_sums(void *ctx, size_t b, size_t left, size_t g0,
-                       const double *tmp)
-{
-    const store_ctx *c = ctx;
-    size_t q;
-    for (q = 0; q < left; q++) {
-        memcpy(c->lse + ((b + q) * c->cols) + g0, tmp + (q * WLANES),
-               WLANES * sizeof *tmp);
-    }
-}
-
-void bf__score_weights(size_t n, size_t cols, size_t stride,
-                       const double *curves, const double *data,
-                       const double *cw, size_t n_w, const double *const *w,
-                       double *lse)
-{
-    store_ctx c = {lse, cols};
-    weights_sink out = {store_sums, &c, cols};
-    size_t g;
-    if (!weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)) {
-        for (g = 0; g < n_w * cols; g++) {
-            lse[g] = NAN; /* never a grid optimum */
-        }
-    }
-}
-
-typedef struct {
-    const unsigned char *ok;
-    size_t points;
-    double *best_lse;
-    size_t *best;
-} argmin_ctx;
-
-/* bf__argmin's choice: index order, strict <, defined points only. */
-static void keep_best(void *ctx, size_t b, size_t left, size_t g0,
-                      const double *tmp)
-{
-    const argmin_ctx *c = ctx;
-    size_t q;
-    size_t j;
-    for (q = 0; q < left; q++) {
-        for (j = 0; j < WLANES; j++) {
-            size_t g = g0 + j;
-            if (g < c->points && c->ok[g] &&
-                tmp[q * WLANES + j] < c->best_lse[b + q]) {
-                c->best_lse[b + q] = tmp[q * WLANES + j];
-                c->best[b + q] = g;
-            }
-        }
-    }
-}
-
-int bf__weights_argmin(size_t n, size_t cols, size_t stride,
-                       const double *curves, const unsigned char *ok,
-                       size_t points, const double *data, const double *cw,
-                       size_t n_w, const double *const *w, double *best_lse,
-                       size_t *best)
-{
-    argmin_ctx c = {ok, points, best_lse, best};
-    weights_sink out = {keep_best, &c, points};
-    size_t b;
-    for (b = 0; b < n_w; b++) {
-        best_lse[b] = INFINITY;
-        best[b] = SIZE_MAX;
-    }
-    return weights_pass(n, cols, stride, curves, data, cw, n_w, w, &out)
-               ? BF_OK
-               : BF_ENOMEM;
-}
-
-/* The full-data LSE and every fold's training LSE of one 16-lane block:
- * full[j] = sum_k rho_kj in index order (the weights kernel's sum for
- * weights 1, the same bits), held[f][j] = sum over the configurations of
- * fold f, so that fold f's training sum is full - held[f]. */
-BF__CLONES
-static void folds_block(size_t n, size_t stride, const double *restrict c,
-                        const double *restrict d, const double *restrict cw,
-                        const size_t *restrict fold, size_t folds,
-                        double *restrict full, double *restrict held)
-{
-    double acc[WLANES];
-    size_t f;
-    size_t j;
-    size_t k;
-    for (j = 0; j < WLANES; j++) {
-        acc[j] = 0.0;
-    }
-    for (f = 0; f < (folds > 0 ? folds : 1) * WLANES; f++) {
-        held[f] = 0.0;
-    }
-    for (k = 0; k < n; k++) {
-        const double *restrict ck = c + (k * stride);
-        /* without folds the sums go to a scratch row nobody reads */
-        double *restrict hk = held + ((folds > 0 ? fold[k] : 0) * WLANES);
-        double dk = d[k];
-        double fk = cw != NULL ? cw[k] : 1.0;
-#pragma omp simd
-        for (j = 0; j < WLANES; j++) {
-            double r = ck[j] - dk;
-            double rho = fk * (r * r);
-            acc[j] = acc[j] + rho;
-            hk[j] = hk[j] + rho;
-        }
-    }
-    for (j = 0; j < WLANES; j++) {
-        full[j] = acc[j];
-    }
-}
-
-void bf__score_folds(size_t n, size_t cols, size_t stride,
-                     const double *curves, const double *data,
-                     const double *cw, const size_t *fold, size_t folds,
-                     double *lse)
-{
-    double *held = malloc((folds + 1) * WLANES * sizeof *held);
-    size_t g0;
-    size_t f;
-    size_t j;
-    if (held == NULL) {
-        for (g0 = 0; g0 < (folds + 1) * cols; g0++) {
-            lse[g0] = NAN; /* never a grid optimum */
-        }
-        return;
-    }
-    for (g0 = 0; g0 < cols; g0 += WLANES) {
-        folds_block(n, stride, curves + g0, data, cw, fold, folds,
-                    lse + g0, held);
-        for (f = 0; f < folds; f++) { /* training: all but the fold */
-            for (j = 0; j < WLANES; j++) {
-                lse[(f + 1) * cols + g0 + j] =
-                    lse[g0 + j] - held[f * WLANES + j];
-            }
-        }
-    }
-    free(held);
-}
-
-/* Running grid optima of many data vectors and their folds: for each
- * 16-lane block of stored curves (in L1) every data vector's full and
- * training sums (folds_block), the smallest defined value of each and its
- * first index (strict <, in index order: bf__argmin's result). */
-void bf__folds_argmin(size_t n, size_t cols, size_t stride,
-                      const double *curves, const unsigned char *ok,
-                      size_t points, size_t n_data, const double *const *data,
-                      const double *cw, const size_t *fold, size_t folds,
-                      double *best_lse, size_t *best)
-{
-    double *held = malloc((folds + 1) * WLANES * sizeof *held);
-    double full[WLANES];
-    size_t per = folds + 1;
-    size_t g0;
-    size_t q;
-    size_t f;
-    size_t j;
-    (void)cols; /* >= points rounded up to WLANES: blocks read padding */
-    for (q = 0; q < n_data * per; q++) {
-        best_lse[q] = INFINITY;
-        best[q] = SIZE_MAX;
-    }
-    if (held == NULL) {
-        return; /* no optimum: the callers report BF_ENOMEM */
-    }
-    for (g0 = 0; g0 < points; g0 += WLANES) {
-        size_t width = points - g0 < WLANES ? points - g0 : WLANES;
-        for (q = 0; q < n_data; q++) {
-            double *bl = best_lse + q * per;
-            size_t *bi = best + q * per;
-            folds_block(n, stride, curves + g0, data[q], cw, fold, folds,
-                        full, held);
-            for (j = 0; j < width; j++) {
-                if (!ok[g0 + j]) {
-                    continue;
-                }
-                if (full[j] < bl[0]) {
-                    bl[0] = full[j];
-                    bi[0] = g0 + j;
-                }
-                for (f = 0; f < folds; f++) {
-                    double v = full[j] - held[f * WLANES + j];
-                    if (v < bl[1 + f]) {
-                        bl[1 + f] = v;
-                        bi[1 + f] = g0 + j;
-                    }
-                }
-            }
-        }
-    }
-    free(held);
+    return BF_OK;
 }
 
 /* ==== streaming: curves of one block, scored at once (the study) ======== */
@@ -1138,16 +850,19 @@ typedef struct {
     size_t every;
 } erows_t;
 
-/* LSE of the CURVE_LANES grid points of one block (curves c[k *
- * CURVE_LANES + j], contiguous) against ns samples d[q]:
- * lse[q * CURVE_LANES + j], each the sum of bf__sum_sq_diff in index
- * order with one fma per term, as score_tile forms it. When e is not
- * NULL, also the rows of e (see erows_t). */
+/* LSE of the CURVE_LANES grid points of one block (raw values c[k *
+ * CURVE_LANES + j], contiguous, normalised as they are read: c * rs[j],
+ * gen_block's product) against ns samples d[q]: lse[q * CURVE_LANES + j],
+ * each the sum of bf__sum_sq_diff in index order with one fma per term,
+ * as score_tile forms it. When e is not NULL, also the rows of e (see
+ * erows_t). Scaling here instead of in a pass of its own saves a read and
+ * a write of the block (which leaves the caches at large K). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline void score_stream(size_t ns, size_t n,
                                 const double *restrict c,
+                                const double *restrict rs,
                                 const double *const *d,
                                 double *restrict lse, erows_t *restrict e)
 {
@@ -1182,7 +897,8 @@ static inline void score_stream(size_t ns, size_t n,
         for (q = 0; q < ns; q++) {
 #pragma omp simd simdlen(CURVE_LANES)
             for (j = 0; j < CURVE_LANES; j++) {
-                double r = ck[j] - x[q]; /* SPEC §7.3 */
+                /* the normalised value, SPEC §2 (gen_block's) */
+                double r = (ck[j] * rs[j]) - x[q]; /* SPEC §7.3 */
                 a[q][j] = fma(r, r, a[q][j]);
             }
         }
@@ -1216,18 +932,20 @@ static inline void score_stream(size_t ns, size_t n,
 /* score_stream with the sample count a constant (its sums in registers). */
 BF__CLONES
 static void score_stream_wide(size_t n, const double *restrict c,
+                              const double *restrict rs,
                               const double *const *d, double *restrict lse,
                               erows_t *restrict e)
 {
-    score_stream(STREAM_SAMPLES, n, c, d, lse, e);
+    score_stream(STREAM_SAMPLES, n, c, rs, d, lse, e);
 }
 
 BF__CLONES
 static void score_stream_narrow(size_t n, const double *restrict c,
+                                const double *restrict rs,
                                 const double *const *d,
                                 double *restrict lse, erows_t *restrict e)
 {
-    score_stream(STREAM_SAMPLES_NARROW, n, c, d, lse, e);
+    score_stream(STREAM_SAMPLES_NARROW, n, c, rs, d, lse, e);
 }
 
 /* Samples per pass on this processor: STREAM_SAMPLES with AVX-512's 32
@@ -1263,6 +981,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
                     size_t *best)
 {
     double lse[STREAM_SAMPLES * CURVE_LANES];
+    double rs[CURVE_LANES]; /* the current block's reciprocal maxima */
     unsigned char ok[CURVE_LANES];
     double pen[CURVE_LANES];
     erows_t e;
@@ -1302,7 +1021,7 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         best_lse[s] = INFINITY;
         best[s] = SIZE_MAX;
     }
-    gen_block(&g, n, 0, CURVE_LANES, c, ok);
+    gen_block_raw(&g, n, 0, CURVE_LANES, c, rs, ok);
     for (g0 = 0; g0 < g.points; g0 += CURVE_LANES) {
         int more = pipe && g0 + CURVE_LANES < g.points;
         for (s = 0; s < CURVE_LANES; s++) {
@@ -1330,9 +1049,9 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
             }
             e.first = s / ns; /* rows spread over the tiles */
             if (ns == STREAM_SAMPLES) {
-                score_stream_wide(n, c, d, lse, more ? &e : NULL);
+                score_stream_wide(n, c, rs, d, lse, more ? &e : NULL);
             } else {
-                score_stream_narrow(n, c, d, lse, more ? &e : NULL);
+                score_stream_narrow(n, c, rs, d, lse, more ? &e : NULL);
             }
             if (left > ns) {
                 left = ns;
@@ -1356,12 +1075,12 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
         }
         if (more) { /* the next block is complete: normalise, swap */
             double *tmp = c;
-            normalise_block(n, CURVE_LANES, nxt, e.mx, e.nf, ok);
+            block_recip(e.mx, e.nf, rs, ok); /* scaled as it is read */
             gen_ok(&g, g0 + CURVE_LANES, ok);
             c = nxt;
             nxt = tmp;
         } else if (g0 + CURVE_LANES < g.points) {
-            gen_block(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, ok);
+            gen_block_raw(&g, n, g0 + CURVE_LANES, CURVE_LANES, c, rs, ok);
         }
     }
     free(c < nxt ? c : nxt);

@@ -8,25 +8,32 @@
 
 #include "internal.h"
 
+BF__CLONES
 int bf_normalise(size_t n, const double *in, double *out)
 {
     double max = -INFINITY;
+    double nf = 0.0;
     size_t k;
 
     if (n == 0 || in == NULL || out == NULL) {
         return BF_EINVAL;
     }
+    /* vectorised: the sum of v - v is +0 when every value is finite and
+     * NaN otherwise, in any order; the maximum of finite values does not
+     * depend on the order */
+#pragma omp simd reduction(max : max) reduction(+ : nf)
     for (k = 0; k < n; k++) {
-        if (!isfinite(in[k])) {
-            return BF_EDOM;
-        }
-        if (in[k] > max) {
-            max = in[k];
-        }
+        double v = in[k];
+        nf += v - v;
+        max = v > max ? v : max;
+    }
+    if (nf != 0.0) {
+        return BF_EDOM; /* a value is not finite */
     }
     if (!(max > 0.0)) { /* SPEC §2: a non-positive maximum cannot normalise */
         return BF_EDOM;
     }
+#pragma omp simd
     for (k = 0; k < n; k++) {
         out[k] = in[k] / max;
     }

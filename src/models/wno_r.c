@@ -393,7 +393,7 @@ static int n_panel(double n, double *lo, double *hi, size_t *deg)
 
 typedef struct {
     int built[WNOR_NPANEL];   /* published with an atomic write */
-    double *coef[WNOR_NPANEL]; /* (deg + 1) x WNOR_NT x K, degree-major */
+    double *coef[WNOR_NPANEL]; /* blocks of (deg + 1) x WNOR_EB */
 } wnor_tables;
 
 static int wnor_prepare(bf__prep *pm)
@@ -434,21 +434,36 @@ static void exact_sums(const bf__prep *pm, double n_index, double *b)
     }
 }
 
+/* Elements (ring sums) per block of a panel's table: each block holds its
+ * coefficients of every degree together, highest degree first, c[(blk *
+ * (deg + 1) + deg - d) * EB + j], so that series_sums reads one ascending
+ * stream and keeps a block's sums in registers over the degrees. */
+#define WNOR_EB 32
+
+/* Blocks of a table of m elements. */
+static size_t table_blocks(size_t m)
+{
+    return (m + WNOR_EB - 1) / WNOR_EB;
+}
+
 /* Builds panel p's table: the exact sums at its deg + 1 Chebyshev nodes,
  * then c_d = (2 - [d = 0]) / (deg + 1) sum_j B(n_j) cos(pi d (j + 1/2) /
- * (deg + 1)). NULL when out of memory. */
+ * (deg + 1)), stored by blocks (WNOR_EB; the last one padded with 0).
+ * NULL when out of memory. */
 static double *build_panel(const bf__prep *pm, double lo, double hi,
                            size_t deg)
 {
     size_t m = WNOR_NT * pm->n;
     size_t nodes = deg + 1;
     double *vals = malloc(nodes * m * sizeof *vals);
-    double *coef = calloc(nodes * m, sizeof *coef);
+    double *cd = calloc(m, sizeof *cd);
+    double *coef = calloc(table_blocks(m) * nodes * WNOR_EB, sizeof *coef);
     size_t j;
     size_t d;
     size_t e;
-    if (vals == NULL || coef == NULL) {
+    if (vals == NULL || cd == NULL || coef == NULL) {
         free(vals);
+        free(cd);
         free(coef);
         return NULL;
     }
@@ -458,7 +473,7 @@ static double *build_panel(const bf__prep *pm, double lo, double hi,
     }
     for (d = 0; d < nodes; d++) {
         double f = (d == 0 ? 1.0 : 2.0) / (double)nodes;
-        double *cd = coef + d * m;
+        memset(cd, 0, m * sizeof *cd);
         for (j = 0; j < nodes; j++) {
             double w = f * cos(BF__PI * (double)d * ((double)j + 0.5) /
                                (double)nodes);
@@ -467,8 +482,13 @@ static double *build_panel(const bf__prep *pm, double lo, double hi,
                 cd[e] += w * vj[e];
             }
         }
+        for (e = 0; e < m; e++) {
+            coef[((e / WNOR_EB) * nodes + (deg - d)) * WNOR_EB +
+                 e % WNOR_EB] = cd[e];
+        }
     }
     free(vals);
+    free(cd);
     return coef;
 }
 
@@ -500,50 +520,83 @@ static const double *panel_table(const bf__prep *pm, int p, double lo,
 
 /* The ring sums at n from panel table c (degree deg, on [lo, hi]): the
  * Chebyshev series sum_d c_d T_d(y), y the position in the panel, added
- * from the highest degree down. */
+ * from the highest degree down (b = 0, then b += c_d T_d), one block of
+ * WNOR_EB sums at a time. */
 BF__CLONES
 static void series_sums(const double *restrict c, size_t m, size_t deg,
                         double y, double *restrict b)
 {
     double tdeg[WNOR_DEG_MAX + 1];
+    size_t nodes = deg + 1;
+    size_t blk;
     size_t d;
-    size_t e;
+    size_t j;
     tdeg[0] = 1.0;
     tdeg[1] = y;
     for (d = 2; d <= deg; d++) {
         tdeg[d] = 2.0 * y * tdeg[d - 1] - tdeg[d - 2]; /* T_d(y) */
     }
-    for (e = 0; e < m; e++) {
-        b[e] = 0.0;
-    }
-    for (d = deg + 1; d-- > 0;) {
-        const double *restrict cd = c + d * m;
-        double td = tdeg[d];
+    for (blk = 0; blk < table_blocks(m); blk++) {
+        const double *restrict cb = c + blk * nodes * WNOR_EB;
+        size_t width = m - blk * WNOR_EB < WNOR_EB ? m - blk * WNOR_EB
+                                                   : WNOR_EB;
+        double acc[WNOR_EB];
 #pragma omp simd
-        for (e = 0; e < m; e++) {
-            b[e] += cd[e] * td;
+        for (j = 0; j < WNOR_EB; j++) {
+            acc[j] = 0.0 + cb[j] * tdeg[deg]; /* b = 0, b += c_deg T_deg */
+        }
+        for (d = deg; d-- > 0;) {
+            const double *restrict cd = cb + (deg - d) * WNOR_EB;
+            double td = tdeg[d];
+#pragma omp simd
+            for (j = 0; j < WNOR_EB; j++) {
+                acc[j] += cd[j] * td;
+            }
+        }
+        if (width == WNOR_EB) {
+#pragma omp simd
+            for (j = 0; j < WNOR_EB; j++) {
+                b[blk * WNOR_EB + j] = acc[j];
+            }
+        } else {
+            for (j = 0; j < width; j++) {
+                b[blk * WNOR_EB + j] = acc[j];
+            }
         }
     }
 }
 
-/* The workspace: the ring sums of the last WNOR_SLOTS indices n (ring-
- * major rows of the configurations, b[i * K + k]) and the weights of the
- * last sigma. A slot's content is a function of its n alone, so hits and
- * misses give the same bits. */
-#define WNOR_SLOTS 2
+/* The workspace: the ring sums of the most recently used indices n (ring-
+ * major rows of the configurations, b[i * K + k]; up to WNOR_SLOTS of
+ * them, fewer for large K: slots()) and the weights of the last sigma. A
+ * refinement comes back to the same few n -- its start, the grid values
+ * either side, the bound -- replicate after replicate, so the least
+ * recently used slot is the one replaced. A slot's content is a function
+ * of its n alone, so hits and misses give the same bits. */
+#define WNOR_SLOTS 8
+#define WNOR_SLOT_BYTES (4u << 20) /* all slots of a workspace, at most */
 typedef struct {
     double sigma;             /* the weights' sigma (0: none yet) */
     double c[WNOR_NT];
     double n[WNOR_SLOTS];
-    int used[WNOR_SLOTS];
-    size_t next;
-    double b[];               /* WNOR_SLOTS x WNOR_NT x K */
+    unsigned long last[WNOR_SLOTS]; /* use stamp, 0: empty */
+    unsigned long clock;
+    double b[];               /* slots(K) x WNOR_NT x K */
 } wnor_work;
+
+/* Slots of a workspace on n configurations: as many as fit
+ * WNOR_SLOT_BYTES, between 2 and WNOR_SLOTS. */
+static size_t slots(size_t n)
+{
+    size_t per = WNOR_NT * n * sizeof(double);
+    size_t s = WNOR_SLOT_BYTES / per;
+    return s < 2 ? 2 : (s > WNOR_SLOTS ? WNOR_SLOTS : s);
+}
 
 static size_t wnor_work_bytes(const bf_kernel *kr, size_t n)
 {
     (void)kr;
-    return sizeof(wnor_work) + WNOR_SLOTS * WNOR_NT * n * sizeof(double);
+    return sizeof(wnor_work) + slots(n) * WNOR_NT * n * sizeof(double);
 }
 
 /* The ring sums of every configuration at index n_index: from its panel's
@@ -552,18 +605,22 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
                                wnor_work *w)
 {
     size_t n = pm->n;
+    size_t count = slots(n);
     size_t slot;
+    size_t old = 0;
     double lo;
     double hi;
     size_t deg;
     int p;
     double *b;
-    for (slot = 0; slot < WNOR_SLOTS; slot++) {
-        if (w->used[slot] && w->n[slot] == n_index) {
+    for (slot = 0; slot < count; slot++) {
+        if (w->last[slot] != 0 && w->n[slot] == n_index) {
+            w->last[slot] = ++w->clock;
             return w->b + slot * WNOR_NT * n;
         }
+        old = w->last[slot] < w->last[old] ? slot : old;
     }
-    slot = w->next;
+    slot = old; /* the least recently used (or an empty one) */
     b = w->b + slot * WNOR_NT * n;
     p = n_panel(n_index, &lo, &hi, &deg);
     if (p < 0) {
@@ -576,11 +633,13 @@ static const double *wnor_sums(const bf__prep *pm, double n_index,
         series_sums(c, WNOR_NT * n, deg, (2.0 * n_index - lo - hi) / (hi - lo),
                     b);
     }
-    w->next = (w->next + 1) % WNOR_SLOTS;
-    w->used[slot] = 1;
+    w->last[slot] = ++w->clock;
     w->n[slot] = n_index;
     return b;
 }
+
+/* Configurations whose values wnor_values sums at once (in registers). */
+#define WNOR_KB 32
 
 /* The values of eval_wnor from the terms: the rings' sums at n (cached),
  * their weights at sigma (cached), one pass over the rings. */
@@ -595,6 +654,7 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
     const double *b;
     size_t i;
     size_t k;
+    size_t k0;
     if (param[0] == 0.0) { /* level facets: WNO, [2], (P6) */
         bf__fc2_values(n, t + R_SI * n, t + R_CI * n, t + R_SS * n,
                        t + R_CS * n, param[1], out);
@@ -611,15 +671,30 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
         wnor_weights(r, param[0], w->c);
         w->sigma = param[0];
     }
-    for (k = 0; k < n; k++) {
-        out[k] = 0.0;
-    }
-    for (i = 0; i < WNOR_NT; i++) { /* the same order as wnor_combine */
-        const double *bi = b + i * n;
-        double ci = w->c[i];
+    for (k0 = 0; k0 < n; k0 += WNOR_KB) { /* wnor_combine's order */
+        double acc[WNOR_KB];
+        size_t width = n - k0 < WNOR_KB ? n - k0 : WNOR_KB;
+        if (width < WNOR_KB) {
+            for (k = 0; k < width; k++) {
+                out[k0 + k] = wnor_combine(w->c, b + k0 + k, n);
+            }
+            break;
+        }
 #pragma omp simd
-        for (k = 0; k < n; k++) {
-            out[k] += ci * bi[k];
+        for (k = 0; k < WNOR_KB; k++) {
+            acc[k] = 0.0 + w->c[0] * b[k0 + k]; /* s = 0, s += c_0 B_0 */
+        }
+        for (i = 1; i < WNOR_NT; i++) {
+            const double *restrict bi = b + i * n + k0;
+            double ci = w->c[i];
+#pragma omp simd
+            for (k = 0; k < WNOR_KB; k++) {
+                acc[k] += ci * bi[k];
+            }
+        }
+#pragma omp simd
+        for (k = 0; k < WNOR_KB; k++) {
+            out[k0 + k] = acc[k];
         }
     }
     return BF_OK;
