@@ -13,7 +13,7 @@
  *     Model curves do not depend on the sample, so the study's cost falls
  *     from samples x grid x K model evaluations to grid x K. bf_study_run
  *     does the same without storing them (bf__stream_fast in kernels.c:
- *     16 grid points at a time, scored at once, same kernels and sums,
+ *     8 grid points at a time, scored at once, same kernels and sums,
  *     same bits); models without a kernel go through bf_grid.
  * Both form LSE = sum_k (L_k / max L - D_k)^2 in index order. The plain
  * path is the reference; the study path's vector kernels
