@@ -38,7 +38,14 @@
 # valgrind. inputs/every_cornell_file... runs compare, report --stats and
 # rank on the five Cornell files (1379 configurations each); the same
 # commands run under valgrind on smaller data in test_cli_inputs' other
-# tests and in test_cmd_report.
+# tests and in test_cmd_report; so do those of inputs/channel_each... (31
+# channels) and inputs/cornell_as_brdf_csv_and_astm... (three --stats runs
+# on 1379 configurations). The repeated runs that compare outputs
+# (report/gives_the_same_files..., report/gives_byte_identical...,
+# cli/thread_count...) run code that the other tests of their files run
+# once under valgrind; cli/all_61_samples... fits every model to every
+# sample (WNO-R's quadrature included), code test_cli's smaller runs and
+# test_wno_r cover.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -71,7 +78,13 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     degrees/the_writer_uses_the_fewest_digits
     convert/cornell_files_as_csv_read_back_identically
     convert/cornell_files_as_astm_read_back_identically
-    inputs/every_cornell_file_runs_through_compare_report_and_rank"}
+    inputs/every_cornell_file_runs_through_compare_report_and_rank
+    inputs/channel_each_gives_one_set_of_rows_per_wavelength
+    inputs/cornell_as_brdf_csv_and_astm_gives_identical_fits
+    report/gives_the_same_files_for_one_and_two_drawing_processes
+    report/gives_byte_identical_outputs_when_run_twice
+    cli/thread_count_does_not_change_the_outputs
+    cli/all_61_samples_give_finite_results_for_every_model"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
