@@ -125,25 +125,15 @@ run_one() {
     fi
 }
 
-# JOBS at a time: start one, and wait for the oldest when JOBS run.
-pids=""
-n=0
+# JOBS at a time, each started as soon as one ends (xargs -P), each one by
+# this script again (BF_VALGRIND_ONE=1: run_one of its third argument).
+if [ "${BF_VALGRIND_ONE:-}" = 1 ]; then
+    run_one "$3"
+    exit 0
+fi
 for exe in "$build"/tests/test_*; do
-    [ -x "$exe" ] || continue
-    run_one "$exe" &
-    pids="$pids $!"
-    n=$((n + 1))
-    if [ "$n" -ge "$jobs" ]; then
-        set -- $pids
-        wait "$1" || true
-        shift
-        pids="$*"
-        n=$((n - 1))
-    fi
-done
-for p in $pids; do
-    wait "$p" || true
-done
+    [ -x "$exe" ] && printf '%s\n' "$exe"
+done | BF_VALGRIND_ONE=1 xargs -P "$jobs" -I{} sh "$0" "$build" 1 {} || true
 
 status=0
 for exe in "$build"/tests/test_*; do
