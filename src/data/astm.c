@@ -370,18 +370,11 @@ static int detect(const char *text, size_t n)
     return 0;
 }
 
-static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
-                bf_error *err)
-{
-    (void)opts;
-    return bf_astm_load(path, out, err);
-}
-
 const bf__reader bf__astm_reader = {
     .name = "astm",
     .title = "ASTM",
     .detect = detect,
     .rank = BF__RANK_KEYWORD,
     .miss = "not ASTM (no NUM_POINTS or VARS header)",
-    .load = load,
+    .read = bf_astm_read,
 };

@@ -716,18 +716,11 @@ static int detect(const char *text, size_t n)
            is_header(line, len);
 }
 
-static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
-                bf_error *err)
-{
-    (void)opts;
-    return bf_csv_load(path, out, err);
-}
-
 const bf__reader bf__csv_reader = {
     .name = "csv",
     .title = "tidy CSV",
     .detect = detect,
     .rank = BF__RANK_HEADER,
     .miss = "not tidy CSV (no header theta_i,phi_i,theta_o,phi_o)",
-    .load = load,
+    .read = bf_csv_read,
 };

@@ -345,7 +345,8 @@ int bf_dataset_load(const char *path, const bf_load_opts *opts,
                              bf_format_name(f) != NULL ? bf_format_name(f)
                                                        : "?");
     }
-    return r->load(path, opts, out, err);
+    return r->load != NULL ? r->load(path, opts, out, err)
+                           : bf__load_dataset(path, r->read, out, err);
 }
 
 /* ==== the one-material dataset of the readers ==== */

@@ -376,13 +376,6 @@ static int detect(const char *text, size_t n)
     return 0;
 }
 
-static int load(const char *path, const bf_load_opts *opts, bf_dataset **out,
-                bf_error *err)
-{
-    (void)opts;
-    return bf_pbrt_load(path, out, err);
-}
-
 static const char *const aliases[] = {"brdf", NULL};
 
 const bf__reader bf__pbrt_reader = {
@@ -392,5 +385,5 @@ const bf__reader bf__pbrt_reader = {
     .detect = detect,
     .rank = BF__RANK_GUESS,
     .miss = "not pbrt (no wavelength count first)",
-    .load = load,
+    .read = bf_pbrt_read,
 };

@@ -10,6 +10,7 @@
 #define BF_DATA_READER_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "internal.h"
 
@@ -48,9 +49,13 @@ typedef struct bf__reader {
      * file is not, "a MERL table (it does not ...)". NULL for a folder
      * format. */
     const char *miss;
-    /* Reads path into a new dataset (opts may be NULL); as bf_dataset_load. */
+    /* Reads path into a new dataset (opts may be NULL); as bf_dataset_load.
+     * NULL for a file format that needs no options: read is used. */
     int (*load)(const char *path, const bf_load_opts *opts, bf_dataset **out,
                 bf_error *err);
+    /* Reads a dataset from the open file fp (named name), for a reader
+     * without load: bf_dataset_load opens the file (bf__load_dataset). */
+    int (*read)(FILE *fp, const char *name, bf_dataset **out, bf_error *err);
 } bf__reader;
 
 /* The registry (format.c): the reader of format f, NULL for one without a

@@ -128,7 +128,8 @@ Test(format, every_format_of_the_registry_round_trips_and_is_detected)
         }
         readers++;
         cr_assert_eq(bf__reader_format(r), f, "%s", name);
-        cr_assert_not_null(r->load, "%s", name);
+        cr_assert((r->load != NULL) != (r->read != NULL),
+                  "%s: loads by path or reads a stream, one of them", name);
         cr_assert_not_null(r->title, "%s", name);
         cr_assert((r->detect != NULL) != (r->folder_file != NULL),
                   "%s: a file or a folder format", name);
