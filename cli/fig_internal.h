@@ -56,6 +56,9 @@ void bf_fig_desc_free(bf_fig_desc *d);
 
 /* The study row of sample index s and model index m. */
 const bf_study_row *bf_fig_row(const bf_cli_study *st, size_t s, size_t m);
+/* 1 when model m was evaluated (status BF_OK) for at least one sample of
+ * st: ON without tabulated parameters is evaluated for none. */
+int bf_fig_evaluated_anywhere(const bf_cli_study *st, size_t m);
 /* The list "ON, LFTG, VH-E" of the models idx[0..n) into buf. */
 const char *bf_fig_model_list(const bf_cli_study *st, const size_t *idx,
                               size_t n, char *buf, size_t len);

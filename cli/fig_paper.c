@@ -117,12 +117,10 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         ticks[i] = num[i];
     }
     for (m = 0; m < M; m++) {
-        int any = 0; /* evaluated for some sample */
         for (i = 0; i < N; i++) {
             const bf_study_row *r = bf_fig_row(st, order[i], m);
             double v = r->status == BF_OK ? r->fit.lse : NAN;
             y[m * N + i] = v;
-            any |= r->status == BF_OK;
             if (isfinite(v) && v > 0.0) {
                 lo = fmin(lo, v);
                 hi = fmax(hi, v);
@@ -136,7 +134,8 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         ser[m].mark_every = 1;
         /* a model no sample has (ON without tabulated parameters) is
          * left out of the legend: it draws nothing */
-        ser[m].label = any ? st->models[m]->name : NULL;
+        ser[m].label =
+            bf_fig_evaluated_anywhere(st, m) ? st->models[m]->name : NULL;
     }
     if (!(hi > 0.0)) {
         lo = 0.1;

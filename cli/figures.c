@@ -42,17 +42,24 @@ void bf_fig_desc_free(bf_fig_desc *d)
     memset(d, 0, sizeof *d);
 }
 
-const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
-                                size_t len)
+/* "TITLE (N)", or "sample N" when title is empty, into buf. */
+static const char *label_of(const bf_cli_study *st, size_t s,
+                            const char *title, char *buf, size_t len)
 {
-    char title[256];
-    bf_cli_sample_title(st, s, title, sizeof title);
     if (title[0] != '\0') {
         snprintf(buf, len, "%.200s (%d)", title, st->samples[s]);
     } else {
         snprintf(buf, len, "sample %d", st->samples[s]);
     }
     return buf;
+}
+
+const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
+                                size_t len)
+{
+    char title[256];
+    bf_cli_sample_title(st, s, title, sizeof title);
+    return label_of(st, s, title, buf, len);
 }
 
 int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o)
@@ -116,10 +123,6 @@ const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
     char title[256];
     size_t cut;
     bf_cli_sample_title(st, s, title, sizeof title);
-    if (title[0] == '\0') {
-        snprintf(buf, len, "sample %d", st->samples[s]);
-        return buf;
-    }
     cut = utf8_prefix(title, BF_FIG_TICK_CHARS);
     if (title[cut] != '\0') { /* longer: cut at a space, add an ellipsis */
         size_t sp = cut;
@@ -131,12 +134,9 @@ const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
                            title[cut - 1] == ';')) {
             cut--;
         }
-        snprintf(buf, len, "%.*s\xe2\x80\xa6 (%d)", (int)cut, title,
-                 st->samples[s]);
-    } else {
-        snprintf(buf, len, "%s (%d)", title, st->samples[s]);
+        memcpy(title + cut, "\xe2\x80\xa6", 4); /* the ellipsis and NUL */
     }
-    return buf;
+    return label_of(st, s, title, buf, len);
 }
 
 const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
@@ -273,8 +273,7 @@ static long model_index(const bf_cli_study *st, const char *name)
  * was given, else the paper's ON, LFTG, VH-E, FC-E that the run has and
  * evaluated for some sample (ON needs tabulated parameters, which data
  * other than CURET lack), or all of the run's models when none is left. */
-/* 1 when model m was evaluated for at least one sample of st. */
-static int evaluated_anywhere(const bf_cli_study *st, size_t m)
+int bf_fig_evaluated_anywhere(const bf_cli_study *st, size_t m)
 {
     size_t s;
     for (s = 0; s < st->n_samples; s++) {
@@ -292,7 +291,7 @@ static size_t scatter_models(const bf_cli_study *st, size_t *idx)
     if (st->opts.models == NULL) {
         for (i = 0; i < sizeof paper_scatter / sizeof *paper_scatter; i++) {
             long m = model_index(st, paper_scatter[i]);
-            if (m >= 0 && evaluated_anywhere(st, (size_t)m)) {
+            if (m >= 0 && bf_fig_evaluated_anywhere(st, (size_t)m)) {
                 idx[n++] = (size_t)m;
             }
         }
