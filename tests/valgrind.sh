@@ -45,7 +45,10 @@
 # cli/thread_count...) run code that the other tests of their files run
 # once under valgrind; cli/all_61_samples... fits every model to every
 # sample (WNO-R's quadrature included), code test_cli's smaller runs and
-# test_wno_r cover.
+# test_wno_r cover. keep_scale's recovery and Cornell tests fit every
+# model through the CLI under the scale-keeping objectives (about 5 s of
+# CPU plain); the objectives' code runs under valgrind in keep_scale's
+# library tests.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -84,7 +87,10 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     report/gives_the_same_files_for_one_and_two_drawing_processes
     report/gives_byte_identical_outputs_when_run_twice
     cli/thread_count_does_not_change_the_outputs
-    cli/all_61_samples_give_finite_results_for_every_model"}
+    cli/all_61_samples_give_finite_results_for_every_model
+    keep_scale/recovery_ngan_through_csv_and_cli
+    keep_scale/recovery_cuberoot_and_log1p
+    keep_scale/cornell_lambert_at_most_the_peers_e"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
