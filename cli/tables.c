@@ -530,7 +530,12 @@ int bf_cli_study_write_tables(const bf_cli_study *st)
                                  : "; * on a grid bound")
                : "");
     bf_tt_print(t2, stdout);
-    if (st->n_sel > 0) {
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        printf("\nTable 3: %s (over each sample's used configurations "
+               "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
+               "SPEC §10)\n\n",
+               table3_label(st->opts.objective));
+    } else if (st->n_sel > 0) {
         printf("\nTable 3: %s (sum over the K = %zu used configurations)"
                "\n\n",
                table3_label(st->opts.objective), st->n_sel);
