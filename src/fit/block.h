@@ -150,6 +150,15 @@ typedef void (*bf__row_fn)(const void *state, size_t k, const double *x,
 #define BF__ALWAYS_INLINE
 #endif
 
+/* `omp simd` over the BF__BLOCK_LANES (8) lanes where OpenMP is on (the
+ * library; a file built without it, a test, gets the plain loop, the same
+ * values). */
+#if defined(_OPENMP)
+#define BF__SIMD_LANES _Pragma("omp simd simdlen(8)")
+#else
+#define BF__SIMD_LANES
+#endif
+
 /* The streaming scorer of ns samples (a constant where it is
  * instantiated: its sums stay in registers), row the model's (a constant
  * function, inlined; NULL only with e NULL): each LSE the sum of
@@ -192,7 +201,7 @@ bf__stream_score(size_t ns, size_t n, const double *restrict c,
             dk[q] = d[q][k];
         }
         for (q = 0; q < ns; q++) {
-#pragma omp simd simdlen(BF__BLOCK_LANES)
+            BF__SIMD_LANES
             for (j = 0; j < BF__BLOCK_LANES; j++) {
                 /* the normalised value, SPEC §2 */
                 double r = (ck[j] * rs[j]) - dk[q]; /* SPEC §7.3 */
