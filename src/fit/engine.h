@@ -98,7 +98,8 @@ struct bf_kernel {
     /* The parameter that is cheap to vary while the others stay (its
      * values need none of the cached terms recomputed: WNO-R's sigma
      * given its ring sums at n), or -1: the refinement of two parameters
-     * then nests its searches, this one inside. */
+     * then nests its searches, this one inside. Not a default: 0 names
+     * parameter 0, so every kernel sets it (-1 when none is). */
     int cheap;
     /* Tables a kernel builds for a configuration set on demand (WNO-R's
      * ring sums in Chebyshev form, one panel of n at a time): prepare
