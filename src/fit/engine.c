@@ -57,9 +57,10 @@ static int plain_values(const bf__prep *pm, const double *param, void *work,
     return pm->type->eval(param, pm->n, pm->geom, out, work);
 }
 
-const bf_kernel bf__plain_kernel = {0,    0, NULL, NULL, plain_values,
-                                    NULL, BF__BLOCK_NONE, 0, 0, -1, NULL,
-                                    NULL};
+const bf_kernel bf__plain_kernel = {
+    .values = plain_values,
+    .cheap = -1,
+};
 
 /* ==== prepared models ==================================================== */
 

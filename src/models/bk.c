@@ -217,38 +217,32 @@ static int eval_fc_e(const double *param, size_t count, const bf_geom *geom,
 #define N_MIN 1.0
 #define N_MAX 10.0
 
-static const bf_param param_g[1] = {
-    {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
-     0.0, 0.0},
-};
+/* The slope m of every member (G and E differ in the label only). */
+#define SLOPE_PARAM(lab)                                                    \
+    {.name = "m", .label = (lab), .unit = "1", .min = SLOPE_MIN,           \
+     .max = SLOPE_MAX, .value = SLOPE_DEFAULT, .fitted = 1,                \
+     .grid_lo = SLOPE_GRID_LO, .grid_step = SLOPE_GRID_STEP,               \
+     .grid_n = SLOPE_GRID_N, .input = BF_INPUT_DEFAULT}
+/* FC's refractive index: an input (SPEC §4.2) the exact fit may free. */
+#define INDEX_PARAM                                                         \
+    {.name = "n", .label = "refractive index n", .unit = "1", .min = N_MIN, \
+     .max = N_MAX, .value = BF_DEFAULT_N, .fitted = 0,                      \
+     .input = BF_INPUT_INDEX, .free_lo = BF_FREE_N_LO,                      \
+     .free_hi = BF_FREE_N_HI, .free_step = BF_FREE_N_STEP}
 
-static const bf_param param_e[1] = {
-    {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
-     0.0, 0.0},
-};
-
-static const bf_param param_fc_g[2] = {
-    {"m", "sigma/T (G)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
-     0.0, 0.0},
-    {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
-     0, BF_INPUT_INDEX, 0, BF_FREE_N_LO, BF_FREE_N_HI, BF_FREE_N_STEP},
-};
-
-static const bf_param param_fc_e[2] = {
-    {"m", "sigma/T (E)", "1", SLOPE_MIN, SLOPE_MAX, SLOPE_DEFAULT, 1,
-     SLOPE_GRID_LO, SLOPE_GRID_STEP, SLOPE_GRID_N, BF_INPUT_DEFAULT, 0, 0.0,
-     0.0, 0.0},
-    {"n", "refractive index n", "1", N_MIN, N_MAX, BF_DEFAULT_N, 0, 0.0, 0.0,
-     0, BF_INPUT_INDEX, 0, BF_FREE_N_LO, BF_FREE_N_HI, BF_FREE_N_STEP},
-};
+static const bf_param param_g[1] = {SLOPE_PARAM("sigma/T (G)")};
+static const bf_param param_e[1] = {SLOPE_PARAM("sigma/T (E)")};
+static const bf_param param_fc_g[2] = {SLOPE_PARAM("sigma/T (G)"),
+                                       INDEX_PARAM};
+static const bf_param param_fc_e[2] = {SLOPE_PARAM("sigma/T (E)"),
+                                       INDEX_PARAM};
 
 /* The engine's kernels (src/fit/kernels.c): one per member. */
-#define BK_KERNEL(factor, corr)                                              \
-    {BF__BK_NTERMS, BF__BK_NEXTRA, bf__bk_kterms, bf__bk_kwork,             \
-     bf__bk_kvalues, NULL, BF__BLOCK_BK, (factor), (corr), -1, NULL, NULL}
+#define BK_KERNEL(fac, cor)                                                 \
+    {.n_terms = BF__BK_NTERMS, .n_extra = BF__BK_NEXTRA,                    \
+     .terms = bf__bk_kterms, .work_bytes = bf__bk_kwork,                    \
+     .values = bf__bk_kvalues, .block = BF__BLOCK_BK, .factor = (fac),      \
+     .corr = (cor), .cheap = -1}
 static const bf_kernel kr_bk_g = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_GAUSS);
 static const bf_kernel kr_bk_e = BK_KERNEL(BF__BK_FACTOR_BK, BF__BK_CORR_EXP);
 static const bf_kernel kr_vh_g = BK_KERNEL(BF__BK_FACTOR_VH, BF__BK_CORR_GAUSS);
@@ -259,34 +253,70 @@ static const bf_kernel kr_fc_e = BK_KERNEL(BF__BK_FACTOR_FC, BF__BK_CORR_EXP);
 /* Plot styles: the paper's models the lowest slots (FC-E, VH-E first: the
  * two it finds best), BK-G, BK-E after every paper model. */
 static const bf_model_type bk_g = {
-    "BK-G", "Beckmann-Kirchhoff, Gaussian correlation",
-    "paper (P1),(P3), SPEC §3.1", 1, param_g, eval_bk_g, 0, &kr_bk_g, 6,
-    NULL, 0, 0.0};
+    .name = "BK-G",
+    .title = "Beckmann-Kirchhoff, Gaussian correlation",
+    .reference = "paper (P1),(P3), SPEC §3.1",
+    .p = 1,
+    .param = param_g,
+    .eval = eval_bk_g,
+    .kernel = &kr_bk_g,
+    .style = 6,
+};
 
 static const bf_model_type bk_e = {
-    "BK-E", "Beckmann-Kirchhoff, exponential correlation",
-    "paper (P2),(P3), SPEC §3.2", 1, param_e, eval_bk_e, 0, &kr_bk_e, 7,
-    NULL, 0, 0.0};
+    .name = "BK-E",
+    .title = "Beckmann-Kirchhoff, exponential correlation",
+    .reference = "paper (P2),(P3), SPEC §3.2",
+    .p = 1,
+    .param = param_e,
+    .eval = eval_bk_e,
+    .kernel = &kr_bk_e,
+    .style = 7,
+};
 
 static const bf_model_type vh_g = {
-    "VH-G", "Vernold-Harvey Beckmann-Kirchhoff, Gaussian correlation",
-    "paper (P1), Table 1, SPEC §3.1, §3.3", 1, param_g, eval_vh_g, 0,
-    &kr_vh_g, 4, NULL, 0, 0.0};
+    .name = "VH-G",
+    .title = "Vernold-Harvey Beckmann-Kirchhoff, Gaussian correlation",
+    .reference = "paper (P1), Table 1, SPEC §3.1, §3.3",
+    .p = 1,
+    .param = param_g,
+    .eval = eval_vh_g,
+    .kernel = &kr_vh_g,
+    .style = 4,
+};
 
 static const bf_model_type vh_e = {
-    "VH-E", "Vernold-Harvey Beckmann-Kirchhoff, exponential correlation",
-    "paper (P2), Table 1, SPEC §3.2, §3.3", 1, param_e, eval_vh_e, 0,
-    &kr_vh_e, 1, NULL, 0, 0.0};
+    .name = "VH-E",
+    .title = "Vernold-Harvey Beckmann-Kirchhoff, exponential correlation",
+    .reference = "paper (P2), Table 1, SPEC §3.2, §3.3",
+    .p = 1,
+    .param = param_e,
+    .eval = eval_vh_e,
+    .kernel = &kr_vh_e,
+    .style = 1,
+};
 
 static const bf_model_type fc_g = {
-    "FC-G", "Fresnel-corrected Beckmann-Kirchhoff, Gaussian correlation",
-    "paper (P1),(P4)-(P6), Table 1, SPEC §3.1, §3.3, §4", 2, param_fc_g,
-    eval_fc_g, 0, &kr_fc_g, 5, NULL, 0, 0.0};
+    .name = "FC-G",
+    .title = "Fresnel-corrected Beckmann-Kirchhoff, Gaussian correlation",
+    .reference = "paper (P1),(P4)-(P6), Table 1, SPEC §3.1, §3.3, §4",
+    .p = 2,
+    .param = param_fc_g,
+    .eval = eval_fc_g,
+    .kernel = &kr_fc_g,
+    .style = 5,
+};
 
 static const bf_model_type fc_e = {
-    "FC-E", "Fresnel-corrected Beckmann-Kirchhoff, exponential correlation",
-    "paper (P2),(P4)-(P6), Table 1, SPEC §3.2, §3.3, §4", 2, param_fc_e,
-    eval_fc_e, 0, &kr_fc_e, 0, NULL, 0, 0.0};
+    .name = "FC-E",
+    .title = "Fresnel-corrected Beckmann-Kirchhoff, exponential correlation",
+    .reference = "paper (P2),(P4)-(P6), Table 1, SPEC §3.2, §3.3, §4",
+    .p = 2,
+    .param = param_fc_e,
+    .eval = eval_fc_e,
+    .kernel = &kr_fc_e,
+    .style = 0,
+};
 
 const bf_model_type *const bf_model_bk_g = &bk_g;
 const bf_model_type *const bf_model_bk_e = &bk_e;

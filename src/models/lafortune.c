@@ -49,8 +49,9 @@ static int eval_lftg(const double *param, size_t count, const bf_geom *geom,
  * domain [0, 100] keeps the lobe representable: (cos ti cos ts)^100 is still
  * above 1e-300 for cos > 1e-3. */
 static const bf_param param_lftg[1] = {
-    {"n_d", "exponent n_d", "1", 0.0, 100.0, 1.0, 1, 0.1, 0.04, 501,
-     BF_INPUT_DEFAULT, 0, 0.0, 0.0, 0.0},
+    {.name = "n_d", .label = "exponent n_d", .unit = "1", .min = 0.0,
+     .max = 100.0, .value = 1.0, .fitted = 1, .grid_lo = 0.1,
+     .grid_step = 0.04, .grid_n = 501, .input = BF_INPUT_DEFAULT},
 };
 
 /* The engine's terms: ln(cos ti cos ts) per configuration (-inf at
@@ -65,13 +66,23 @@ static void lftg_terms(const bf_kernel *kr, const bf__cset *cs, double *terms)
     }
 }
 
-static const bf_kernel lftg_kernel = {1,    0, lftg_terms, NULL,
-                                      bf__lftg_kvalues, NULL,
-                                      BF__BLOCK_LFTG, 0, 0, -1, NULL, NULL};
+static const bf_kernel lftg_kernel = {
+    .n_terms = 1,
+    .terms = lftg_terms,
+    .values = bf__lftg_kvalues,
+    .block = BF__BLOCK_LFTG,
+    .cheap = -1,
+};
 
 static const bf_model_type lftg_type = {
-    "LFTG", "Lafortune diffuse lobe",
-    "paper (P7), Lafortune et al. 1997, SPEC §6", 1, param_lftg, eval_lftg,
-    0, &lftg_kernel, 3, NULL, 0, 0.0};
+    .name = "LFTG",
+    .title = "Lafortune diffuse lobe",
+    .reference = "paper (P7), Lafortune et al. 1997, SPEC §6",
+    .p = 1,
+    .param = param_lftg,
+    .eval = eval_lftg,
+    .kernel = &lftg_kernel,
+    .style = 3,
+};
 
 const bf_model_type *const bf_model_lftg = &lftg_type;

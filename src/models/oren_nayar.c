@@ -214,9 +214,13 @@ static size_t on_kclamped(const bf__prep *pm, const double *param)
     return count;
 }
 
-static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
-                                    on_kclamped, BF__BLOCK_NONE, 0, 0, -1,
-                                    NULL, NULL};
+static const bf_kernel on_kernel = {
+    .n_terms = ON_NT,
+    .terms = on_kterms,
+    .values = on_kvalues,
+    .clamped = on_kclamped,
+    .cheap = -1,
+};
 
 /* rho and sigma are fixed inputs of the study (CURET's op.dat, the paper's
  * Table 2), not fitted: no grid. Defaults give Lambert (sigma = 0). The
@@ -224,17 +228,29 @@ static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
  * gives no radiance to normalise), step 0.05; sigma over [0, 1.57] rad
  * (SPEC §5's domain is [0, pi/2]), step 0.01. */
 static const bf_param param_on[2] = {
-    {"rho", "albedo rho", "1", 0.0, 1.0, 1.0, 0, 0.0, 0.0, 0, BF_INPUT_ON,
-     0, 0.05, 1.0, 0.05},
-    {"sigma", "facet slope sigma", "rad", 0.0, BF__PI_2, 0.0, 0, 0.0, 0.0, 0,
-     BF_INPUT_ON, 1, 0.0, 1.57, 0.01},
+    {.name = "rho", .label = "albedo rho", .unit = "1", .min = 0.0,
+     .max = 1.0, .value = 1.0, .fitted = 0, .input = BF_INPUT_ON,
+     .input_col = 0, .free_lo = 0.05, .free_hi = 1.0, .free_step = 0.05},
+    {.name = "sigma", .label = "facet slope sigma", .unit = "rad",
+     .min = 0.0, .max = BF__PI_2, .value = 0.0, .fitted = 0,
+     .input = BF_INPUT_ON, .input_col = 1, .free_lo = 0.0, .free_hi = 1.57,
+     .free_step = 0.01},
 };
 
 /* At sigma = 0, C1 = 1 and C2 = C3 = L2 = 0: L = rho/pi cos ti, LAMBERT
  * after normalisation (SPEC §5, §6a). */
 static const bf_model_type on_type = {
-    "ON", "Oren-Nayar with interreflections",
-    "Oren & Nayar IJCV 1995 (full model), SPEC §5", 2, param_on, eval_on, 0,
-    &on_kernel, 2, "LAMBERT", 1, 0.0};
+    .name = "ON",
+    .title = "Oren-Nayar with interreflections",
+    .reference = "Oren & Nayar IJCV 1995 (full model), SPEC §5",
+    .p = 2,
+    .param = param_on,
+    .eval = eval_on,
+    .kernel = &on_kernel,
+    .style = 2,
+    .reduces_to = "LAMBERT",
+    .reduces_param = 1,
+    .reduces_at = 0.0,
+};
 
 const bf_model_type *const bf_model_on = &on_type;
