@@ -32,6 +32,10 @@ void bf__error_clear(bf_error *err, const char *name);
 int bf__error_set(bf_error *err, int code, long line, const char *fmt, ...)
     BF__PRINTF(4, 5);
 
+/* The code of a failed system call on a file (open, stat) whose errno is
+ * e: BF_ENOMEM when the kernel or libc ran out of memory, else BF_EIO. */
+int bf__errno_code(int e);
+
 /* ======================================================================
  * --- line reader and strict number parsing (src/data/lineio.c) ---
  * ====================================================================== */

@@ -442,12 +442,13 @@ void bf__score_folds(size_t n, size_t cols, size_t stride,
  * data vectors and of their folds' training sets, best[q * (folds + 1) +
  * b] (b = 0 the full data, 1 + f fold f), from one pass over the curves
  * for all of them: bf__score_folds's sums, bf__argmin's choice. Points
- * with ok 0 never win. */
-void bf__folds_argmin(size_t n, size_t cols, size_t stride,
-                      const double *curves, const unsigned char *ok,
-                      size_t points, size_t n_data, const double *const *data,
-                      const double *cw, const size_t *fold, size_t folds,
-                      double *best_lse, size_t *best);
+ * with ok 0 never win. Returns BF_OK, or BF_ENOMEM (no optimum) when its
+ * workspace cannot be allocated. */
+int bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                     const double *curves, const unsigned char *ok,
+                     size_t points, size_t n_data, const double *const *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *best_lse, size_t *best);
 /* The same on a grid (folds may be 0: only the full data). BF_OK or
  * BF_ENOMEM. */
 int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
