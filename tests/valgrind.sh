@@ -49,6 +49,8 @@
 # model through the CLI under the scale-keeping objectives (about 5 s of
 # CPU plain); the objectives' code runs under valgrind in keep_scale's
 # library tests.
+# test_oom preloads its own allocator (tests/oom/oom_shim.c), which
+# valgrind's replaces; it runs in the plain build only.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -58,6 +60,7 @@ build=$1
 jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
+    test_oom
     test_uncertainty
     test_coverage
     test_before
