@@ -241,7 +241,7 @@ static void recover(const char *objective, size_t n_truths)
         const truth_t *t = &truths[i];
         const bf_model_type *type = bf_model_find(t->model);
         const char *err = NULL;
-        char sample[16];
+        char sample[32];
         size_t r;
         size_t j;
         int rc;
@@ -331,7 +331,7 @@ Test(keep_scale, cornell_lambert_at_most_the_peers_e, .timeout = 120)
     cr_assert_eq(rc, 0, "brdffit compare: %s", err);
     bf_test_csv_load(out, "fits.csv");
     for (i = 0; i < 5; i++) {
-        char sample[16];
+        char sample[32];
         size_t r;
         snprintf(sample, sizeof sample, "%zu", i + 1);
         r = bf_test_csv_find(sample, "LAMBERT", "rho_d");
