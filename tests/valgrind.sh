@@ -46,6 +46,9 @@
 # once under valgrind; cli/all_61_samples... fits every model to every
 # sample (WNO-R's quadrature included), code test_cli's smaller runs and
 # test_wno_r cover.
+# The specular models' albedo checks (specular_models/ggx_without... and
+# ward_gmd...: 50 albedo quadratures) run the code of
+# specular_models/albedo_of_a_known_integral, which stays.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -84,7 +87,9 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     report/gives_the_same_files_for_one_and_two_drawing_processes
     report/gives_byte_identical_outputs_when_run_twice
     cli/thread_count_does_not_change_the_outputs
-    cli/all_61_samples_give_finite_results_for_every_model"}
+    cli/all_61_samples_give_finite_results_for_every_model
+    specular_models/ggx_without_fresnel_conserves_energy
+    specular_models/ward_gmd_is_bounded_and_ward_duer_is_not"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
