@@ -49,6 +49,8 @@
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
+# test_oom preloads its own allocator (tests/oom/oom_shim.c), which
+# valgrind's replaces; it runs in the plain build only.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -58,6 +60,7 @@ build=$1
 jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
+    test_oom
     test_uncertainty
     test_coverage
     test_before
