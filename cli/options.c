@@ -385,6 +385,27 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     return 0;
 }
 
+int bf_cli_parse_fresnel(const char *cmd, const char *arg,
+                         bf_fresnel_kind *f)
+{
+    if (bf_fresnel_find(arg, f) != BF_OK) {
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, cmd,
+                                 "--fresnel: '%s' is not schlick, dielectric "
+                                 "or none", arg);
+    }
+    return BF_EXIT_OK;
+}
+
+int bf_cli_parse_smith(const char *cmd, const char *arg, bf_smith_kind *s)
+{
+    if (bf_smith_find(arg, s) != BF_OK) {
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, cmd,
+                                 "--smith: '%s' is not height or separable",
+                                 arg);
+    }
+    return BF_EXIT_OK;
+}
+
 int bf_cli_parse_range(const char *s, char *name, size_t name_len,
                        double *lo, double *hi, char *msg, size_t msg_len)
 {

@@ -88,6 +88,13 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d);
 /* bf_cli_opts_usage_defaults with bf_cli_compare_defaults. */
 void bf_cli_opts_usage(FILE *fp);
 
+/* Parses the value of --fresnel (schlick, dielectric, none) or --smith
+ * (height, separable), SPEC §9.2, into *f or *s. Returns BF_EXIT_OK, or
+ * BF_EXIT_BADVALUE after a usage message naming cmd (e.g. "models "). */
+int bf_cli_parse_fresnel(const char *cmd, const char *arg,
+                         bf_fresnel_kind *f);
+int bf_cli_parse_smith(const char *cmd, const char *arg, bf_smith_kind *s);
+
 /* Parses --range NAME=LO:HI. Returns 0, or -1 with a message in msg. */
 int bf_cli_parse_range(const char *s, char *name, size_t name_len,
                        double *lo, double *hi, char *msg, size_t msg_len);

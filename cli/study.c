@@ -107,7 +107,9 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
     }
     if (o->models != NULL && strcmp(o->models, "all") == 0) {
         for (i = 0; i < bf_model_count(); i++) {
-            list[(*n)++] = bf_model_get(i);
+            if (bf_model_get(i)->kind == BF_MODEL_DIFFUSE) {
+                list[(*n)++] = bf_model_get(i); /* the study's models */
+            }
         }
     } else {
         const char *p = o->models != NULL
@@ -131,6 +133,13 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
                                          "--models: unknown "
                                           "model '%s' (see 'brdffit models')",
                                           name);
+            }
+            if (t->kind == BF_MODEL_SPECULAR) {
+                /* every objective of today max-normalises (SPEC §2) */
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "%s gives absolute BRDF values "
+                                         "(SPEC §9); fit it with --objective "
+                                         "ngan, cuberoot or log1p", t->name);
             }
             for (j = 0; j < *n; j++) {
                 if (list[j] == t) {

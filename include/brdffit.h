@@ -174,10 +174,17 @@ typedef struct {
     double free_lo;     /* the exact fit (doc/methods.md §6) frees this */
     double free_hi;     /*   input over the grid free_lo, free_lo + */
     double free_step;   /*   free_step, ... <= free_hi; 0: never freed */
+    /* 1 when the model's value is this parameter times a function of the
+     * other parameters alone (a scale: SPEC §9.3's rho_s, A and AS's Rd,
+     * not AS's Rs), so that a separable least-squares fit solves it
+     * exactly; 0 otherwise (every parameter of the diffuse models, whose
+     * values are compared after max-normalisation, SPEC §2). */
+    int linear;
 } bf_param;
 
 /* Evaluates a model at n configurations. param holds type->p values, already
- * checked to lie in the domain. Writes n radiances (up to scale) to out.
+ * checked to lie in the domain. Writes n radiances (up to scale) to out;
+ * a specular model (BF_MODEL_SPECULAR) writes BRDF values in sr^-1.
  * work is the caller's scratch memory of type->work_size bytes (NULL when
  * that is 0), aligned for double; its content on entry does not matter,
  * so one buffer serves any number of calls and no call allocates.
@@ -191,10 +198,18 @@ typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
  * vectorised loop, a caller workspace. Opaque here. */
 typedef struct bf_kernel bf_kernel;
 
+/* What a model's values are (bf_model_type.kind). Zero is the diffuse
+ * family of SPEC §3-6 (radiance up to scale, compared after the
+ * max-normalisation of SPEC §2); BF_MODEL_SPECULAR the models of SPEC
+ * §9.3, absolute BRDF values in sr^-1 whose scale parameters are real
+ * parameters (bf_param.linear), fitted under the objectives of SPEC §10,
+ * never max-normalised. */
+typedef enum { BF_MODEL_DIFFUSE = 0, BF_MODEL_SPECULAR } bf_model_kind;
+
 /* A model family: a constant type object (cf. gsl_rng_type). Adding a
  * model to the library is one file defining its type object (with its
  * kernel) and one line in the registry (src/models/registry.c). */
-typedef struct {
+typedef struct bf_model_type {
     const char *name;        /* registry name, e.g. "FC-E" */
     const char *title;       /* one-line description */
     const char *reference;   /* equations implemented, e.g. "paper (P2),(P6)" */
@@ -213,6 +228,21 @@ typedef struct {
                                 sigma = 0 is WNO), or NULL */
     size_t reduces_param;
     double reduces_at;
+    /* The fields below are zero (NULL) for the diffuse models. */
+    bf_model_kind kind;      /* BF_MODEL_DIFFUSE (0) or BF_MODEL_SPECULAR */
+    /* Specular models (SPEC §9.2: every output names them): the normal
+     * distribution ("GGX", "Beckmann", "Blinn-Phong", "Ward", ...), the
+     * masking form ("Smith height-correlated", "Smith separable",
+     * "V-cavity", "none", ...) and the Fresnel term ("Schlick (F0)",
+     * "dielectric (n)", "none (F = 1)", ...), for outputs. */
+    const char *ndf;
+    const char *masking;
+    const char *fresnel_term;
+    /* The type objects of SPEC §9.2's options (--fresnel, --smith) of this
+     * model, BF_SPECULAR_VARIANTS of them (BF_VARIANT_INDEX), NULL where
+     * an option does not apply; the same table in every variant. NULL:
+     * the model takes none (bf_model_specular_variant). */
+    const struct bf_model_type *const *variants;
 } bf_model_type;
 
 extern const bf_model_type *const bf_model_bk_g;   /* BK-G  SPEC §3.1 */
@@ -248,6 +278,58 @@ const char *bf_model_set_names(bf_model_set set);
 /* Index of the parameter called name in type, or -1. */
 int bf_model_param_index(const bf_model_type *type, const char *name);
 
+/* The options of the specular models (SPEC §9.2). DEFAULT keeps what base
+ * has (the registry models: Schlick's F0, height-correlated Smith). */
+typedef enum {
+    BF_FRESNEL_DEFAULT = 0,
+    BF_FRESNEL_SCHLICK,    /* F0 + (1 - F0)(1 - cos theta_d)^5, F0 in [0, 1] */
+    BF_FRESNEL_DIELECTRIC, /* SPEC §4.1 with a real index n in [1.01, 4]
+                              (parameter "n" in F0's place) */
+    BF_FRESNEL_NONE        /* F = 1 (no F0) */
+} bf_fresnel_kind;
+typedef enum {
+    BF_SMITH_DEFAULT = 0,
+    BF_SMITH_HEIGHT,   /* height-correlated G2, Heitz 2014 eq. 99 */
+    BF_SMITH_SEPARABLE /* G1(i) G1(o), Heitz 2014 eq. 98 */
+} bf_smith_kind;
+#define BF_SPECULAR_VARIANTS 6
+#define BF_VARIANT_INDEX(f, s) (((size_t)(f) - 1) * 2 + ((size_t)(s) - 1))
+
+/* The variant of base (a registry model, one of its variants or a
+ * bf_model_variant copy of either) with
+ * Fresnel term f and masking s: a type object of static storage with the
+ * same name (GGX stays "GGX") and the parameters of the option (rho_s,
+ * alpha, n for GGX with BF_FRESNEL_DIELECTRIC; rho_s, alpha without F0).
+ * The options apply as SPEC §9.2 says: --fresnel to GGX, BECKMANN and CT,
+ * --smith to GGX and BECKMANN. Returns NULL where an option does not
+ * apply, with *why (when why is not NULL) a sentence saying so (static
+ * storage, to follow the model's name: "has no Fresnel term ..."). */
+const bf_model_type *bf_model_specular_variant(const bf_model_type *base,
+                                               bf_fresnel_kind f,
+                                               bf_smith_kind s,
+                                               const char **why);
+
+/* Names of the options as the CLI spells them ("schlick", "dielectric",
+ * "none"; "height", "separable"): BF_OK, or BF_ENOTFOUND (*out unchanged). */
+int bf_fresnel_find(const char *name, bf_fresnel_kind *out);
+int bf_smith_find(const char *name, bf_smith_kind *out);
+
+/* The directional albedo of type at param for light from theta_i (SPEC
+ * §9; the white-furnace check of issue 17): the integral of the value
+ * times cos theta_o over the outgoing hemisphere, by adaptive quadrature
+ * (GSL QAG over theta_o and phi_o, the inner integral split at the mirror
+ * direction so narrow lobes are followed; relative error about 1e-8).
+ * Specular models only (their values are BRDFs in sr^-1); theta_i in
+ * [0, pi/2). BF_OK; BF_EINVAL on bad arguments, a diffuse model or
+ * parameters outside the domain; BF_EDOM when the quadrature does not
+ * reach its tolerance or the model is undefined somewhere inside (*albedo
+ * holds the estimate). GSL's error handler must be off
+ * (gsl_set_error_handler_off(), as the CLI and the Python package do), or
+ * a quadrature that fails aborts the program. Allocates (two GSL
+ * workspaces): not for inner loops. */
+int bf_model_albedo(const bf_model_type *type, const double *param,
+                    double theta_i, double *albedo);
+
 /* Evaluates type at n configurations after checking every parameter against
  * its domain (BF_EINVAL when out of range or not finite) and every geometry
  * against the closed hemisphere (BF_EINVAL; on BF_EINVAL out is all NaN).
@@ -255,7 +337,12 @@ int bf_model_param_index(const bf_model_type *type, const char *name);
  * allocated.
  * Returns BF_EDOM when the model is undefined at a configuration, with NaN
  * there and the other values filled: BK-G, BK-E at theta_i = pi/2 (F_BK
- * diverges, SPEC §3.3). Every other model is finite and >= 0 on the whole
+ * diverges, SPEC §3.3); WARD and WARD-DUER at theta_i or theta_s = pi/2
+ * (1/sqrt(cos ti cos to), 1/(cos ti cos to) diverge, SPEC §9.3); LAFORTUNE
+ * where its base exceeds 1 and base^n overflows a double (the domain's far
+ * corner, Cxy or Cz near 2 with a large n). The specular models (SPEC §9)
+ * are 0 at the grazing corner theta_i = theta_s = pi/2 (LAFORTUNE is
+ * continuous there). Every other model is finite and >= 0 on the whole
  * closed hemisphere. VH-G, VH-E (and FC with n = 1) return 0, SPEC §3.3's
  * value, at the single corner theta_i = theta_s = pi/2, phi_s = 0, where
  * the value has no limit (it is 0 along the grazing boundary but

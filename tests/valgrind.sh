@@ -49,6 +49,9 @@
 # model through the CLI under the scale-keeping objectives (about 5 s of
 # CPU plain); the objectives' code runs under valgrind in keep_scale's
 # library tests.
+# The specular models' albedo checks (specular_models/ggx_without... and
+# ward_gmd...: 50 albedo quadratures) run the code of
+# specular_models/albedo_of_a_known_integral, which stays.
 # test_oom preloads its own allocator (tests/oom/oom_shim.c), which
 # valgrind's replaces; it runs in the plain build only.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
@@ -93,7 +96,9 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     cli/all_61_samples_give_finite_results_for_every_model
     keep_scale/recovery_ngan_through_csv_and_cli
     keep_scale/recovery_cuberoot_and_log1p
-    keep_scale/cornell_lambert_at_most_the_peers_e"}
+    keep_scale/cornell_lambert_at_most_the_peers_e
+    specular_models/ggx_without_fresnel_conserves_energy
+    specular_models/ward_gmd_is_bounded_and_ward_duer_is_not"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.

@@ -68,10 +68,12 @@ typedef struct {
     double free_lo;
     double free_hi;
     double free_step;
+    int linear;
 } bf_param;
 typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
                           double *out, void *work);
 typedef struct bf_kernel bf_kernel;
+typedef enum { BF_MODEL_DIFFUSE = 0, BF_MODEL_SPECULAR } bf_model_kind;
 typedef struct {
     const char *name;
     const char *title;
@@ -85,6 +87,11 @@ typedef struct {
     const char *reduces_to;
     size_t reduces_param;
     double reduces_at;
+    bf_model_kind kind;
+    const char *ndf;
+    const char *masking;
+    const char *fresnel_term;
+    const void *const *variants;
 } bf_model_type;
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);

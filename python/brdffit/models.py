@@ -38,10 +38,12 @@ class Parameter:
         exact_range: (lo, hi, step) over which fit="exact" fits this input
             (FC's n, ON's rho and sigma; doc/methods.md §6), or None when
             the exact fit never frees it.
+        linear: True for a scale the value is proportional to (SPEC §9.3's
+            rho_s, A, AS's Rd), which a separable fit solves exactly.
     """
 
     __slots__ = ("name", "label", "unit", "min", "max", "default", "fitted",
-                 "grid", "exact_range")
+                 "grid", "exact_range", "linear")
 
     def __init__(self, p):
         self.name = text(p.name)
@@ -56,6 +58,7 @@ class Parameter:
         self.exact_range = ((float(p.free_lo), float(p.free_hi),
                              float(p.free_step))
                             if p.free_lo < p.free_hi else None)
+        self.linear = bool(p.linear)
 
     def __repr__(self):
         return ("Parameter(%r, unit=%r, range=[%g, %g], default=%g%s)"
@@ -71,6 +74,10 @@ class Model:
         title: one-line description.
         reference: the equations it implements, e.g. "paper (P2),(P6)".
         parameters: tuple of Parameter.
+        kind: "diffuse" (SPEC §3-6: radiance up to scale, compared after
+            max-normalisation) or "specular" (SPEC §9: BRDF in sr^-1).
+        ndf, masking, fresnel: a specular model's normal distribution,
+            masking form and Fresnel term (SPEC §9.2), None for diffuse.
     Use brdffit.model(name) or brdffit.models() to get one.
     """
 
@@ -81,6 +88,11 @@ class Model:
         self.reference = text(ctype.reference)
         self.parameters = tuple(Parameter(ctype.param[j])
                                 for j in range(ctype.p))
+        specular = ctype.kind == lib.BF_MODEL_SPECULAR
+        self.kind = "specular" if specular else "diffuse"
+        self.ndf = text(ctype.ndf) if specular else None
+        self.masking = text(ctype.masking) if specular else None
+        self.fresnel = text(ctype.fresnel_term) if specular else None
 
     @property
     def defaults(self):
@@ -121,8 +133,8 @@ class Model:
 
     def evaluate(self, params, theta_i, phi_i, theta_o, phi_o,
                  frame="measurement"):
-        """The model's radiance (up to scale) at the given directions; see
-        brdffit.evaluate."""
+        """The model's radiance (up to scale; a specular model's BRDF in
+        sr^-1) at the given directions; see brdffit.evaluate."""
         return evaluate(self, params, theta_i, phi_i, theta_o, phi_o, frame)
 
     def __repr__(self):

@@ -30,14 +30,16 @@ RANK_MODELS = _model_set("BF_MODELS_RANKING")
 
 
 def _models(models, default):
-    """The list of models: default for None, every registry model for
-    "all", a comma-separated string or a sequence of names/Models."""
+    """The list of models: default for None, every diffuse registry model
+    for "all" (the study max-normalises, SPEC §2; the specular models of
+    SPEC §9 need SPEC §10's objectives), a comma-separated string or a
+    sequence of names/Models."""
     from .models import models as registry
     if models is None:
         return list(default)
     if isinstance(models, str):
         if models == "all":
-            return registry()
+            return [m for m in registry() if m.kind == "diffuse"]
         names = models.split(",")
         if not all(names):
             raise InvalidArgumentError("models: bad list %r" % models, 1)

@@ -182,3 +182,34 @@ def test_bad_angles_and_arrays_are_clear_errors():
         brdffit.evaluate("XYZ", [], 0.1, 0.0, 0.2, 0.0)
     with pytest.raises(LookupError):  # NotFoundError is a LookupError
         brdffit.model("nope")
+
+
+def test_the_specular_family_is_listed_with_its_kind_and_scales():
+    # SPEC §9.3: names, parameters in order, the linear scales
+    want = {"GGX": ("rho_s", "alpha", "F0"), "BECKMANN": ("rho_s", "alpha",
+                                                         "F0"),
+            "CT": ("rho_s", "alpha", "F0"), "BLINN-PHONG": ("rho_s", "e"),
+            "WARD": ("rho_s", "alpha"), "WARD-DUER": ("rho_s", "alpha"),
+            "WARD-GMD": ("rho_s", "alpha"), "AS": ("Rd", "Rs", "n"),
+            "LAFORTUNE": ("Cxy", "Cz", "n"),
+            "ABC": ("A", "B", "C", "ior")}
+    models = {m.name: m for m in brdffit.models()}
+    for name, params in want.items():
+        m = models[name]
+        assert m.kind == "specular"
+        assert tuple(p.name for p in m.parameters) == params
+        assert [p.name for p in m.parameters if p.linear] == (
+            [] if name == "LAFORTUNE" else [params[0]])
+        assert m.ndf and m.masking and m.fresnel
+    assert models["GGX"].masking.startswith("Smith height-correlated")
+    for name in ("VH-G", "ON", "LAMBERT", "WNO-R"):
+        m = models[name]
+        assert m.kind == "diffuse" and m.ndf is None
+        assert not any(p.linear for p in m.parameters)
+
+
+def test_a_specular_model_evaluates_in_sr_per_steradian():
+    # GGX at normal incidence and view, F0 = 1: D(0) G2 / 4 = 1/(4 pi a^2)
+    v = brdffit.evaluate("GGX", {"alpha": 0.1, "F0": 1.0}, 0.0, 0.0, 0.0,
+                         0.0)
+    assert abs(float(v) - 1.0 / (4 * np.pi * 0.01)) < 1e-12 * float(v)

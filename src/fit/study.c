@@ -283,6 +283,18 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         return bf__error_set(err, BF_EINVAL, 0,
                              "invalid study specification");
     }
+    for (i = 0; i < spec->n_models; i++) {
+        if (spec->models[i] != NULL
+            && spec->models[i]->kind == BF_MODEL_SPECULAR) {
+            /* the study max-normalises (SPEC §2); SPEC §9's values are
+             * absolute and need the objectives of SPEC §10 */
+            return bf__error_set(err, BF_EINVAL, 0,
+                                 "%s gives absolute BRDF values (SPEC §9); "
+                                 "fit it with --objective ngan, cuberoot or "
+                                 "log1p",
+                                 spec->models[i]->name);
+        }
+    }
     rc = bf__study_groups(spec, &gs, err);
     for (i = 0; rc == BF_OK && i < gs.n; i++) {
         rc = run_group_of_targets(spec, &gs.g[i], rows);

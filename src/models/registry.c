@@ -17,8 +17,10 @@
 /* The registry, one line per model: the pointer variable its file
  * defines (`const bf_model_type *const bf_model_x = &x_type;`). Order is
  * part of the API (bf_model_get): the paper's six Beckmann variants, then
- * ON, LFTG, the Lambert baseline, WNO and WNO-R (added last so earlier
- * indices keep their meaning). Adding a model means one new file in
+ * ON, LFTG, the Lambert baseline, WNO and WNO-R, then the specular models
+ * of SPEC §9.3 in its table's order (each added after the others so
+ * earlier indices keep their meaning; their option variants are reached
+ * through bf_model_specular_variant, not listed). Adding a model means one new file in
  * src/models/ (the build takes every file there) and one line here; the
  * public header's declarations of the first models are for callers who
  * name them, a new model needs none (bf_model_find). */
@@ -33,7 +35,17 @@
     X(bf_model_lftg)                                                        \
     X(bf_model_lambert)                                                     \
     X(bf_model_wno)                                                         \
-    X(bf_model_wno_r)
+    X(bf_model_wno_r)                                                       \
+    X(bf_model_ggx)                                                         \
+    X(bf_model_beckmann)                                                    \
+    X(bf_model_ct)                                                          \
+    X(bf_model_blinn_phong)                                                 \
+    X(bf_model_ward)                                                        \
+    X(bf_model_ward_duer)                                                   \
+    X(bf_model_ward_gmd)                                                    \
+    X(bf_model_as)                                                          \
+    X(bf_model_lafortune)                                                   \
+    X(bf_model_abc)
 
 #define BF_REGISTRY_DECLARE(v) extern const bf_model_type *const v;
 #define BF_REGISTRY_ADDRESS(v) &v,

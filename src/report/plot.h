@@ -47,9 +47,9 @@ unsigned bf_plot_png_pixels(unsigned points);
  * marker and a dash pattern; no two slots share both colour and dash, and
  * every slot has its own marker, so series stay apart in colour, in grey
  * print and for colour-blind readers. */
-#define BF_PLOT_NSTYLES 12
-#define BF_PLOT_INK 12 /* measured data: black filled circles, solid */
-#define BF_PLOT_REF 13 /* reference lines (diagonal, threshold): grey */
+#define BF_PLOT_NSTYLES 21
+#define BF_PLOT_INK 21 /* measured data: black filled circles, solid */
+#define BF_PLOT_REF 22 /* reference lines (diagonal, threshold): grey */
 
 /* The colour of a style slot as "#rrggbb" (static storage), for pages
  * that describe a figure; NULL when out of range. */

@@ -18,13 +18,22 @@ typedef enum {
     BF__MK_TRIANGLE,      /* pointing up */
     BF__MK_DIAMOND,
     BF__MK_TRIANGLE_DOWN,
-    BF__MK_OPEN_CIRCLE,
+    BF__MK_PENTAGON,
+    BF__MK_HEXAGON,
+    BF__MK_TRIANGLE_RIGHT,
+    BF__MK_TRIANGLE_LEFT,
+    BF__MK_STAR,          /* five points */
+    BF__MK_OPEN_CIRCLE,   /* from here on drawn after the filled ones */
     BF__MK_OPEN_SQUARE,
     BF__MK_OPEN_TRIANGLE,
     BF__MK_OPEN_DIAMOND,
     BF__MK_PLUS,
     BF__MK_CROSS,
     BF__MK_OPEN_TRIANGLE_DOWN,
+    BF__MK_OPEN_PENTAGON,
+    BF__MK_OPEN_HEXAGON,
+    BF__MK_OPEN_TRIANGLE_RIGHT,
+    BF__MK_OPEN_TRIANGLE_LEFT,
     BF__NMARKERS
 } bf__marker;
 

@@ -49,6 +49,16 @@ const bf__style bf__styles[BF__NSLOTS] = {
     {GREEN, BF__MK_PLUS, 4},
     {PURPLE, BF__MK_CROSS, 0},
     {SKY, BF__MK_OPEN_TRIANGLE_DOWN, 3},
+    /* 11-20: the specular models of SPEC §9.3 */
+    {ORANGE, BF__MK_PENTAGON, 0},
+    {GREY, BF__MK_HEXAGON, 1},
+    {BLUE, BF__MK_TRIANGLE_RIGHT, 2},
+    {VERMILLION, BF__MK_TRIANGLE_LEFT, 3},
+    {GREEN, BF__MK_STAR, 5},
+    {PURPLE, BF__MK_OPEN_PENTAGON, 1},
+    {SKY, BF__MK_OPEN_HEXAGON, 5},
+    {ORANGE, BF__MK_OPEN_TRIANGLE_RIGHT, 2},
+    {GREY, BF__MK_OPEN_TRIANGLE_LEFT, 3},
     {{0, 0, 0}, "#000000", BF__MK_CIRCLE, 0},       /* BF_PLOT_INK */
     {{150, 150, 150}, "#969696", BF__MK_CIRCLE, 1}, /* BF_PLOT_REF */
 };
@@ -61,9 +71,13 @@ const unsigned char bf__empty_rgb[3] = {224, 224, 224};
 
 static const char *const marker_names[BF__NMARKERS] = {
     "filled circle",  "filled square",  "filled triangle",
-    "filled diamond", "filled inverted triangle", "open circle",
+    "filled diamond", "filled inverted triangle", "filled pentagon",
+    "filled hexagon", "filled right triangle", "filled left triangle",
+    "filled star",    "open circle",
     "open square",    "open triangle",  "open diamond",
-    "plus",           "cross",          "open inverted triangle"};
+    "plus",           "cross",          "open inverted triangle",
+    "open pentagon",  "open hexagon",   "open right triangle",
+    "open left triangle"};
 
 static const char *const dash_names[BF__NDASHES] = {
     "solid", "dashed", "dotted", "dash-dot", "long-dashed", "dash-dot-dot"};
@@ -105,6 +119,10 @@ const bf__dash *bf__series_dash(const bf_plot_series *s)
 #define ARM_HALF 0.22    /*   and its half-width */
 #define RING 0.36        /* open markers: inner outline at (1 - RING) */
 #define CIRCLE_SIDES 12 /* round enough at print size, few vertices */
+#define PENTAGON_R 1.1
+#define HEXAGON_R 1.05
+#define STAR_R 1.45      /* star: outer radius, */
+#define STAR_INNER 0.45  /*   inner radius over the outer */
 
 /* A regular polygon of k sides, circumradius rad, first vertex at angle
  * a0, counter-clockwise (sense = 1) or clockwise (-1), closed. */
@@ -137,9 +155,35 @@ static size_t shape(bf__marker mk, double r, int sense, double *dx,
     case BF__MK_DIAMOND:
     case BF__MK_OPEN_DIAMOND:
         return polygon(4, DIAMOND_R * r, M_PI / 2, sense, dx, dy);
+    case BF__MK_TRIANGLE_RIGHT:
+    case BF__MK_OPEN_TRIANGLE_RIGHT:
+        return polygon(3, TRIANGLE_R * r, 0.0, sense, dx, dy);
+    case BF__MK_TRIANGLE_LEFT:
+    case BF__MK_OPEN_TRIANGLE_LEFT:
+        return polygon(3, TRIANGLE_R * r, M_PI, sense, dx, dy);
+    case BF__MK_PENTAGON:
+    case BF__MK_OPEN_PENTAGON:
+        return polygon(5, PENTAGON_R * r, M_PI / 2, sense, dx, dy);
+    case BF__MK_HEXAGON:
+    case BF__MK_OPEN_HEXAGON:
+        return polygon(6, HEXAGON_R * r, 0.0, sense, dx, dy);
     default:
         return polygon(CIRCLE_SIDES, r, 0.0, sense, dx, dy);
     }
+}
+
+/* A five-pointed star of outer radius rad, counter-clockwise, closed:
+ * outer and inner vertices alternate. */
+static size_t star(double rad, double *dx, double *dy)
+{
+    size_t i;
+    for (i = 0; i <= 10; i++) {
+        double a = M_PI / 2 + M_PI * (double)(i % 10) / 5.0;
+        double q = (i % 2 == 0) ? rad : rad * STAR_INNER;
+        dx[i] = q * cos(a);
+        dy[i] = q * sin(a);
+    }
+    return 11;
 }
 
 /* A plus (rot = 0) or a cross (rot = pi/4): the outline of two crossed
@@ -171,6 +215,11 @@ size_t bf__marker_shape(bf__marker mk, double r, double *dx, double *dy)
     switch (mk) {
     case BF__MK_PLUS: return plus(r, 0.0, dx, dy);
     case BF__MK_CROSS: return plus(r, M_PI / 4, dx, dy);
+    case BF__MK_STAR: return star(STAR_R * r, dx, dy);
+    case BF__MK_OPEN_PENTAGON:
+    case BF__MK_OPEN_HEXAGON:
+    case BF__MK_OPEN_TRIANGLE_RIGHT:
+    case BF__MK_OPEN_TRIANGLE_LEFT:
     case BF__MK_OPEN_CIRCLE:
     case BF__MK_OPEN_SQUARE:
     case BF__MK_OPEN_TRIANGLE:

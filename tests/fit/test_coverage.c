@@ -166,6 +166,9 @@ static void check_all(int boot)
         unsigned mask;
         size_t reps = boot ? BOOT_REPS : PROFILE_REPS;
         size_t j;
+        if (bf_model_get(i)->kind != BF_MODEL_DIFFUSE) {
+            continue; /* SPEC §9: fitted under SPEC §10's objectives */
+        }
         exact_variant(&v, bf_model_get(i));
         if (bf__fits_nothing(&v.type)) {
             continue; /* LAMBERT: nothing to cover */

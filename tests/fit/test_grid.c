@@ -140,8 +140,9 @@ Test(grid, round_trip_recovers_every_model_exactly_at_grid_values)
         for (j = 0; j < type->p; j++) {
             n_grid *= type->param[j].fitted ? type->param[j].grid_n : 1;
         }
-        if (n_grid == 1) {
-            continue; /* nothing fitted (ON, LAMBERT) */
+        if (n_grid == 1 || type->kind != BF_MODEL_DIFFUSE) {
+            continue; /* nothing fitted (ON, LAMBERT); SPEC §9's models
+                         are fitted under SPEC §10, not on grids */
         }
         fitted_models++;
         for (q = 0; q < 3; q++) {
@@ -363,7 +364,8 @@ static bf_study_row *study_all(const bf_table *t, const bf_brdf *b,
     *n_models = 0;
     for (i = 0; i < bf_model_count(); i++) {
         const bf_model_type *type = bf_model_get(i);
-        if (type->p > 0 && type->param[0].fitted) {
+        if (type->p > 0 && type->param[0].fitted &&
+            type->kind == BF_MODEL_DIFFUSE) { /* the study's models */
             models[(*n_models)++] = type;
         }
     }

@@ -55,7 +55,8 @@ static size_t fitted_models(bf_model_variant *v, const bf_model_type **out)
     size_t count = 0;
     for (i = 0; i < bf_model_count(); i++) {
         const bf_model_type *t = bf_model_get(i);
-        if (t->p > 0 && t->param[0].fitted) {
+        if (t->p > 0 && t->param[0].fitted &&
+            t->kind == BF_MODEL_DIFFUSE) { /* the study's models */
             out[count++] = t;
         }
     }

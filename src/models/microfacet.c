@@ -1,0 +1,189 @@
+/* microfacet.c: the shared pieces of the specular models (SPEC §9.1,
+ * §9.2): the vectors of a configuration, GGX's and Beckmann's D and
+ * Lambda, the V-cavity masking and the evaluation loops. The equations and
+ * the frame are listed in microfacet.h.
+ *
+ * References:
+ *   [1] B. Walter, S. R. Marschner, H. Li, K. E. Torrance, "Microfacet
+ *       models for refraction through rough surfaces", EGSR 2007
+ *       (eqs. 25, 26, 33, 34).
+ *   [2] E. Heitz, "Understanding the masking-shadowing function in
+ *       microfacet-based BRDFs", JCGT 3(2), 2014 (eqs. 98, 99).
+ *   [3] R. L. Cook, K. E. Torrance, ACM TOG 1(1), 1982 (V-cavity G).
+ */
+#include <math.h>
+
+#include "models/smith_lobe.h"
+
+/* 1 / sqrt(pi) */
+#define MF_1_SQRTPI 0.56418958354775628695
+
+/* SPEC §9.1 in Beckmann's frame (microfacet.h): i = (-si, 0, ci),
+ * o = (so cos phi_s, so sin phi_s, co). */
+void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
+{
+    double hs = sin(0.5 * g->phi_s);
+    double hc = cos(0.5 * g->phi_s);
+    double dso;
+    double hxy2;
+    double hz;
+    double h2;
+    double dz;
+    double dxy2;
+    bf__zenith_sincos(g->theta_i, &m->si, &m->ci);
+    bf__zenith_sincos(g->theta_s, &m->so, &m->co);
+    m->dxy = -(m->si * m->so) * cos(g->phi_s); /* ix ox + iy oy */
+    dso = m->so - m->si;
+    hz = m->ci + m->co; /* H = i + o */
+    if (hz == 0.0) {
+        /* the grazing corner: h undefined (microfacet.h) */
+        m->c2h = m->s2h = m->t2h = m->ch = m->cd = m->sd = 0.0;
+        return;
+    }
+    hxy2 = (dso * dso) + (4.0 * (m->si * m->so) * (hs * hs));
+    h2 = hxy2 + (hz * hz); /* |H|^2 = 4 cos^2 theta_d */
+    m->c2h = (hz * hz) / h2;
+    m->s2h = hxy2 / h2;
+    m->t2h = hxy2 / (hz * hz);
+    m->ch = hz / sqrt(h2);
+    m->cd = fmin(1.0, 0.5 * sqrt(h2));
+    dz = m->ci - m->co; /* d = i - o, |d| = 2 sin theta_d */
+    dxy2 = (dso * dso) + (4.0 * (m->si * m->so) * (hc * hc));
+    m->sd = fmin(1.0, 0.5 * sqrt(dxy2 + (dz * dz)));
+}
+
+int bf__mf_eval(const double *param, size_t n, const bf_geom *geom,
+                double *out, bf__mf_value_fn f)
+{
+    int rc = BF_OK;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        bf__mf_t m;
+        bf__mf_geom(&geom[k], &m);
+        out[k] = f(&m, param);
+        if (isnan(out[k])) {
+            rc = BF_EDOM;
+        }
+    }
+    return rc;
+}
+
+void bf__mf_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
+{
+    size_t n = cs->n;
+    size_t k;
+    (void)kr;
+    for (k = 0; k < n; k++) {
+        bf__mf_t m;
+        bf__mf_geom(&cs->geom[k], &m);
+        terms[(BF__MF_CI * n) + k] = m.ci;
+        terms[(BF__MF_CO * n) + k] = m.co;
+        terms[(BF__MF_SI * n) + k] = m.si;
+        terms[(BF__MF_SO * n) + k] = m.so;
+        terms[(BF__MF_C2H * n) + k] = m.c2h;
+        terms[(BF__MF_S2H * n) + k] = m.s2h;
+        terms[(BF__MF_T2H * n) + k] = m.t2h;
+        terms[(BF__MF_CH * n) + k] = m.ch;
+        terms[(BF__MF_CD * n) + k] = m.cd;
+        terms[(BF__MF_SD * n) + k] = m.sd;
+        terms[(BF__MF_DXY * n) + k] = m.dxy;
+    }
+}
+
+int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
+                   bf__mf_value_fn f)
+{
+    const double *t = pm->terms;
+    size_t n = pm->n;
+    int rc = BF_OK;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        bf__mf_t m;
+        m.ci = t[(BF__MF_CI * n) + k];
+        m.co = t[(BF__MF_CO * n) + k];
+        m.si = t[(BF__MF_SI * n) + k];
+        m.so = t[(BF__MF_SO * n) + k];
+        m.c2h = t[(BF__MF_C2H * n) + k];
+        m.s2h = t[(BF__MF_S2H * n) + k];
+        m.t2h = t[(BF__MF_T2H * n) + k];
+        m.ch = t[(BF__MF_CH * n) + k];
+        m.cd = t[(BF__MF_CD * n) + k];
+        m.sd = t[(BF__MF_SD * n) + k];
+        m.dxy = t[(BF__MF_DXY * n) + k];
+        out[k] = f(&m, param);
+        if (isnan(out[k])) {
+            rc = BF_EDOM;
+        }
+    }
+    return rc;
+}
+
+/* Walter et al. eq. 33 (SPEC §9.2), cos^4 th multiplied out. */
+double bf__mf_d_ggx(const bf__mf_t *m, double alpha)
+{
+    double a2 = alpha * alpha;
+    double q = (a2 * m->c2h) + m->s2h;
+    return a2 / (BF__PI * q * q);
+}
+
+/* Walter et al. eq. 25 (SPEC §9.2). */
+double bf__mf_d_beckmann(const bf__mf_t *m, double alpha)
+{
+    double a2 = alpha * alpha;
+    return exp(-m->t2h / a2) / (BF__PI * a2 * (m->c2h * m->c2h));
+}
+
+/* cos theta Lambda of Walter et al. eq. 34 (SPEC §9.2), microfacet.h. */
+double bf__mf_clambda_ggx(double c, double s, double alpha)
+{
+    double a2s2 = (alpha * s) * (alpha * s);
+    return a2s2 / (2.0 * (sqrt((c * c) + a2s2) + c));
+}
+
+/* cos theta Lambda of SPEC §9.2's exact Beckmann form (Walter et al.
+ * eq. 26 before its rational approximation, eq. 27), microfacet.h. */
+double bf__mf_clambda_beckmann(double c, double s, double alpha)
+{
+    double as = alpha * s;
+    double a;
+    if (s == 0.0) {
+        return 0.0; /* the normal: Lambda = 0 */
+    }
+    a = c / as;
+    return fmax(0.0, 0.5 * ((as * exp(-(a * a)) * MF_1_SQRTPI)
+                            - (c * erfc(a))));
+}
+
+double bf__mf_lambda_ggx(double theta, double alpha)
+{
+    double s;
+    double c;
+    bf__zenith_sincos(theta, &s, &c);
+    return bf__mf_clambda_ggx(c, s, alpha) / c;
+}
+
+double bf__mf_lambda_beckmann(double theta, double alpha)
+{
+    double s;
+    double c;
+    bf__zenith_sincos(theta, &s, &c);
+    return bf__mf_clambda_beckmann(c, s, alpha) / c;
+}
+
+/* SPEC §9.2's V-cavity G over 4 ci co (microfacet.h). */
+double bf__mf_gv_over(const bf__mf_t *m)
+{
+    double a = 4.0 * (m->ci * m->co);
+    double mx = fmax(m->ci, m->co);
+    if ((2.0 * m->cd * mx) <= (a * m->ch)) {
+        return 1.0 / a; /* G = 1 */
+    }
+    return m->ch / (2.0 * m->cd * mx);
+}
+
+/* The parameters of the Fresnel options (smith_lobe.h), SPEC §9.3. */
+const bf_param bf__mf_param_schlick[3] = {BF__PARAM_RHO_S, BF__PARAM_ALPHA,
+                                          BF__PARAM_F0};
+const bf_param bf__mf_param_dielectric[3] = {BF__PARAM_RHO_S,
+                                             BF__PARAM_ALPHA, BF__PARAM_N};
+const bf_param bf__mf_param_none[2] = {BF__PARAM_RHO_S, BF__PARAM_ALPHA};
