@@ -90,8 +90,10 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --fit MODE        'paper' (the paper's grids) or 'exact' (grid, then GSL\n"
 "                    refinement; FC's n and ON's rho, sigma fitted too;\n"
 "                    doc/methods.md §6) (default %s)\n"
-"  --objective NAME  max (paper, default), scale, cosw or log (needs --fit\n"
-"                    exact unless max); see doc/methods.md\n"
+"  --objective NAME  max (paper, default), scale, cosw, log, or ngan,\n"
+"                    cuberoot, log1p (SPEC §10: BRDF values kept at their\n"
+"                    scale, theta <= 80 deg, a free scale rho_d); needs\n"
+"                    --fit exact unless max; see doc/methods.md\n"
 "  --range P=LO:HI   search range of parameter P, e.g. m=0.01:20 (grid\n"
 "                    keeps its step; repeatable)\n",
             BF_DEFAULT_N, d->exact ? "exact" : "paper");
@@ -283,8 +285,10 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             break;
         case O_OBJECTIVE:
             if (bf_objective_find(optarg, &o->objective) != BF_OK) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--objective: '%s' is not "
-                                          "max, scale, cosw or log", optarg);
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--objective: '%s' is not max, scale, "
+                                         "cosw, log, ngan, cuberoot or log1p",
+                                         optarg);
             }
             break;
         case O_RANGE: {

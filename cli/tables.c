@@ -189,6 +189,14 @@ static void describe_freed(const bf_cli_study *st, FILE *fp)
     fputc('\n', fp);
 }
 
+/* What Table 3 shows under obj. */
+static const char *table3_label(bf_objective obj)
+{
+    return obj == BF_OBJ_MAX    ? "LSE"
+           : obj == BF_OBJ_NGAN ? "E = sqrt(S / K) of the ngan objective"
+                                : "objective S";
+}
+
 /* The fit, objective, interval and selection lines of the description. */
 static void describe_fit(const bf_cli_study *st, FILE *fp)
 {
@@ -204,8 +212,19 @@ static void describe_fit(const bf_cli_study *st, FILE *fp)
     for (r = 0; r < o->n_range; r++) {
         fprintf(fp, "Search range: %s\n", o->range[r]);
     }
-    fprintf(fp, "Objective: %s (doc/methods.md §1)\n",
-            bf_objective_name(o->objective));
+    if (bf_objective_keeps_scale(o->objective)) {
+        fprintf(fp, "Objective: %s (SPEC §10): rho = BRDF x cos(theta_i) as "
+                    "measured on the configurations with theta_i, theta_o "
+                    "<= 80 deg, the model's scale rho_d (SPEC §9.4) solved "
+                    "exactly at each evaluation%s\n",
+                bf_objective_name(o->objective),
+                o->objective == BF_OBJ_NGAN
+                    ? "; reported E = sqrt(sum (rho - rho^)^2 / K)"
+                    : "");
+    } else {
+        fprintf(fp, "Objective: %s (doc/methods.md §1)\n",
+                bf_objective_name(o->objective));
+    }
     if (st->stats == NULL) {
         fprintf(fp, "Analysis: none (add --stats for refined optima, "
                     "intervals, AIC, BIC and CV)\n");
@@ -521,15 +540,19 @@ int bf_cli_study_write_tables(const bf_cli_study *st)
                                  : "; * on a grid bound")
                : "");
     bf_tt_print(t2, stdout);
-    if (st->n_sel > 0) {
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        printf("\nTable 3: %s (over each sample's used configurations "
+               "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
+               "SPEC §10)\n\n",
+               table3_label(st->opts.objective));
+    } else if (st->n_sel > 0) {
         printf("\nTable 3: %s (sum over the K = %zu used configurations)"
                "\n\n",
-               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S",
-               st->n_sel);
+               table3_label(st->opts.objective), st->n_sel);
     } else {
         printf("\nTable 3: %s (sum over each sample's K used "
                "configurations)\n\n",
-               st->opts.objective == BF_OBJ_MAX ? "LSE" : "objective S");
+               table3_label(st->opts.objective));
     }
     bf_tt_print(t3, stdout);
     on_compare(st, stdout);

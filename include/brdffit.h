@@ -940,13 +940,49 @@ typedef enum {
     BF_OBJ_MAX = 0,
     BF_OBJ_SCALE,
     BF_OBJ_COSW,
-    BF_OBJ_LOG
+    BF_OBJ_LOG,
+    /* The objectives that keep the scale (SPEC §10): pb->data holds
+     * rho_k = measured BRDF x cos theta_i as measured (not normalised) and
+     * the model's value is s L_k with its free scale s >= 0 solved exactly
+     * at every evaluation (for the paper's diffuse models s L_k =
+     * rho_d d_k cos theta_i, d scaled to 1/pi at normal incidence and
+     * view, SPEC §9.4; bf_fit_scale gives rho_d):
+     *   BF_OBJ_NGAN      r_k = s L_k - rho_k, s = max(0, sum w L rho /
+     *                    sum w L^2) (Ngan, Durand, Matusik 2005);
+     *   BF_OBJ_CUBEROOT  r_k = t cbrt(L_k) - cbrt(rho_k), t = cbrt(s) =
+     *                    max(0, sum w cbrt(L) cbrt(rho) / sum w cbrt(L)^2)
+     *                    (Fores, Ferwerda, Gu 2012);
+     *   BF_OBJ_LOG1P     r_k = ln(1 + s L_k) - ln(1 + rho_k), s >= 0 the
+     *                    minimiser (safeguarded Newton on the derivative)
+     *                    (Low et al. 2012, E2).
+     * S = sum w r^2 as for every objective; the value SPEC §10 reports is
+     * bf_objective_report's (ngan: sqrt(S / K)). SPEC §10 sums over the
+     * configurations with theta_i, theta_o <= 80 degrees: the study
+     * selects them (BF_KEEP_SCALE_THETA); a bf_problem holds what its
+     * caller chose. */
+    BF_OBJ_NGAN,
+    BF_OBJ_CUBEROOT,
+    BF_OBJ_LOG1P
 } bf_objective;
+
+/* 1 for the objectives that keep the scale (SPEC §10), else 0. */
+int bf_objective_keeps_scale(bf_objective obj);
+
+/* The value SPEC §10 reports for objective S of a fit on n configurations
+ * (sum of weights): sqrt(S / n) for BF_OBJ_NGAN, S for every other
+ * objective (NaN stays NaN). */
+double bf_objective_report(bf_objective obj, double s, double n);
+
+/* The largest theta_i and theta_o (radians) of the configurations the
+ * scale-keeping objectives use (SPEC §10: 80 degrees, and 1e-9 rad for
+ * the rounding of angles read in degrees). */
+#define BF_KEEP_SCALE_THETA (80.0 * 3.14159265358979323846 / 180.0 + 1e-9)
 
 /* Floor of the log objective, in units of the normalised maximum. */
 #define BF_LOG_FLOOR 1e-3
 
-/* Name of an objective ("max", "scale", "cosw", "log"; static storage),
+/* Name of an objective ("max", "scale", "cosw", "log", "ngan",
+ * "cuberoot", "log1p"; static storage),
  * or NULL for an unknown value. */
 const char *bf_objective_name(bf_objective obj);
 
@@ -1075,6 +1111,14 @@ double bf_bic(double rss, size_t n, size_t k);
  * plus 1 for the fitted scale of BF_OBJ_SCALE (the max-normalisation of
  * the other objectives is not a parameter; doc/methods.md §4). */
 size_t bf_problem_nparams(const bf_problem *pb);
+
+/* The free scale of pb at param under an objective that keeps the scale
+ * (SPEC §9.4, §10): rho_d with the model's value rho_d d(i, o), d its shape
+ * scaled so that d = 1/pi at normal incidence and view (LAMBERT: rho_d is
+ * the albedo), into *rho_d. BF_EINVAL for another objective or bad
+ * arguments, BF_EDOM where the model is undefined or its value at normal
+ * incidence and view is not positive. */
+int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d);
 
 /* Deterministic assignment of n configurations to folds (0..folds-1): a
  * fixed-seed (seed) shuffle of 0..n-1, position p in fold p mod folds, so
@@ -1328,6 +1372,10 @@ typedef struct {
                                        (static storage), else NULL */
     unsigned boot_split;            /* bit j: parameter j's replicates
                                        split (BF_STAT_BOOT_SPLIT) */
+    double scale;                   /* the refined optimum's free scale:
+                                       rho_d (SPEC §9.4) under the
+                                       objectives that keep the scale
+                                       (bf_fit_scale), NaN otherwise */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1337,7 +1385,11 @@ typedef struct {
  * analysed). When opts->exact, each row's target fields, type and status
  * are set here and its fit is the refined optimum; otherwise rows are left as
  * bf_study_run wrote them (the paper's grid optima) and only read. Errors
- * as bf_study_run. */
+ * as bf_study_run. Under the objectives that keep the scale (SPEC §10)
+ * the targets' data are rho as measured on the configurations with
+ * theta_i, theta_o <= 80 degrees (K counts those), and the lse of the
+ * stats' grid and refined optima and of the rows is the value SPEC §10
+ * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 

@@ -408,7 +408,8 @@ typedef struct {
     bf_geom *geom;     /* their K configurations, Beckmann's frame */
     size_t n_members;
     size_t *members;   /* target indices, increasing */
-    double *data;      /* n_members x K normalised radiances (SPEC §2) */
+    double *data;      /* n_members x K normalised radiances (SPEC §2),
+                          or rho as measured (bf__study_groups_data) */
 } bf__group_t;
 
 typedef struct {
@@ -420,6 +421,15 @@ typedef struct {
  * bf_study_target_data); err names the material on failure. */
 int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
                      bf_error *err);
+/* The same with each target's rho_k = BRDF x cos theta_i as measured (not
+ * normalised, SPEC §10) when raw is 1 (data then holds those values). */
+int bf__study_groups_data(const bf_study_spec *spec, int raw,
+                          bf__groups_t *gs, bf_error *err);
+/* rho = BRDF x cos theta_i of material m, channel c on the n
+ * configurations sel, as measured (bf_dataset_radiance before its
+ * normalisation; src/data/select.c). */
+int bf__dataset_rho(const bf_dataset *ds, size_t m, size_t c, size_t n,
+                    const size_t *sel, double *out);
 void bf__study_groups_free(bf__groups_t *gs);
 
 /* --- the study path's kernels (src/fit/kernels.c) --- */

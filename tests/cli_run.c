@@ -159,8 +159,21 @@ size_t bf_test_csv_load(const char *dir, const char *name)
         size_t nf = 0;
         char *p = line;
         cr_assert_lt(csv_lines, CSV_MAX_LINES);
-        while (nf < CSV_MAX_FIELDS) { /* the tests' files quote nothing */
-            char *e = strchr(p, ',');
+        while (nf < CSV_MAX_FIELDS) {
+            char *e;
+            if (*p == '"') { /* a quoted field ("" is a quote) */
+                char *w = ++p;
+                e = p;
+                while (*e != '\0' && !(e[0] == '"' && e[1] != '"')) {
+                    *w++ = *e;
+                    e += e[0] == '"' ? 2 : 1;
+                }
+                e = *e == '"' ? e + 1 : e; /* past the closing quote */
+                *w = '\0';
+                e = *e == ',' ? e : NULL;
+            } else {
+                e = strchr(p, ',');
+            }
             csv_cells[csv_lines][nf++] = p;
             if (e == NULL) {
                 break;

@@ -27,8 +27,8 @@ const char *bf_test_tmpdir(void);
 /* Reads a whole file into a static buffer; NULL when it does not exist. */
 const char *bf_test_slurp(const char *path, size_t *len);
 
-/* A CSV output of the CLI (dir/name), read whole into static storage (no
- * quoted fields); returns its number of lines (header included). Its
+/* A CSV output of the CLI (dir/name), read whole into static storage
+ * (quoted fields unquoted); returns its number of lines (header included). Its
  * cells are found by header name: bf_test_csv_cell (borrowed until the
  * next load), bf_test_csv_num (NaN for an empty cell); bf_test_csv_find
  * gives the row of (sample, model, parameter), NULL matching any. */

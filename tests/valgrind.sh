@@ -45,7 +45,10 @@
 # cli/thread_count...) run code that the other tests of their files run
 # once under valgrind; cli/all_61_samples... fits every model to every
 # sample (WNO-R's quadrature included), code test_cli's smaller runs and
-# test_wno_r cover.
+# test_wno_r cover. keep_scale's recovery and Cornell tests fit every
+# model through the CLI under the scale-keeping objectives (about 5 s of
+# CPU plain); the objectives' code runs under valgrind in keep_scale's
+# library tests.
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
@@ -91,6 +94,9 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     report/gives_byte_identical_outputs_when_run_twice
     cli/thread_count_does_not_change_the_outputs
     cli/all_61_samples_give_finite_results_for_every_model
+    keep_scale/recovery_ngan_through_csv_and_cli
+    keep_scale/recovery_cuberoot_and_log1p
+    keep_scale/cornell_lambert_at_most_the_peers_e
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not"}
 

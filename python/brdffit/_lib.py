@@ -188,8 +188,9 @@ typedef struct {
     size_t n_eval;
     unsigned flat;
 } bf_fit_result;
-typedef enum { BF_OBJ_MAX = 0, BF_OBJ_SCALE, BF_OBJ_COSW, BF_OBJ_LOG }
-    bf_objective;
+typedef enum { BF_OBJ_MAX = 0, BF_OBJ_SCALE, BF_OBJ_COSW, BF_OBJ_LOG,
+               BF_OBJ_NGAN, BF_OBJ_CUBEROOT, BF_OBJ_LOG1P } bf_objective;
+int bf_objective_keeps_scale(bf_objective obj);
 const char *bf_objective_name(bf_objective obj);
 int bf_objective_find(const char *name, bf_objective *obj);
 
@@ -262,6 +263,7 @@ typedef struct {
     size_t n_clamped;
     const char *reduces_to;
     unsigned boot_split;
+    double scale;
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);

@@ -32,7 +32,8 @@ class FitResult:
         material: the Material (of the dataset given to fit).
         channel: the channel fitted ("mean", or a channel name).
         fit: "paper" (the grid optimum, SPEC §7.4) or "exact" (refined).
-        objective_name: "max" (the paper's LSE), "scale", "cosw" or "log".
+        objective_name: "max" (the paper's LSE), "scale", "cosw", "log",
+            "ngan", "cuberoot" or "log1p" (SPEC §10).
         parameters: dict name -> value of every parameter (fitted ones at
             the optimum, the others at their fixed inputs).
         free: names of the fitted parameters.
@@ -73,6 +74,12 @@ class FitResult:
             could not be found (its ends are NaN) / the bootstrap failed.
         bootstrap_split: names of the parameters whose bootstrap
             replicates fall into separate basins.
+        rho_d: under the objectives that keep the scale (ngan, cuberoot,
+            log1p; SPEC §10) the fitted free scale rho_d (SPEC §9.4:
+            the model is rho_d d with d = 1/pi at normal incidence and
+            view; LAMBERT's albedo), else None. objective is then the
+            value SPEC §10 reports (ngan: E); measured and predicted stay
+            the normalised radiances of SPEC §2.
       Without the analysis these are None.
     """
 
@@ -106,6 +113,7 @@ class FitResult:
         self.grid = self.refined = self.grid_objective = None
         self.refined_objective = self.intervals = self.intervals_open = None
         self.bootstrap = self.n_params = self.aic = self.bic = None
+        self.rho_d = None
         self.cv = self.flags = self.reduces_to = self.not_identified = None
         self.clamped = self.not_converged = self.interval_failed = None
         self.bootstrap_failed = self.bootstrap_split = None
@@ -130,6 +138,8 @@ class FitResult:
             if boot:
                 self.bootstrap[q.name] = (float(st.boot_low[j]),
                                           float(st.boot_high[j]))
+        if lib.bf_objective_keeps_scale(st.objective):
+            self.rho_d = float(st.scale)  # SPEC §9.4: the free scale
         self.n_params = int(st.k)
         self.aic = float(st.aic)
         self.bic = float(st.bic)
@@ -186,7 +196,9 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             bf_model_variant_exact: FC's n over [1.2, 2.5] unless n or
             n_file is given, ON's rho and sigma fitted; doc/methods.md §6).
         objective: "max" (the paper's LSE), "scale", "cosw", "log"
-            (doc/methods.md §1; other than "max" needs fit="exact").
+            (doc/methods.md §1), "ngan", "cuberoot", "log1p" (SPEC §10:
+            BRDF values at their scale, a free rho_d); other than "max"
+            needs fit="exact".
         stats: run the analysis (refinement, intervals, AIC, BIC, CV);
             always on with fit="exact" and with bootstrap.
         bootstrap: N percentile-bootstrap resamples (0: none).

@@ -166,6 +166,13 @@ int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
 int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
                         const size_t *sel, double *out)
 {
+    int rc = bf__dataset_rho(ds, m, c, n, sel, out);
+    return rc != BF_OK ? rc : bf_normalise(n, out, out);
+}
+
+int bf__dataset_rho(const bf_dataset *ds, size_t m, size_t c, size_t n,
+                    const size_t *sel, double *out)
+{
     const bf_geom *geom = bf_dataset_geom(ds, m);
     size_t nconf = bf_dataset_nconf(ds, m);
     size_t j;
@@ -184,5 +191,5 @@ int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
         /* SPEC §2: BRDF x cos(theta_i) */
         out[j] = v * cos(geom[sel[j]].theta_i);
     }
-    return bf_normalise(n, out, out);
+    return BF_OK;
 }

@@ -47,7 +47,16 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
         STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
         return BF_EINVAL;
     }
-    rc = bf__study_groups(spec, &gs, err);
+    {
+        /* SPEC §10: the objectives that keep the scale compare rho as
+         * measured on the configurations with theta_i, theta_o <= 80 deg */
+        bf_study_spec keep = *spec;
+        int raw = bf_objective_keeps_scale(opts->objective);
+        if (raw && keep.select.max_theta > BF_KEEP_SCALE_THETA) {
+            keep.select.max_theta = BF_KEEP_SCALE_THETA;
+        }
+        rc = bf__study_groups_data(&keep, raw, &gs, err);
+    }
     if (rc != BF_OK) {
         return rc;
     }
@@ -126,6 +135,20 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             r->status = unit_status[u];
             if (r->status == BF_OK) {
                 r->fit = stats[u].refined;
+            }
+        }
+    }
+    for (s = 0; opts->objective == BF_OBJ_NGAN && s < n_units; s++) {
+        /* SPEC §10: the value reported is E = sqrt(S / K) */
+        bf_fit_stats *st = &stats[s];
+        double nk = (double)k_of[s / spec->n_models];
+        if (st->done) {
+            st->grid.lse = bf_objective_report(st->objective, st->grid.lse,
+                                               nk);
+            st->refined.lse = bf_objective_report(st->objective,
+                                                  st->refined.lse, nk);
+            if (opts->exact && rows[s].status == BF_OK) {
+                rows[s].fit.lse = st->refined.lse;
             }
         }
     }

@@ -62,6 +62,7 @@ static void stats_clear(bf_fit_stats *st)
     st->aic = NAN;
     st->bic = NAN;
     st->cv = NAN;
+    st->scale = NAN;
 }
 
 /* The problem of unit u (its model, inputs, data and the objective). */
@@ -233,6 +234,12 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         st->refined.flat = flat;
     }
     fit_flags(fc, st);
+    if (bf_objective_keeps_scale(pb.objective)) { /* SPEC §9.4: rho_d */
+        rc = bf_fit_scale(&pb, st->refined.param, &st->scale);
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+    }
     for (j = 0; j < pb.type->p; j++) {
         unsigned open = 0;
         if (!((pb.free_mask >> j) & 1u)) {

@@ -33,16 +33,12 @@ static int optima_by_point(const bf_grid *gr, const bf_problem *pb,
     double *log_d;
     size_t g;
     size_t b;
-    size_t k;
     if (curve == NULL) {
         return BF_ENOMEM;
     }
     scratch = curve + pb->n;
     log_d = scratch + pb->n;
-    for (k = 0; k < pb->n; k++) {
-        double d = pb->data[k];
-        log_d[k] = log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
-    }
+    bf__data_transform(pb, log_d);
     for (g = 0; g < lay->points; g++) {
         bf__grid_curve(gr, g, curve);
         for (b = 0; b < n_w; b++) {

@@ -180,20 +180,17 @@ void bf__fitctx_free(bf__fitctx *fc)
 
 void bf__fitctx_use(bf__fitctx *fc, const bf_problem *pb)
 {
-    size_t k;
     fc->pb = pb;
-    if (pb->objective != BF_OBJ_LOG || pb->data == NULL) {
-        return;
-    }
-    for (k = 0; k < pb->n; k++) { /* doc/methods.md §1: floored logs */
-        double d = pb->data[k];
-        fc->log_d[k] = log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
-    }
+    bf__data_transform(pb, fc->log_d);
 }
 
 static const double *log_data(const bf__fitctx *fc)
 {
-    return fc->pb->objective == BF_OBJ_LOG ? fc->log_d : NULL;
+    return fc->pb->objective == BF_OBJ_LOG ||
+                   fc->pb->objective == BF_OBJ_CUBEROOT ||
+                   fc->pb->objective == BF_OBJ_LOG1P
+               ? fc->log_d
+               : NULL;
 }
 
 int bf__fit_value(bf__fitctx *fc, const double *param, double *value)

@@ -172,7 +172,7 @@ typedef struct {
     void *work;      /* the kernel's workspace (owned) */
     double *curve;   /* n */
     double *scratch; /* n */
-    double *log_d;   /* n: ln max(D, floor) of pb->data (BF_OBJ_LOG) */
+    double *log_d;   /* n: bf__data_transform of pb->data */
     size_t n_eval;   /* evaluations since init */
 } bf__fitctx;
 
@@ -205,6 +205,18 @@ double bf__objective(const bf_problem *pb, const double *cti,
  * objectives (src/fit/kernels.c). */
 double bf__sum_weighted(size_t n, const double *c, const double *d,
                         const double *w, const double *f);
+
+/* What the objective needs of pb->data, per configuration, into out (n
+ * values; nothing for the objectives that need none): the floored logs
+ * (BF_OBJ_LOG), the cube roots (BF_OBJ_CUBEROOT), ln(1 + rho)
+ * (BF_OBJ_LOG1P). The log_d argument of bf__objective and bf__residuals. */
+void bf__data_transform(const bf_problem *pb, double *out);
+
+/* The scale s of pb on a normalised curve (log_d from bf__data_transform):
+ * BF_OBJ_SCALE's s*, the free scale s >= 0 of the objectives that keep it
+ * (SPEC §10; cuberoot: s = t^3), 1 for the others. */
+double bf__fit_scale_of(const bf_problem *pb, const double *log_d,
+                        const double *curve);
 
 /* Residuals of pb on a normalised curve (see bf_objective). */
 void bf__residuals(const bf_problem *pb, const double *cti,

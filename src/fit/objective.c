@@ -9,13 +9,24 @@
  *   scale  s* = sum w L D / sum w L^2,  S = sum w (s* L - D)^2
  *   cosw   S = sum w cos(theta_i) (L - D)^2
  *   log    S = sum w (ln max(L, f) - ln max(D, f))^2,  f = BF_LOG_FLOOR
+ *
+ * [3] SPEC §10: the objectives that keep the scale, on rho = BRDF cos ti
+ *     as measured (R) and the curve L times a free scale s >= 0:
+ *   ngan      s = max(0, sum w L R / sum w L^2),  S = sum w (s L - R)^2
+ *   cuberoot  t = max(0, sum w L' R' / sum w L'^2), L' = cbrt L,
+ *             R' = cbrt R,  S = sum w (t L' - R')^2  (cbrt(s L) = t L')
+ *   log1p     s = argmin_{s >= 0} sum w (ln(1 + s L) - ln(1 + R))^2
+ *   ngan's reported value is E = sqrt(S / K).
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fit/engine.h"
 
-static const char *const objective_names[] = {"max", "scale", "cosw", "log"};
+static const char *const objective_names[] = {"max",  "scale",    "cosw",
+                                               "log",  "ngan",     "cuberoot",
+                                               "log1p"};
 
 #define N_OBJECTIVES (sizeof objective_names / sizeof objective_names[0])
 
@@ -40,6 +51,41 @@ int bf_objective_find(const char *name, bf_objective *obj)
         }
     }
     return BF_ENOTFOUND;
+}
+
+int bf_objective_keeps_scale(bf_objective obj)
+{
+    return obj == BF_OBJ_NGAN || obj == BF_OBJ_CUBEROOT ||
+           obj == BF_OBJ_LOG1P;
+}
+
+double bf_objective_report(bf_objective obj, double s, double n)
+{
+    if (obj == BF_OBJ_NGAN) { /* SPEC §10: E = sqrt(S / K) */
+        return n > 0.0 && s >= 0.0 ? sqrt(s / n) : NAN;
+    }
+    return s;
+}
+
+void bf__data_transform(const bf_problem *pb, double *out)
+{
+    size_t k;
+    for (k = 0; pb->data != NULL && k < pb->n; k++) {
+        double d = pb->data[k];
+        switch (pb->objective) {
+        case BF_OBJ_LOG: /* doc/methods.md §1: floored logs */
+            out[k] = log(d > BF_LOG_FLOOR ? d : BF_LOG_FLOOR);
+            break;
+        case BF_OBJ_CUBEROOT: /* SPEC §10: the real cube root */
+            out[k] = cbrt(d);
+            break;
+        case BF_OBJ_LOG1P: /* SPEC §10 */
+            out[k] = log1p(d);
+            break;
+        default:
+            return;
+        }
+    }
 }
 
 /* ==== the problem ======================================================== */
@@ -85,7 +131,11 @@ size_t bf_problem_nfree(const bf_problem *pb)
 
 size_t bf_problem_nparams(const bf_problem *pb)
 {
-    return bf_problem_nfree(pb) + (pb->objective == BF_OBJ_SCALE ? 1u : 0u);
+    return bf_problem_nfree(pb) + (pb->objective == BF_OBJ_SCALE ||
+                                           bf_objective_keeps_scale(
+                                               pb->objective)
+                                       ? 1u
+                                       : 0u);
 }
 
 /* ==== objectives on a normalised curve =================================== */
@@ -111,15 +161,156 @@ static double optimal_scale(const bf_problem *pb, const double *curve)
     return den > 0.0 ? num / den : 0.0;
 }
 
+/* sum w L' R' / sum w L'^2 clamped at 0 (L' = the cube roots of the
+ * curve c, or c itself when roots is 1; R' = tdata): the cube-root
+ * objective's t = cbrt(s) (SPEC §10). */
+static double cuberoot_scale(const bf_problem *pb, const double *tdata,
+                             const double *c, int roots)
+{
+    double num = 0.0;
+    double den = 0.0;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double w = weight_of(pb, k);
+        double l = roots ? c[k] : cbrt(c[k]);
+        num += w * l * tdata[k];
+        den += w * l * l;
+    }
+    return den > 0.0 && num > 0.0 ? num / den : 0.0;
+}
+
+/* Half the derivative (*g1) and second derivative (*g2) in s of the log1p
+ * objective sum w (ln(1 + s L) - R')^2, R' = tdata. */
+static void log1p_slope(const bf_problem *pb, const double *tdata,
+                        const double *curve, double s, double *g1,
+                        double *g2)
+{
+    double a = 0.0;
+    double b = 0.0;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double w = weight_of(pb, k);
+        double l = curve[k];
+        double q = l / (1.0 + s * l);
+        double r = log1p(s * l) - tdata[k];
+        a += w * r * q;
+        b += w * q * q * (1.0 - r);
+    }
+    *g1 = a;
+    *g2 = b;
+}
+
+/* The s >= 0 minimising the log1p objective (SPEC §10): 0 when the slope
+ * at 0 is not negative, else the root of the slope in a bracket [lo, hi]
+ * (hi doubled from the least-squares scale until the slope turns
+ * positive, kept where 1 + s L > 0), by Newton steps from the
+ * least-squares scale that bisect whenever a step leaves the bracket, to
+ * a step or bracket of 1e-13 relative (S is flat to second order
+ * there). */
+static double log1p_scale(const bf_problem *pb, const double *tdata,
+                          const double *curve)
+{
+    double lo = 0.0;
+    double hi;
+    double cap = INFINITY;
+    double s;
+    double g1;
+    double g2;
+    size_t k;
+    int it;
+    for (k = 0; k < pb->n; k++) { /* 1 + s L > 0 for s < cap */
+        if (curve[k] < 0.0 && weight_of(pb, k) != 0.0) {
+            cap = fmin(cap, -1.0 / curve[k]);
+        }
+    }
+    log1p_slope(pb, tdata, curve, 0.0, &g1, &g2);
+    if (!(g1 < 0.0)) {
+        return 0.0;
+    }
+    hi = optimal_scale(pb, curve);
+    hi = hi > 0.0 ? hi : 1.0;
+    for (it = 0; it < 2100; it++) {
+        if (hi >= cap) {
+            hi = 0.5 * (lo + cap);
+        }
+        log1p_slope(pb, tdata, curve, hi, &g1, &g2);
+        if (!(g1 < 0.0)) {
+            break;
+        }
+        lo = hi;
+        hi *= 2.0;
+    }
+    s = optimal_scale(pb, curve);
+    s = s > lo && s < hi ? s : 0.5 * (lo + hi);
+    for (it = 0; it < 200; it++) {
+        double next;
+        log1p_slope(pb, tdata, curve, s, &g1, &g2);
+        if (g1 == 0.0) {
+            break;
+        }
+        if (g1 < 0.0) {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        next = g2 > 0.0 ? s - g1 / g2 : NAN;
+        next = next > lo && next < hi ? next : 0.5 * (lo + hi);
+        if (fabs(next - s) <= 1e-13 * s || hi - lo <= 1e-13 * hi) {
+            return next;
+        }
+        s = next;
+    }
+    return s;
+}
+
+double bf__fit_scale_of(const bf_problem *pb, const double *tdata,
+                        const double *curve)
+{
+    switch (pb->objective) {
+    case BF_OBJ_SCALE:
+        return optimal_scale(pb, curve);
+    case BF_OBJ_NGAN: {
+        double s = optimal_scale(pb, curve);
+        return s > 0.0 ? s : 0.0; /* non-negative (SPEC §9.3 domains) */
+    }
+    case BF_OBJ_CUBEROOT: {
+        double t = cuberoot_scale(pb, tdata, curve, 0);
+        return t * t * t;
+    }
+    case BF_OBJ_LOG1P:
+        return log1p_scale(pb, tdata, curve);
+    default:
+        return 1.0;
+    }
+}
+
 void bf__residuals(const bf_problem *pb, const double *cti,
                    const double *log_d, const double *curve, double *resid)
 {
     size_t k;
-    double s = pb->objective == BF_OBJ_SCALE ? optimal_scale(pb, curve) : 1.0;
+    double s;
+    if (pb->objective == BF_OBJ_CUBEROOT) { /* t cbrt(L) - cbrt(rho) */
+        double t;
+        for (k = 0; k < pb->n; k++) {
+            resid[k] = cbrt(curve[k]);
+        }
+        t = cuberoot_scale(pb, log_d, resid, 1);
+        for (k = 0; k < pb->n; k++) {
+            resid[k] = t * resid[k] - log_d[k];
+        }
+        return;
+    }
+    s = bf__fit_scale_of(pb, log_d, curve);
     for (k = 0; k < pb->n; k++) {
         double l = curve[k];
         double d = pb->data[k];
         switch (pb->objective) {
+        case BF_OBJ_NGAN: /* SPEC §10 */
+            resid[k] = s * l - d;
+            break;
+        case BF_OBJ_LOG1P:
+            resid[k] = log1p(s * l) - log_d[k];
+            break;
         case BF_OBJ_SCALE:
             resid[k] = s * l - d;
             break;
@@ -208,4 +399,51 @@ int bf_problem_residuals(const bf_problem *pb, const double *param,
         return BF_EINVAL;
     }
     return problem_eval(pb, param, NULL, resid);
+}
+
+/* ==== the free scale as rho_d (SPEC §9.4) ================================ */
+
+int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d)
+{
+    static const bf_geom normal = {0.0, 3.14159265358979323846, 0.0, 0.0};
+    bf__solo so;
+    double *v;
+    double vmax = -INFINITY;
+    double s = 0.0;
+    size_t k;
+    int rc;
+    if (pb == NULL || rho_d == NULL || pb->data == NULL ||
+        !bf_objective_keeps_scale(pb->objective) ||
+        (pb->type != NULL && pb->type->p > 0 && param == NULL)) {
+        return BF_EINVAL;
+    }
+    *rho_d = NAN;
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    v = malloc((pb->n + 1) * sizeof *v);
+    rc = v == NULL ? BF_ENOMEM
+                   : bf__curve(&so.pm, param, so.fc.work, so.fc.curve);
+    if (rc == BF_OK) { /* s L_k, L the curve normalised by its maximum */
+        s = bf__fit_scale_of(pb, so.fc.log_d, so.fc.curve);
+        rc = bf_model_eval(pb->type, param, pb->n, pb->geom, v);
+    }
+    if (rc == BF_OK) {
+        rc = bf_model_eval(pb->type, param, 1, &normal, v + pb->n);
+    }
+    for (k = 0; rc == BF_OK && k < pb->n; k++) {
+        vmax = v[k] > vmax ? v[k] : vmax;
+    }
+    /* s L_k = s v_k / max v = rho_d v_k / (pi v_normal), SPEC §9.4 */
+    if (rc == BF_OK && !(vmax > 0.0 && v[pb->n] > 0.0 && isfinite(vmax) &&
+                         isfinite(v[pb->n]))) {
+        rc = BF_EDOM;
+    }
+    if (rc == BF_OK) {
+        *rho_d = s * 3.14159265358979323846 * (v[pb->n] / vmax);
+    }
+    free(v);
+    bf__solo_free(&so);
+    return rc;
 }

@@ -82,8 +82,18 @@ int bf_study_targets(const bf_dataset *ds, const size_t *materials,
     return BF_OK;
 }
 
+/* bf_study_target_data, with rho as measured when raw is 1 (SPEC §10). */
+static int target_data(const bf_study_spec *spec, size_t t, int raw,
+                       size_t *sel, size_t *k, double *data, bf_error *err);
+
 int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
                          size_t *k, double *data, bf_error *err)
+{
+    return target_data(spec, t, 0, sel, k, data, err);
+}
+
+static int target_data(const bf_study_spec *spec, size_t t, int raw,
+                       size_t *sel, size_t *k, double *data, bf_error *err)
 {
     const bf_target *tg;
     int rc;
@@ -108,8 +118,10 @@ int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
         return target_error(err, spec->data, tg->material, BF_EDOM,
                             "no configuration is left to fit", 0);
     }
-    rc = bf_dataset_radiance(spec->data, tg->material, tg->channel, *k, sel,
-                             data);
+    rc = raw ? bf__dataset_rho(spec->data, tg->material, tg->channel, *k,
+                               sel, data)
+             : bf_dataset_radiance(spec->data, tg->material, tg->channel, *k,
+                                   sel, data);
     if (rc != BF_OK) { /* SPEC §2 */
         return target_error(err, spec->data, tg->material, rc,
                             "the measured radiance has no positive maximum "
@@ -180,6 +192,12 @@ static int same_group(const bf__group_t *g, size_t set, size_t k,
 int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
                      bf_error *err)
 {
+    return bf__study_groups_data(spec, 0, gs, err);
+}
+
+int bf__study_groups_data(const bf_study_spec *spec, int raw,
+                          bf__groups_t *gs, bf_error *err)
+{
     size_t nt = spec->n_targets;
     size_t *group_of = malloc((nt + 1) * sizeof *group_of);
     size_t *k_of = malloc((nt + 1) * sizeof *k_of);
@@ -212,7 +230,7 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
         size_t set = bf_dataset_set(spec->data, m);
         size_t *ts = sel + at[t];
         bf__group_t *g = NULL;
-        rc = bf_study_target_data(spec, t, ts, &k_of[t], data + at[t], err);
+        rc = target_data(spec, t, raw, ts, &k_of[t], data + at[t], err);
         if (rc != BF_OK) {
             goto fail;
         }

@@ -6,13 +6,16 @@
 
 #include "output/output.h"
 
+/* j of the row of the free scale rho_d (SPEC §9.4). */
+#define SCALE_ROW (SIZE_MAX - 1)
+
 /* The analysis columns of row i and parameter j (SIZE_MAX: a model with
- * no fitted parameter). */
+ * no fitted parameter; SCALE_ROW: the free scale, refined value only). */
 static void analysis_cols(FILE *fp, const bf_study_row *r,
                           const bf_fit_stats *s, const bf_analysis_opts *opts,
                           size_t j)
 {
-    int has = j != SIZE_MAX;
+    int has = j < BF_MAX_PARAMS;
     char flags[512];
     fprintf(fp, ",%s,%s",
             bf_objective_name(opts != NULL ? opts->objective : BF_OBJ_MAX),
@@ -23,7 +26,8 @@ static void analysis_cols(FILE *fp, const bf_study_row *r,
     }
     bf__csv_num(fp, has ? s->grid.param[j] : NAN);
     bf__csv_num(fp, s->grid.lse);
-    bf__csv_num(fp, has ? s->refined.param[j] : NAN);
+    bf__csv_num(fp, has ? s->refined.param[j]
+                        : j == SCALE_ROW ? s->scale : NAN);
     bf__csv_num(fp, s->refined.lse);
     bf__csv_num(fp, has ? s->ci_low[j] : NAN);
     bf__csv_num(fp, has ? s->ci_high[j] : NAN);
@@ -65,6 +69,18 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
         int any = 0;
         if (r->status != BF_OK) {
             continue;
+        }
+        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)) {
+            any = 1; /* SPEC §9.4: rho_d, a parameter of the fit */
+            bf__csv_target(fp, spec, r->target);
+            fputc(',', fp);
+            bf__csv_field(fp, r->type->name);
+            fputs(",rho_d,1", fp);
+            bf__csv_num(fp, s->scale);
+            fprintf(fp, ",%.10g,%d,%zu", r->fit.lse, s->scale == 0.0,
+                    r->k);
+            analysis_cols(fp, r, s, opts, SCALE_ROW);
+            fputc('\n', fp);
         }
         for (j = 0; j < r->type->p; j++) {
             if (!r->type->param[j].fitted) {
