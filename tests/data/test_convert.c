@@ -235,6 +235,9 @@ Test(convert, every_fitted_model_is_fitted_back_exactly_through_csv)
     for (m = 0; m < bf_model_count(); m++) {
         const bf_model_type *t = bf_model_get(m);
         size_t n = t == bf_model_wno_r ? 40 : 250;
+        if (t->kind != BF_MODEL_DIFFUSE) {
+            continue; /* SPEC §9: fitted under SPEC §10, not max-normalised */
+        }
         double *a = malloc(n * 4 * sizeof *a);
         double *v = malloc(n * sizeof *v);
         bf_geom *g = malloc(n * sizeof *g);
