@@ -33,13 +33,19 @@
 /* The bootstrap interval sits this far below the profile interval. */
 #define BOOT_OFFSET 0.3
 
-/* The width of a figure of a row per sample (the forest plots and the
- * overview): the width it wants, widened up to cap points so that its
- * height is at most BF_PLOT_MAX_TALL times the width (many samples). */
-static unsigned rows_width(double want, unsigned height, unsigned cap)
+/* Sets the width of d's figure of a row per sample (the forest plots and
+ * the overview): the width it wants, widened up to cap points until it
+ * lays out -- at most BF_PLOT_MAX_TALL times as tall as wide (many
+ * samples) and with room for the names and the legend (few models, long
+ * names). */
+static void rows_width(bf_fig_desc *d, double want, unsigned cap)
 {
-    double w = fmax(want, ceil((double)height / BF_PLOT_MAX_TALL));
-    return (unsigned)fmin((double)cap, w);
+    double w = fmax(want, ceil((double)d->fig.height / BF_PLOT_MAX_TALL));
+    d->fig.width = (unsigned)fmin((double)cap, w);
+    while (d->fig.width < cap && !bf_plot_fits(&d->fig, 0.0)) {
+        d->fig.width = (unsigned)fmin((double)cap,
+                                      ceil(1.2 * (double)d->fig.width));
+    }
 }
 
 /* A parameter's label for an axis, its unit added unless dimensionless,
@@ -222,14 +228,13 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     }
     /* the sample names, then at most 200 points a parameter */
     d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
-    d->fig.width = rows_width(160.0 + 200.0 * (double)nj, d->fig.height,
-                              D->o->width);
     d->fig.nx = nj;
     d->fig.ny = 1;
     d->fig.share_y = 1;
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = panel;
     d->fig.n_panels = nj;
+    rows_width(d, 160.0 + 200.0 * (double)nj, D->o->width);
     snprintf(e->base, sizeof e->base, "forest_%s", t->name);
     snprintf(e->title, sizeof e->title,
              "%s: fitted parameters and their 95%% intervals", t->name);
@@ -334,11 +339,11 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     p->n_yticks = N;
     p->cells = cells;
     d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
-    d->fig.width = rows_width(want, d->fig.height, D->o->width);
     d->fig.nx = d->fig.ny = 1;
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = p;
     d->fig.n_panels = 1;
+    rows_width(d, want, D->o->width);
     snprintf(e->base, sizeof e->base, "delta_bic");
     snprintf(e->title, sizeof e->title,
              "Model selection at a glance: \xce\x94" "BIC per sample");

@@ -278,9 +278,9 @@ int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 /* ==== Figures 3-6: predicted against measured ============================ */
 
 /* Narrowest scatter axes of a group's grid (the paper's six columns of a
- * double-column figure are about 70 points) and of one sample's re-flowed
+ * double-column figure are 59 points) and of one sample's re-flowed
  * panels, points. */
-#define SCATTER_GRID_MIN 60.0
+#define SCATTER_GRID_MIN 50.0
 #define SCATTER_FLOW_MIN 100.0
 
 /* How a scatter figure's panels are arranged. */

@@ -54,6 +54,10 @@
 # specular_models/albedo_of_a_known_integral, which stays.
 # test_oom preloads its own allocator (tests/oom/oom_shim.c), which
 # valgrind's replaces; it runs in the plain build only.
+# test_cli_matrix runs report, compare and rank over every combination of
+# samples, models, --stats and data set (over a hundred CLI runs); each
+# code path it reaches runs under valgrind in test_cli, test_cli_inputs and
+# test_cmd_report, and ASan runs a diagonal of the matrix.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -64,6 +68,7 @@ jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     test_oom
+    test_cli_matrix
     test_uncertainty
     test_coverage
     test_before
