@@ -15,6 +15,10 @@
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
 #   make valgrind  run the test suite under valgrind (no leak, no error)
+#   make coverage  build with gcov instrumentation into build-cov/, run the
+#               test suite there and print the line and branch coverage of
+#               src/ as the last line (gcovr; build-cov/coverage.txt has
+#               the lines each file leaves uncovered); not part of make test
 
 SHARED   ?= ../shared
 CURET    ?= $(SHARED)/data/curet
@@ -34,12 +38,14 @@ FUZZ_MAX_LEN ?= 4096
 BUILD      = build
 BUILD_ASAN = build-asan
 BUILD_FUZZ = build-fuzz
+BUILD_COV  = build-cov
 CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
 .PHONY: all deps build cli run rank report-all test test-plain test-asan asan bench \
-        install format tidy clean screenshot fuzz fuzz-build valgrind
+        install format tidy clean screenshot fuzz fuzz-build valgrind \
+        coverage
 
 all: build
 
@@ -107,6 +113,24 @@ fuzz: fuzz-build
 valgrind: build
 	@scripts/install-deps.sh valgrind
 	tests/valgrind.sh $(BUILD)
+
+# gcov counts of the optimised build (RelWithDebInfo, as make build) for
+# the whole suite but test_install (its consumers would need libgcov);
+# a failing test fails the target. The summary covers src/ only.
+coverage: deps
+	@scripts/install-deps.sh coverage
+	@$(CONFIGURE) -B $(BUILD_COV) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DCMAKE_C_FLAGS=--coverage >/dev/null
+	@cmake --build $(BUILD_COV) -j $(JOBS)
+	@find $(BUILD_COV) -name '*.gcda' -delete
+	cd $(BUILD_COV) && ctest -j $(JOBS) --timeout 3600 -E '^test_install$$' \
+	    --output-on-failure >ctest.log || { tail -50 ctest.log; exit 1; }
+	@gcovr -r . --object-directory $(BUILD_COV) --filter 'src/' \
+	    -o $(BUILD_COV)/coverage.txt --print-summary | awk \
+	    '{gsub(/[()]/, "")} \
+	     /^lines:/ {l = $$2 " (" $$3 " of " $$6 " lines)"} \
+	     /^branches:/ {b = $$2 " (" $$3 " of " $$6 " branches)"} \
+	     END {print "coverage of src/ by the test suite: " l ", " b}'
 
 bench: build
 	@scripts/install-deps.sh bench

@@ -57,6 +57,11 @@ void bf_cli_exit_usage(FILE *fp);
 /* Maps a loader failure to a message on stderr and an exit status. */
 int bf_cli_load_error(const bf_error *err);
 
+/* A library writer's failure (code, a BF_E* code) on output file name:
+ * prints "name could not be written: out of memory" for BF_ENOMEM, else
+ * an internal error; returns BF_EXIT_SOFTWARE. */
+int bf_cli_write_error(const char *name, int code);
+
 /* Parses a list "1,5,7-9" of positive integers into a new array (caller
  * frees). Returns 0 on success, -1 with a message in msg otherwise (-2
  * with "out of memory": not the user's mistake). */

@@ -69,7 +69,9 @@ static int write_md(const bf_cli_study *st, const bf_tt *t,
     fputs("\nSummary over samples:\n\n", fp);
     for (c = 0; c < BF_CLI_NCRIT; c++) {
         fputs("- ", fp);
-        bf_cli_rank_summary(st, c, fp);
+        if (bf_cli_rank_summary(st, c, fp) != BF_EXIT_OK) {
+            return BF_EXIT_SOFTWARE;
+        }
     }
     fprintf(fp, "\nBest model by %s and its fitted parameters:\n\n",
             bf_cli_crit_names[crit]);
@@ -112,12 +114,12 @@ static int write_files(const bf_cli_study *st, const bf_tt *t,
         bf_out_abort(&csv);
         return rc;
     }
-    if (bf_ranking_csv_write(csv.fp, &st->spec, st->rows, st->stats,
-                             &st->analysis) != BF_OK) {
-        bf_cli_err("internal error: ranking.csv could not be written");
+    rc = bf_ranking_csv_write(csv.fp, &st->spec, st->rows, st->stats,
+                              &st->analysis);
+    if (rc != BF_OK) {
         bf_out_abort(&csv);
         bf_out_abort(&md);
-        return BF_EXIT_SOFTWARE;
+        return bf_cli_write_error("ranking.csv", rc);
     }
     if (write_md(st, t, best, crit, md.fp) != BF_EXIT_OK) {
         bf_out_abort(&csv);
@@ -183,9 +185,11 @@ int bf_cmd_rank(int argc, char **argv)
                bf_cli_crit_names[crit]);
         bf_tt_print(best, stdout);
         printf("\nSummary over samples:\n");
-        for (c = 0; c < BF_CLI_NCRIT; c++) {
-            bf_cli_rank_summary(&st, c, stdout);
+        for (c = 0; c < BF_CLI_NCRIT && rc == BF_EXIT_OK; c++) {
+            rc = bf_cli_rank_summary(&st, c, stdout);
         }
+    }
+    if (rc == BF_EXIT_OK && !st.opts.quiet) {
         printf("\nWritten: %s/ranking.csv (parameters and intervals of "
                "every model), %s/ranking.md\n",
                st.opts.out_dir, st.opts.out_dir);

@@ -181,10 +181,12 @@ static int write_page(const bf_cli_study *st, const bf_fig_set *figs,
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    if (bf_report_html(st, figs, meta, o->fp) != 0) {
-        bf_cli_err("%s: write failed", o->path);
+    rc = bf_report_html(st, figs, meta, o->fp);
+    if (rc != 0) {
+        bf_cli_err("%s: %s", o->path,
+                   rc == -2 ? "out of memory" : "write failed");
         bf_out_abort(o);
-        return BF_EXIT_IOERR;
+        return rc == -2 ? BF_EXIT_SOFTWARE : BF_EXIT_IOERR;
     }
     return BF_EXIT_OK;
 }

@@ -77,6 +77,17 @@ int bf_cli_load_error(const bf_error *err)
     return BF_EXIT_DATAERR;
 }
 
+int bf_cli_write_error(const char *name, int code)
+{
+    if (code == BF_ENOMEM) {
+        bf_cli_err("%s could not be written: %s", name, bf_strerror(code));
+    } else {
+        bf_cli_err("internal error: %s could not be written (%s)", name,
+                   bf_strerror(code));
+    }
+    return BF_EXIT_SOFTWARE;
+}
+
 int bf_cli_parse_double(const char *s, double *out)
 {
     char *end = NULL;

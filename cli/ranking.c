@@ -27,16 +27,9 @@ double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c)
 static size_t rank_sample(const bf_cli_study *st, size_t s, int c,
                           size_t *rank)
 {
-    size_t *r = rank != NULL ? rank
-                             : malloc((st->n_models + 1) * sizeof *r);
     size_t best = SIZE_MAX;
-    if (r != NULL) {
-        bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c,
-                r, &best);
-    }
-    if (rank == NULL) {
-        free(r);
-    }
+    bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c,
+            rank, &best);
     return best;
 }
 
@@ -268,15 +261,23 @@ bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
 /* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first;
  * bf_study_wins: a fit that reduces to another model counts for that
  * model, never for the larger one). */
-void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
+int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
 {
     const char **names = calloc(2 * st->n_models + 1, sizeof *names);
     size_t *wins = calloc(2 * st->n_models + 1, sizeof *wins);
     size_t n = 0;
     size_t i;
-    if (names != NULL && wins != NULL &&
-        bf_study_wins(&st->spec, st->stats, (bf_criterion)c, names, wins,
-                      &n) != BF_OK) {
+    int e = names == NULL || wins == NULL
+                ? BF_ENOMEM
+                : bf_study_wins(&st->spec, st->stats, (bf_criterion)c, names,
+                                wins, &n);
+    if (e == BF_ENOMEM) {
+        free(wins);
+        free(names);
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    }
+    if (e != BF_OK) {
         n = 0;
     }
     fprintf(fp, "%s:", bf_cli_crit_names[c]);
@@ -291,4 +292,5 @@ void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
     fputs(n == 0 ? " no model could be ranked\n" : "\n", fp);
     free(wins);
     free(names);
+    return BF_EXIT_OK;
 }

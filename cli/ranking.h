@@ -33,7 +33,9 @@ int bf_cli_params_table(const bf_cli_study *st, size_t m,
 /* The best model of each sample by crit with its parameters and
  * intervals (caller frees), NULL on ENOMEM. */
 struct bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit);
-/* Prints "BIC: FC-E best for 32 of 61 samples, ON 13, ..." and a newline. */
-void bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp);
+/* Prints "BIC: FC-E best for 32 of 61 samples, ON 13, ..." and a newline.
+ * Returns BF_EXIT_OK, or BF_EXIT_SOFTWARE after the message when out of
+ * memory (nothing printed). */
+int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp);
 
 #endif

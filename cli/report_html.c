@@ -37,6 +37,10 @@ static void put_shell_word(FILE *fp, const char *s)
     fputc('\'', fp);
 }
 
+/* Set when a part of the page could not be formed for want of memory:
+ * bf_report_html then fails (the page would be incomplete). */
+static int page_oom;
+
 /* ==== provenance ========================================================= */
 
 static int add_input(bf_report_meta *meta, const char *role, const char *path)
@@ -49,7 +53,17 @@ static int add_input(bf_report_meta *meta, const char *role, const char *path)
     in = &meta->inputs[meta->n_inputs];
     in->role = role;
     snprintf(in->path, sizeof in->path, "%s", path);
-    if (stat(path, &sb) != 0 || bf_sha256_file(path, in->sha256) != BF_OK) {
+    if (stat(path, &sb) != 0) {
+        bf_cli_err("%s: cannot read to compute its checksum", path);
+        return BF_EXIT_NOINPUT;
+    }
+    switch (bf_sha256_file(path, in->sha256)) {
+    case BF_OK:
+        break;
+    case BF_ENOMEM:
+        bf_cli_err("%s: cannot compute its checksum: out of memory", path);
+        return BF_EXIT_SOFTWARE;
+    default:
         bf_cli_err("%s: cannot read to compute its checksum", path);
         return BF_EXIT_NOINPUT;
     }
@@ -209,6 +223,9 @@ static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
     size_t j = 0;
     size_t k;
     int first = 1;
+    if (sel == NULL || data == NULL) {
+        page_oom = 1;
+    }
     if (sel != NULL && data != NULL &&
         bf_cli_target_data(st, s, sel, &K, data) == BF_OK) {
         for (k = 0; k < nconf; k++) {
@@ -396,11 +413,18 @@ static void conventions(FILE *fp, const bf_cli_study *st,
             meta->fig->width, meta->fig->width / 72.0, BF_PLOT_FONT,
             BF_PLOT_PNG_DPI,
             (meta->fig->formats & (1u << BF_PLOT_SVG)) ? " and SVG" : "");
-    if (mem != NULL) {
-        bf_cli_study_describe(st, mem);
-        fclose(mem);
+    if (mem == NULL || bf_cli_study_describe(st, mem) != BF_EXIT_OK ||
+        ferror(mem)) {
+        page_oom = 1;
+    }
+    /* glibc's memstream may lose the buffered text to a failed final
+     * flush and still close: the description is never empty */
+    if (mem != NULL && (fclose(mem) != 0 || text == NULL || len == 0)) {
+        page_oom = 1;
+    }
+    if (!page_oom) {
         fputs("<p>The run, as printed by brdffit:</p>\n<pre>", fp);
-        bf_tt_html_text(fp, text != NULL ? text : "");
+        bf_tt_html_text(fp, text);
         fputs("</pre>\n", fp);
     }
     free(text);
@@ -529,5 +553,5 @@ int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
     conventions(fp, st, meta);
     provenance(fp, meta);
     fputs("</body>\n</html>\n", fp);
-    return ferror(fp) ? -1 : 0;
+    return page_oom ? -2 : ferror(fp) ? -1 : 0;
 }

@@ -39,7 +39,8 @@ typedef struct {
 int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta);
 
 /* Writes the page to fp. Deterministic: the same run gives the same bytes
- * (no dates). Returns 0, or -1 when a write failed. */
+ * (no dates). Returns 0, -1 when a write failed, or -2 when a part of the
+ * page could not be formed for want of memory (the page is incomplete). */
 int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
                    const bf_report_meta *meta, FILE *fp);
 

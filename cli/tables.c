@@ -423,11 +423,10 @@ static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
         }
         opened++;
     }
-    if (bf_fits_csv_write(f[0].fp, &st->spec, st->rows, st->stats,
-                          st->stats != NULL ? &st->analysis : NULL) !=
-        BF_OK) {
-        bf_cli_err("internal error: fits.csv could not be written");
-        rc = BF_EXIT_SOFTWARE;
+    rc = bf_fits_csv_write(f[0].fp, &st->spec, st->rows, st->stats,
+                           st->stats != NULL ? &st->analysis : NULL);
+    if (rc != BF_OK) {
+        rc = bf_cli_write_error("fits.csv", rc);
         goto fail;
     }
     fputs(o->exact ? "Table 2: fitted parameters (exact optimum (grid "

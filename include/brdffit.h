@@ -1424,7 +1424,7 @@ int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
  * number of models with a lower value not tied with m's (ties share the
  * rank), 0 when m has no value; *best = the model of rank 1 with the
  * fewest parameters (k), the first listed among equals, or SIZE_MAX when
- * none has a value. */
+ * none has a value. rank may be NULL (only *best wanted). */
 void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
              size_t *rank, size_t *best);
 

@@ -7,6 +7,7 @@
 #                                    the numpy/scipy peer of the analysis
 #   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
 #   scripts/install-deps.sh valgrind also valgrind (make valgrind)
+#   scripts/install-deps.sh coverage also gcovr (make coverage)
 set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
@@ -26,7 +27,9 @@ for group in "$@"; do
     bench) PACKAGES="$PACKAGES python3-numpy python3-scipy" ;;
     fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
     valgrind) PACKAGES="$PACKAGES valgrind" ;;
-    *) echo "install-deps: unknown group '$group' (bench, fuzz, valgrind)" >&2
+    coverage) PACKAGES="$PACKAGES gcovr" ;;
+    *) echo "install-deps: unknown group '$group' (bench, fuzz, valgrind," \
+            "coverage)" >&2
        exit 2 ;;
     esac
 done

@@ -44,6 +44,8 @@ int bf__errno_code(int e);
  * BF_EPARSE error instead of an unbounded allocation. CURET's longest line
  * (abrdf.dat) is about 1.7 KB. */
 #define BF__LINE_MAX ((size_t)1 << 20)
+/* Most bytes the line reader takes from its stream in one read. */
+#define BF__LINES_READ_MAX ((size_t)64 << 20)
 
 /* At most this many bytes of an offending field are quoted in a message. */
 #define BF__QUOTE_MAX 24
@@ -63,6 +65,13 @@ void bf__quote(const char *text, char *out, size_t n);
  * than BF__LINE_MAX are errors). Fields are split in place. */
 typedef struct {
     FILE *fp;         /* the stream (not owned) */
+    char *in;         /* what was read of it: a regular file's whole rest
+                         in one read (up to BF__LINES_READ_MAX at a time),
+                         a pipe's 64 KiB at a time */
+    size_t in_len;    /* bytes in in */
+    size_t in_pos;    /* the next byte to take */
+    size_t in_cap;    /* allocated size of in */
+    int in_end;       /* 1 once the stream gave no more bytes */
     long line;        /* 1-based number of the current line, 0 before any */
     int started;      /* 1 once the BOM check has been done */
     char *buf;        /* current line, NUL-terminated, line end removed */

@@ -12,9 +12,11 @@
  *   - blank lines (empty or only spaces and tabs) are skipped wherever they
  *     are, but still counted, so reported line numbers match an editor's;
  *   - a NUL byte is an error (a binary file given by mistake);
- *   - a line longer than BF__LINE_MAX bytes is an error. Lines are read with
- *     getc into a buffer that grows up to that cap, rather than with getline,
- *     so a huge or endless line cannot make us allocate without bound.
+ *   - a line longer than BF__LINE_MAX bytes is an error. The stream is read
+ *     in large blocks (a regular file whole, in one read: read_size) and
+ *     each line copied into a buffer that grows up to that cap, rather than
+ *     with getline, so a huge or endless line cannot make us allocate
+ *     without bound.
  * Numbers are decimal only (see bf__parse_double): no hex floats, no
  * nan/inf, no overflow to infinity, no trailing characters. */
 #include "internal.h"
@@ -41,26 +43,91 @@ void bf__lines_free(bf__lines *r)
     if (r == NULL) {
         return;
     }
+    free(r->in);
     free(r->buf);
     free(r->field);
+    r->in = NULL;
     r->buf = NULL;
     r->field = NULL;
     r->len = 0;
     r->cap = 0;
+    r->in_len = 0;
+    r->in_pos = 0;
+    r->in_cap = 0;
     r->nfield = 0;
     r->field_cap = 0;
 }
 
-/* Appends byte c to r->buf, growing it up to BF__LINE_MAX + 1 bytes. */
-static int push_byte(bf__lines *r, int c, long line, bf_error *err)
+/* Size of the first read: the rest of a regular file (one read), else
+ * 64 KiB; at most BF__LINES_READ_MAX. */
+static size_t read_size(FILE *fp)
 {
-    if (r->len >= BF__LINE_MAX) {
+    struct stat st;
+    int fd = fileno(fp);
+    if (fd >= 0 && fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+        long pos = ftell(fp);
+        off_t left = st.st_size - (pos > 0 ? pos : 0);
+        if (left >= 0 && (uintmax_t)left < BF__LINES_READ_MAX) {
+            return (size_t)left + 1; /* + 1: the end seen in the same read */
+        }
+        return BF__LINES_READ_MAX;
+    }
+    return (size_t)64 << 10;
+}
+
+/* Takes the next bytes of the stream into r->in (r->in_end once there
+ * are none). */
+static int refill(bf__lines *r, long line, bf_error *err)
+{
+    if (r->in == NULL) {
+        size_t cap = read_size(r->fp);
+        r->in = malloc(cap);
+        if (r->in == NULL) {
+            return bf__error_set(err, BF_ENOMEM, line,
+                                 "out of memory reading a line");
+        }
+        r->in_cap = cap;
+    }
+    r->in_pos = 0;
+    r->in_len = fread(r->in, 1, r->in_cap, r->fp);
+    if (r->in_len == 0) {
+        if (ferror(r->fp)) {
+            return bf__error_set(err, BF_EIO, line, "read error: %s",
+                                 strerror(errno));
+        }
+        r->in_end = 1;
+    }
+    return BF_OK;
+}
+
+/* The next byte of the stream without taking it, or EOF. */
+static int peek(bf__lines *r, long line, int *c, bf_error *err)
+{
+    if (r->in_pos == r->in_len && !r->in_end) {
+        int rc = refill(r, line, err);
+        if (rc != BF_OK) {
+            return rc;
+        }
+    }
+    *c = r->in_pos < r->in_len ? (unsigned char)r->in[r->in_pos] : EOF;
+    return BF_OK;
+}
+
+/* Appends n bytes to r->buf (kept terminated), growing it up to
+ * BF__LINE_MAX + 1 bytes. */
+static int push_bytes(bf__lines *r, const char *p, size_t n, long line,
+                      bf_error *err)
+{
+    if (n > BF__LINE_MAX - r->len) {
         return bf__error_set(err, BF_EPARSE, line,
                              "line longer than %zu bytes", BF__LINE_MAX);
     }
-    if (r->len + 1 >= r->cap) {
-        size_t cap = r->cap == 0 ? 256 : 2 * r->cap;
+    if (r->len + n + 1 > r->cap) {
+        size_t cap = r->cap == 0 ? 256 : r->cap;
         char *buf;
+        while (cap < r->len + n + 1) {
+            cap *= 2;
+        }
         if (cap > BF__LINE_MAX + 1) {
             cap = BF__LINE_MAX + 1;
         }
@@ -72,7 +139,9 @@ static int push_byte(bf__lines *r, int c, long line, bf_error *err)
         r->buf = buf;
         r->cap = cap;
     }
-    r->buf[r->len++] = (char)c;
+    memcpy(r->buf + r->len, p, n);
+    r->len += n;
+    r->buf[r->len] = '\0';
     return BF_OK;
 }
 
@@ -83,7 +152,8 @@ static int read_line(bf__lines *r, int *eof, bf_error *err)
     static const unsigned char bom[3] = {0xEF, 0xBB, 0xBF};
     long line = r->line + 1;
     int rc;
-    int c;
+    int c = EOF;
+    int any = 0; /* a byte of this line was taken */
 
     r->len = 0;
     *eof = 0;
@@ -92,63 +162,72 @@ static int read_line(bf__lines *r, int *eof, bf_error *err)
         size_t k = 0;
         r->started = 1;
         while (k < 3) {
-            c = getc(r->fp);
+            rc = peek(r, line, &c, err);
+            if (rc != BF_OK) {
+                return rc;
+            }
             if (c != bom[k]) {
-                if (c != EOF) {
-                    ungetc(c, r->fp);
-                }
                 break;
             }
+            r->in_pos++;
             k++;
         }
+        any = k > 0;
         if (k < 3) {
-            size_t j;
-            for (j = 0; j < k; j++) {
-                rc = push_byte(r, bom[j], line, err);
-                if (rc != BF_OK) {
-                    return rc;
-                }
+            rc = push_bytes(r, (const char *)bom, k, line, err);
+            if (rc != BF_OK) {
+                return rc;
             }
         }
     }
     for (;;) {
-        c = getc(r->fp);
+        const char *s;
+        size_t avail;
+        size_t k = 0;
+        rc = peek(r, line, &c, err);
+        if (rc != BF_OK) {
+            return rc;
+        }
         if (c == EOF) {
-            if (ferror(r->fp)) {
-                return bf__error_set(err, BF_EIO, line, "read error: %s",
-                                     strerror(errno));
-            }
-            if (r->len == 0 && feof(r->fp)) {
-                *eof = 1;
-            }
+            *eof = !any;
             break;
         }
+        any = 1;
+        s = r->in + r->in_pos;
+        avail = r->in_len - r->in_pos;
+        while (k < avail && s[k] != '\n' && s[k] != '\r' && s[k] != '\0') {
+            k++;
+        }
+        rc = push_bytes(r, s, k, line, err);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        r->in_pos += k;
+        if (k == avail) {
+            continue; /* the line goes on in the next read */
+        }
+        c = (unsigned char)s[k];
+        r->in_pos++;
         if (c == '\n') {
             break;
-        }
-        if (c == '\r') {
-            int next = getc(r->fp);
-            if (next == '\n' || next == EOF) {
-                if (next == EOF && ferror(r->fp)) {
-                    return bf__error_set(err, BF_EIO, line, "read error: %s",
-                                         strerror(errno));
-                }
-                break;
-            }
-            return bf__error_set(err, BF_EPARSE, line,
-                                 "carriage return not followed by a line "
-                                 "feed (only LF and CRLF line ends are "
-                                 "accepted)");
         }
         if (c == '\0') {
             return bf__error_set(err, BF_EPARSE, line,
                                  "NUL byte at column %zu (binary file?)",
                                  r->len + 1);
         }
-        rc = push_byte(r, c, line, err);
+        rc = peek(r, line, &c, err); /* after a CR */
         if (rc != BF_OK) {
             return rc;
         }
+        if (c == '\n' || c == EOF) {
+            r->in_pos += c == '\n';
+            break;
+        }
+        return bf__error_set(err, BF_EPARSE, line,
+                             "carriage return not followed by a line "
+                             "feed (only LF and CRLF line ends are "
+                             "accepted)");
     }
     if (!*eof) {
         r->line = line;
@@ -268,24 +347,58 @@ int bf__lines_split_tab(bf__lines *r, bf_error *err)
 
 /* ==== strict number parsing ==== */
 
+/* A decimal as decimal_scan reads it: value = (-1)^neg m 10^e10 when
+ * exact (m < 2^53 held every significant digit, the exponent was small);
+ * otherwise strtod must read it. */
+typedef struct {
+    uint64_t m;
+    int e10;
+    int neg;
+    int exact;
+} decimal_t;
+
+/* Largest integer a double holds exactly, and the powers of ten a double
+ * holds exactly (10^22 < 2^53 * 2^22: 5^22 < 2^53). */
+#define EXACT_INT ((uint64_t)1 << 53)
+#define EXACT_POW10 22
+
 /* Length of the longest prefix of s of the form [+-] digits [. digits]
  * [(e|E) [+-] digits] with at least one mantissa digit; 0 if none. *is_int
- * is set when the prefix has neither a point nor an exponent. */
-static size_t decimal_prefix(const char *s, int *is_int)
+ * is set when the prefix has neither a point nor an exponent. In the same
+ * pass, d (may be NULL) gets the digits as an integer and a power of ten
+ * (Clinger's fast path: W. D. Clinger, "How to read floating point
+ * numbers accurately", PLDI 1990, §2). */
+static size_t decimal_prefix(const char *s, int *is_int, decimal_t *d)
 {
     size_t k = 0;
     size_t digits = 0;
+    uint64_t m = 0;
+    int over = 0;   /* a significant digit did not fit below 2^53 */
+    long scale = 0; /* digits after the point that went into m */
     *is_int = 1;
     if ((s[k] == '+') || (s[k] == '-')) {
         k++;
     }
     while (isdigit((unsigned char)s[k])) {
+        unsigned dg = (unsigned)(s[k] - '0');
+        if (m < EXACT_INT / 10) {
+            m = 10 * m + dg;
+        } else {
+            over = 1;
+        }
         k++;
         digits++;
     }
     if (s[k] == '.') {
         size_t frac = 0;
         while (isdigit((unsigned char)s[k + 1 + frac])) {
+            unsigned dg = (unsigned)(s[k + 1 + frac] - '0');
+            if (m < EXACT_INT / 10) {
+                m = 10 * m + dg;
+                scale++;
+            } else {
+                over = 1;
+            }
             frac++;
         }
         if (digits + frac > 0) {
@@ -297,20 +410,55 @@ static size_t decimal_prefix(const char *s, int *is_int)
     if (digits == 0) {
         return 0;
     }
+    if (d != NULL) {
+        d->neg = s[0] == '-';
+        d->m = m;
+        d->e10 = (int)-scale;
+        d->exact = !over;
+    }
     if ((s[k] == 'e') || (s[k] == 'E')) {
         size_t e = k + 1;
+        long x = 0;
+        int xneg = 0;
         if ((s[e] == '+') || (s[e] == '-')) {
+            xneg = s[e] == '-';
             e++;
         }
         if (isdigit((unsigned char)s[e])) {
             while (isdigit((unsigned char)s[e])) {
+                if (x < 1000) {
+                    x = 10 * x + (s[e] - '0');
+                }
                 e++;
             }
             k = e;
             *is_int = 0;
+            if (d != NULL) {
+                long t = (long)d->e10 + (xneg ? -x : x);
+                d->e10 = t < -1000 ? -1000 : t > 1000 ? 1000 : (int)t;
+            }
         }
     }
     return k;
+}
+
+/* The double nearest d when one rounding gives it (Clinger's fast path:
+ * m and 10^|e10| are exact doubles, so m * 10^e10 or m / 10^-e10 is
+ * correctly rounded, as strtod's result is); 0 when strtod must read. */
+static int decimal_fast(const decimal_t *d, double *v)
+{
+    static const double pow10[EXACT_POW10 + 1] = {
+        1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    double x;
+    if (!d->exact || d->e10 < -EXACT_POW10 || d->e10 > EXACT_POW10) {
+        return 0;
+    }
+    x = (double)d->m;
+    x = d->e10 < 0 ? x / pow10[-d->e10] : x * pow10[d->e10];
+    *v = d->neg ? -x : x;
+    return 1;
 }
 
 /* 1 when s starts with word (lower case), ignoring the case of s. */
@@ -345,7 +493,8 @@ static int classify_bad(const char *s)
 int bf__parse_double(const char *text, double *value)
 {
     int is_int;
-    size_t k = decimal_prefix(text, &is_int);
+    decimal_t d;
+    size_t k = decimal_prefix(text, &is_int, &d);
     char *end = NULL;
     double v;
     if ((k == 0) || (text[k] != '\0')) {
@@ -354,6 +503,9 @@ int bf__parse_double(const char *text, double *value)
             return BF__NUM_TRAILING;
         }
         return bad;
+    }
+    if (decimal_fast(&d, value)) {
+        return BF__NUM_OK;
     }
     errno = 0;
     v = strtod(text, &end);
@@ -377,7 +529,7 @@ int bf__parse_double(const char *text, double *value)
 int bf__parse_long(const char *text, long min, long max, long *value)
 {
     int is_int;
-    size_t k = decimal_prefix(text, &is_int);
+    size_t k = decimal_prefix(text, &is_int, NULL);
     char *end = NULL;
     long v;
     if ((k == 0) || (text[k] != '\0')) {

@@ -78,21 +78,22 @@ void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
     *best = SIZE_MAX;
     for (m = 0; m < n_models; m++) {
         double v = bf_criterion_value(&stats[m], c);
-        rank[m] = 0;
-        if (!isfinite(v)) {
-            continue;
-        }
-        rank[m] = 1;
-        for (q = 0; q < n_models; q++) {
-            double w = bf_criterion_value(&stats[q], c);
-            if (isfinite(w) && w < v &&
-                !bf_criterion_tied(v, w, c, stats[m].n)) {
-                rank[m]++; /* clearly better than m */
+        size_t r = 0;
+        if (isfinite(v)) {
+            r = 1;
+            for (q = 0; q < n_models; q++) {
+                double w = bf_criterion_value(&stats[q], c);
+                if (isfinite(w) && w < v &&
+                    !bf_criterion_tied(v, w, c, stats[m].n)) {
+                    r++; /* clearly better than m */
+                }
             }
         }
-    }
-    for (m = 0; m < n_models; m++) { /* fewer parameters, then first */
-        if (rank[m] == 1 && (*best == SIZE_MAX || stats[m].k < stats[*best].k)) {
+        if (rank != NULL) {
+            rank[m] = r;
+        }
+        /* of rank 1: fewer parameters, then the first */
+        if (r == 1 && (*best == SIZE_MAX || stats[m].k < stats[*best].k)) {
             *best = m;
         }
     }

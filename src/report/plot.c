@@ -21,6 +21,7 @@
  * written by png.c as palette images (a third of pngcairo's size). */
 #include "plot.h"
 
+#include <errno.h>
 #include <math.h>
 #include <plplot.h>
 #include <stdio.h>
@@ -89,6 +90,8 @@ typedef struct {
     double *px;    /* scratch: the same in points */
     double *py;
     bf__poly poly; /* outlines joined into one polygon (vector formats) */
+    int failed;    /* a drawing step ran out of memory: the figure is
+                      incomplete (bf_plot_write returns BF_ENOMEM) */
 } ctx_t;
 
 /* The current panel: its axes (points) and window (data after the log or
@@ -299,6 +302,7 @@ static void line_run(ctx_t *c, const view_t *v, size_t n, const double *wx,
     py = malloc(2 * n * sizeof *py);
     rs = malloc((n + 1) * sizeof *rs);
     if (px == NULL || py == NULL || rs == NULL) {
+        c->failed = 1;
         goto done;
     }
     base = n; /* the page points at [n, 2n); runs are built below them */
@@ -307,6 +311,10 @@ static void line_run(ctx_t *c, const view_t *v, size_t n, const double *wx,
     }
     if (c->fmt != BF_PLOT_PNG) {
         n = bf__simplify(n, px + base, py + base, SIMPLIFY_TOL);
+        if (n == 0) {
+            c->failed = 1;
+            goto done;
+        }
     }
     if (d->n == 0) {
         for (k = 0; k < n; k++) {
@@ -331,6 +339,7 @@ static void line_run(ctx_t *c, const view_t *v, size_t n, const double *wx,
     qx = malloc(2 * cap * sizeof *qx);
     qy = malloc(2 * cap * sizeof *qy);
     if (cx == NULL || cy == NULL || ps == NULL || qx == NULL || qy == NULL) {
+        c->failed = 1;
         goto done;
     }
     for (r = 0; r < runs; r++) {
@@ -411,6 +420,7 @@ static void series_line(ctx_t *c, const view_t *v, const bf_plot_series *s)
     if (rx == NULL || ry == NULL) {
         free(rx);
         free(ry);
+        c->failed = 1;
         return;
     }
     lines_begin(c, s);
@@ -988,43 +998,53 @@ static void figure_texts(const ctx_t *c)
     }
 }
 
-/* Reads the whole file at path into a new buffer (NUL-terminated; the
- * caller frees); NULL on failure. */
-static char *slurp(const char *path, size_t *len)
+/* The code of a failed fopen: BF_ENOMEM for want of memory, else BF_EIO. */
+static int open_error(void)
+{
+    return errno == ENOMEM ? BF_ENOMEM : BF_EIO;
+}
+
+/* Reads the whole file at path into a new buffer *out (NUL-terminated;
+ * the caller frees). Returns BF_OK, BF_ENOMEM or BF_EIO (*out NULL). */
+static int slurp(const char *path, char **out, size_t *len)
 {
     FILE *fp = fopen(path, "rb");
     char *buf = NULL;
     long n;
+    int rc = BF_EIO;
+    *out = NULL;
     if (fp == NULL) {
-        return NULL;
+        return open_error();
     }
     if (fseek(fp, 0, SEEK_END) == 0 && (n = ftell(fp)) > 0 &&
-        fseek(fp, 0, SEEK_SET) == 0 &&
-        (buf = malloc((size_t)n + 1)) != NULL) {
-        if (fread(buf, 1, (size_t)n, fp) == (size_t)n) {
+        fseek(fp, 0, SEEK_SET) == 0) {
+        buf = malloc((size_t)n + 1);
+        rc = buf == NULL ? BF_ENOMEM : BF_EIO;
+        if (buf != NULL && fread(buf, 1, (size_t)n, fp) == (size_t)n) {
             buf[n] = '\0';
             *len = (size_t)n;
+            *out = buf;
+            rc = BF_OK;
         } else {
             free(buf);
-            buf = NULL;
         }
     }
     fclose(fp);
-    return buf;
+    return rc;
 }
 
 /* Blanks the PDF's /CreationDate entry (cairo writes the clock time) with
  * spaces of the same length, so byte offsets stay valid and the same
- * figure gives the same bytes [2]. Returns BF_OK or BF_EIO. */
+ * figure gives the same bytes [2]. Returns BF_OK, BF_ENOMEM or BF_EIO. */
 static int blank_pdf_date(const char *path)
 {
     static const char key[] = "/CreationDate (";
     size_t len = 0;
-    char *buf = slurp(path, &len);
+    char *buf;
     char *p;
-    int rc = BF_OK;
-    if (buf == NULL) {
-        return BF_EIO;
+    int rc = slurp(path, &buf, &len);
+    if (rc != BF_OK) {
+        return rc;
     }
     for (p = buf; p + sizeof key - 1 < buf + len; p++) {
         if (memcmp(p, key, sizeof key - 1) == 0) {
@@ -1035,7 +1055,9 @@ static int blank_pdf_date(const char *path)
             }
             memset(p, ' ', (size_t)(end - p + 1));
             fp = fopen(path, "wb");
-            if (fp == NULL || fwrite(buf, 1, len, fp) != len) {
+            if (fp == NULL) {
+                rc = open_error();
+            } else if (fwrite(buf, 1, len, fp) != len) {
                 rc = BF_EIO;
             }
             if (fp != NULL && fclose(fp) != 0) {
@@ -1050,25 +1072,33 @@ static int blank_pdf_date(const char *path)
 
 /* cairo numbers its surfaces in the process and writes the number into
  * the SVG's top group, id="surfaceN": renumbered 1 here, so the file does
- * not depend on what the process drew before. Returns BF_OK or BF_EIO. */
+ * not depend on what the process drew before. Returns BF_OK, BF_ENOMEM
+ * or BF_EIO. */
 static int renumber_svg(const char *path)
 {
     static const char key[] = "<g id=\"surface";
     size_t len = 0;
-    char *buf = slurp(path, &len);
-    char *p = buf != NULL ? strstr(buf, key) : NULL;
+    char *buf;
+    char *p;
     FILE *fp;
     int ok;
-    if (buf == NULL) {
-        return BF_EIO;
+    int rc = slurp(path, &buf, &len);
+    if (rc != BF_OK) {
+        return rc;
     }
+    p = strstr(buf, key);
     if (p == NULL) {
         free(buf);
         return BF_OK;
     }
     p += sizeof key - 1;
     fp = fopen(path, "wb");
-    ok = fp != NULL && fwrite(buf, 1, (size_t)(p - buf), fp) ==
+    if (fp == NULL) {
+        rc = open_error();
+        free(buf);
+        return rc;
+    }
+    ok = fwrite(buf, 1, (size_t)(p - buf), fp) ==
                            (size_t)(p - buf);
     if (ok) {
         char *q = p;
@@ -1079,7 +1109,7 @@ static int renumber_svg(const char *path)
              fwrite(q, 1, len - (size_t)(q - buf), fp) ==
                  len - (size_t)(q - buf);
     }
-    if (fp != NULL && fclose(fp) != 0) {
+    if (fclose(fp) != 0) {
         ok = 0;
     }
     free(buf);
@@ -1155,6 +1185,7 @@ int bf_plot_write(const bf_plot_figure *fig, bf_plot_format fmt,
     unsigned ph = 0;
     size_t i;
     int rc;
+    int failed;
 
     if ((unsigned)fmt >= BF_PLOT_NFORMATS || path == NULL) {
         return BF_EINVAL;
@@ -1182,9 +1213,10 @@ int bf_plot_write(const bf_plot_figure *fig, bf_plot_format fmt,
      * first that the file can be written. */
     probe = fopen(path, "wb");
     if (probe == NULL) {
+        rc = open_error();
         ctx_free(&c);
         free(L);
-        return BF_EIO;
+        return rc;
     }
     fclose(probe);
     if (fmt == BF_PLOT_PNG) { /* drawn on white, in memory */
@@ -1224,8 +1256,13 @@ int bf_plot_write(const bf_plot_figure *fig, bf_plot_format fmt,
     figure_texts(&c);
     draw_legend(&c);
     plend();
+    failed = c.failed || c.poly.failed;
     ctx_free(&c);
     free(L);
+    if (failed) {
+        free(image);
+        return BF_ENOMEM;
+    }
     if (fmt == BF_PLOT_PNG) {
         unsigned char rgb[NCOL][3];
         colormap(rgb);
@@ -1236,9 +1273,11 @@ int bf_plot_write(const bf_plot_figure *fig, bf_plot_format fmt,
             return rc;
         }
     }
-    if ((fmt == BF_PLOT_PDF && blank_pdf_date(path) != BF_OK) ||
-        (fmt == BF_PLOT_SVG && renumber_svg(path) != BF_OK)) {
-        return BF_EIO;
+    rc = fmt == BF_PLOT_PDF   ? blank_pdf_date(path)
+         : fmt == BF_PLOT_SVG ? renumber_svg(path)
+                              : BF_OK;
+    if (rc != BF_OK) {
+        return rc;
     }
     if (stat(path, &st) != 0 || st.st_size == 0) {
         return BF_EIO;

@@ -192,7 +192,8 @@ int bf_plot_flow(bf_plot_figure *fig, double min_axes);
  * width, no panel, more panels than nx * ny, an unknown
  * format or style, an empty range, a log axis with ymin <= 0, a series
  * with n > 0 and NULL arrays, cells without classes); BF_EIO when path
- * cannot be written or the driver produced an empty file. The same
+ * cannot be written or the driver produced an empty file; BF_ENOMEM when
+ * memory ran out (the file is then incomplete: the caller drops it). The same
  * description gives the same bytes in every format (the PDF's creation
  * date, which cairo writes, is blanked). Not thread-safe (PLplot keeps
  * global state): draw in parallel from separate processes. */

@@ -88,6 +88,8 @@ typedef struct {
     size_t n, cap;
     size_t *anchor;          /* where each outline starts */
     size_t n_anchor, cap_anchor;
+    int failed;              /* an append ran out of memory (kept until
+                                bf__poly_free: the drawing is incomplete) */
 } bf__poly;
 
 /* Appends the closed outline of n >= 3 points (closed here if it is not)
@@ -107,7 +109,7 @@ size_t bf__clip_runs(const bf__box *b, size_t n, const double *x,
 
 /* Drops, in place, the points of the polyline that lie within tol of the
  * simplified line (Douglas-Peucker; the ends are kept). Returns the
- * number of points left. */
+ * number of points left (n when n < 3), 0 when out of memory. */
 size_t bf__simplify(size_t n, double *x, double *y, double tol);
 
 /* Cuts the polyline of n points into the dashes of pattern d (solid: one

@@ -30,11 +30,13 @@ static int poly_reserve(bf__poly *p, size_t extra)
         double *x = realloc(p->x, cap * sizeof *x);
         double *y;
         if (x == NULL) {
+            p->failed = 1;
             return -1;
         }
         p->x = x;
         y = realloc(p->y, cap * sizeof *y);
         if (y == NULL) {
+            p->failed = 1;
             return -1;
         }
         p->y = y;
@@ -44,6 +46,7 @@ static int poly_reserve(bf__poly *p, size_t extra)
         size_t cap = 2 * p->cap_anchor + 16;
         size_t *a = realloc(p->anchor, cap * sizeof *a);
         if (a == NULL) {
+            p->failed = 1;
             return -1;
         }
         p->anchor = a;
@@ -209,8 +212,11 @@ size_t bf__simplify(size_t n, double *x, double *y, double tol)
     unsigned char *keep;
     size_t m = 0;
     size_t k;
-    if (n < 3 || (keep = calloc(n, 1)) == NULL) {
+    if (n < 3) {
         return n;
+    }
+    if ((keep = calloc(n, 1)) == NULL) {
+        return 0;
     }
     keep[0] = keep[n - 1] = 1;
     dp(x, y, 0, n - 1, tol * tol, keep);

@@ -6,6 +6,7 @@
  *       initial hash value, §6.2.2 hash computation. */
 #include "sha256.h"
 
+#include <errno.h>
 #include <string.h>
 
 #include "brdffit.h"
@@ -164,7 +165,7 @@ int bf_sha256_file(const char *path, char hex[BF_SHA256_HEX])
     FILE *fp = fopen(path, "rb");
     int rc;
     if (fp == NULL) {
-        return BF_EIO;
+        return errno == ENOMEM ? BF_ENOMEM : BF_EIO;
     }
     rc = bf_sha256_stream(fp, hex);
     fclose(fp);

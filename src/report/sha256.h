@@ -35,7 +35,8 @@ void bf_sha256_hex(const uint8_t digest[BF_SHA256_SIZE],
 int bf_sha256_stream(FILE *fp, char hex[BF_SHA256_HEX]);
 
 /* Digest of the file at path, as hex. Returns BF_OK, or BF_EIO when it
- * cannot be opened or read. */
+ * cannot be opened or read (BF_ENOMEM when opening it ran out of
+ * memory). */
 int bf_sha256_file(const char *path, char hex[BF_SHA256_HEX]);
 
 #endif

@@ -24,6 +24,12 @@
 #include "support.h"
 
 #define WORKERS 2
+
+/* The libraries whose allocations the report's runs fail besides the
+ * program's own (BF_OOM_ONLY): the plotting stack's (PLplot, its drivers,
+ * cairo, pango, fontconfig, freetype, glib), which end the process their
+ * own way, are left alone. */
+#define REPORT_ONLY "libgsl:libgomp"
 #define MAX_FILES 64
 #define MAX_ARGS 48
 
@@ -348,4 +354,20 @@ Test(oom, cornell_file)
                           bf_test_cornell_path("acryl_blue.brdf"),
                           "--models", "LFTG", "--threads", "1", NULL};
     sweep(args, NULL);
+}
+
+Test(oom, rank_two_samples)
+{
+    const char *args[] = {"rank", "--data", bf_test_curet_path(""),
+                          "--samples", "4,5", "--models", "VH-G,LFTG",
+                          "--threads", "1", NULL};
+    sweep(args, NULL);
+}
+
+Test(oom, report_one_sample)
+{
+    const char *args[] = {"report", "--data", bf_test_curet_path(""),
+                          "--samples", "4", "--models", "LAMBERT",
+                          "--format", "svg", "--threads", "1", NULL};
+    sweep(args, REPORT_ONLY);
 }
