@@ -58,7 +58,8 @@ void bf_cli_exit_usage(FILE *fp);
 int bf_cli_load_error(const bf_error *err);
 
 /* Parses a list "1,5,7-9" of positive integers into a new array (caller
- * frees). Returns 0 on success, -1 with a message in msg otherwise. */
+ * frees). Returns 0 on success, -1 with a message in msg otherwise (-2
+ * with "out of memory": not the user's mistake). */
 int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
                           size_t msglen);
 

@@ -54,13 +54,15 @@ static int handle(int val, const char *arg, void *ctx)
     return 0;
 }
 
-static void write_md(const bf_cli_study *st, const bf_tt *t,
-                     const bf_tt *best, int crit, FILE *fp)
+static int write_md(const bf_cli_study *st, const bf_tt *t,
+                    const bf_tt *best, int crit, FILE *fp)
 {
     size_t m;
     int c;
     fputs("# Model ranking\n\n", fp);
-    bf_cli_study_describe(st, fp);
+    if (bf_cli_study_describe(st, fp) != BF_EXIT_OK) {
+        return BF_EXIT_SOFTWARE;
+    }
     fprintf(fp, "%s per sample (lower is better; * the best):\n\n",
             bf_cli_crit_names[crit]);
     bf_tt_print(t, fp);
@@ -77,7 +79,11 @@ static void write_md(const bf_cli_study *st, const bf_tt *t,
           "flags as in fits.csv (README \"Output files\").\n",
           fp);
     for (m = 0; m < st->n_models; m++) {
-        bf_tt *p = bf_cli_params_table(st, m);
+        bf_tt *p = NULL;
+        if (bf_cli_params_table(st, m, &p) != BF_EXIT_OK) {
+            bf_cli_err("out of memory");
+            return BF_EXIT_SOFTWARE;
+        }
         if (p == NULL) {
             continue; /* nothing fitted */
         }
@@ -85,6 +91,7 @@ static void write_md(const bf_cli_study *st, const bf_tt *t,
         bf_tt_print(p, fp);
         bf_tt_free(p);
     }
+    return BF_EXIT_OK;
 }
 
 static int write_files(const bf_cli_study *st, const bf_tt *t,
@@ -112,7 +119,11 @@ static int write_files(const bf_cli_study *st, const bf_tt *t,
         bf_out_abort(&md);
         return BF_EXIT_SOFTWARE;
     }
-    write_md(st, t, best, crit, md.fp);
+    if (write_md(st, t, best, crit, md.fp) != BF_EXIT_OK) {
+        bf_out_abort(&csv);
+        bf_out_abort(&md);
+        return BF_EXIT_SOFTWARE;
+    }
     rc = bf_out_commit(&csv);
     if (rc != BF_EXIT_OK) {
         bf_out_abort(&md);
@@ -161,8 +172,10 @@ int bf_cmd_rank(int argc, char **argv)
         rc = write_files(&st, t, best, (int)crit);
     }
     if (rc == BF_EXIT_OK && !st.opts.quiet) {
+        rc = bf_cli_study_describe(&st, stdout);
+    }
+    if (rc == BF_EXIT_OK && !st.opts.quiet) {
         int c;
-        bf_cli_study_describe(&st, stdout);
         printf("%s per sample (lower is better; * the best)\n\n",
                bf_cli_crit_names[crit]);
         bf_tt_print(t, stdout);

@@ -161,7 +161,8 @@ int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
                 int *nl = realloc(list, ncap * sizeof *nl);
                 if (nl == NULL) {
                     snprintf(msg, msglen, "out of memory");
-                    goto fail;
+                    free(list);
+                    return -2;
                 }
                 list = nl;
                 cap = ncap;
@@ -548,12 +549,13 @@ int bf_out_open(bf_out *o, const char *dir, const char *name)
     }
     (void)fchmod(fd, 0644);
     o->fp = fdopen(fd, "w");
-    if (o->fp == NULL) {
-        bf_cli_err("%s: cannot open: %s", o->path, strerror(errno));
+    if (o->fp == NULL) { /* fdopen fails only for want of memory */
+        int e = errno;
+        bf_cli_err("%s: cannot open: %s", o->path, strerror(e));
         close(fd);
         unlink(o->tmp);
         o->tmp[0] = '\0';
-        return BF_EXIT_CANTCREAT;
+        return e == ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_CANTCREAT;
     }
     return BF_EXIT_OK;
 }

@@ -33,6 +33,15 @@
 /* The bootstrap interval sits this far below the profile interval. */
 #define BOOT_OFFSET 0.3
 
+/* The width of a figure of a row per sample (the forest plots and the
+ * overview): the width it wants, widened up to cap points so that its
+ * height is at most BF_PLOT_MAX_TALL times the width (many samples). */
+static unsigned rows_width(double want, unsigned height, unsigned cap)
+{
+    double w = fmax(want, ceil((double)height / BF_PLOT_MAX_TALL));
+    return (unsigned)fmin((double)cap, w);
+}
+
 /* A parameter's label for an axis, its unit added unless dimensionless,
  * Greek names written as letters and n_d with its subscript: "σ/T (G)",
  * "σ (rad)". */
@@ -212,9 +221,9 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         q++;
     }
     /* the sample names, then at most 200 points a parameter */
-    d->fig.width = (unsigned)fmin((double)D->o->width,
-                                  160.0 + 200.0 * (double)nj);
     d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
+    d->fig.width = rows_width(160.0 + 200.0 * (double)nj, d->fig.height,
+                              D->o->width);
     d->fig.nx = nj;
     d->fig.ny = 1;
     d->fig.share_y = 1;
@@ -324,8 +333,8 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     p->ytick_labels = names;
     p->n_yticks = N;
     p->cells = cells;
-    d->fig.width = (unsigned)fmin((double)D->o->width, want);
     d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
+    d->fig.width = rows_width(want, d->fig.height, D->o->width);
     d->fig.nx = d->fig.ny = 1;
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = p;

@@ -83,6 +83,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 
 /* Samples per scatter figure (Figures 3-6 hold six each, as the paper). */
 #define BF_FIG_SCATTER_SAMPLES 6
+/* How many samples from index s0 on the next scatter figure holds: up to
+ * BF_FIG_SCATTER_SAMPLES, fewer when their grid would not fit a page
+ * (many models), 1 at the least (its panels are then re-flowed). */
+size_t bf_fig_scatter_group(const bf_fig_data *D, size_t s0);
 
 /* Whether model m has free parameters analysed for some sample (it gets
  * a forest plot). */

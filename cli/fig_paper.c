@@ -277,94 +277,198 @@ int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 
 /* ==== Figures 3-6: predicted against measured ============================ */
 
+/* Narrowest scatter axes of a group's grid (the paper's six columns of a
+ * double-column figure are about 70 points) and of one sample's re-flowed
+ * panels, points. */
+#define SCATTER_GRID_MIN 60.0
+#define SCATTER_FLOW_MIN 100.0
+
+/* How a scatter figure's panels are arranged. */
+typedef enum {
+    GRID_PAPER,      /* a column per sample, a row per model (the paper) */
+    GRID_TRANSPOSED, /* a column per model, a row per sample */
+    GRID_FLOW        /* one sample: its model panels in rows, each named
+                        by its note (bf_plot_flow chooses the grid) */
+} scatter_grid;
+
+/* What a scatter figure's description points into. */
+typedef struct {
+    bf_plot_panel *panel;
+    bf_plot_series *ser;
+    char (*notes)[48];
+    char (*slabel)[256];
+    const char **slabels; /* the sample labels */
+    const char **mlabels; /* the model names */
+} scatter_mem;
+
+static int scatter_alloc(const bf_fig_data *D, size_t ns, bf_fig_desc *d,
+                         scatter_mem *w)
+{
+    size_t n = ns * D->nm;
+    w->panel = bf_fig_alloc(d, n * sizeof *w->panel);
+    w->ser = bf_fig_alloc(d, n * sizeof *w->ser);
+    w->notes = bf_fig_alloc(d, n * sizeof *w->notes);
+    w->slabel = bf_fig_alloc(d, ns * sizeof *w->slabel);
+    w->slabels = bf_fig_alloc(d, ns * sizeof *w->slabels);
+    w->mlabels = bf_fig_alloc(d, D->nm * sizeof *w->mlabels);
+    return w->panel != NULL && w->ser != NULL && w->notes != NULL &&
+                   w->slabel != NULL && w->slabels != NULL &&
+                   w->mlabels != NULL
+               ? BF_OK
+               : BF_ENOMEM;
+}
+
+/* Describes the scatter panels of samples [s0, s0 + ns) in d->fig, in
+ * grid g. */
+static void scatter_fill(const bf_fig_data *D, size_t s0, size_t ns,
+                         scatter_grid g, scatter_mem *w, bf_fig_desc *d)
+{
+    const bf_cli_study *st = D->st;
+    size_t nm = D->nm;
+    size_t a;
+    size_t b;
+    memset(&d->fig, 0, sizeof d->fig);
+    for (a = 0; a < ns; a++) {
+        size_t s = s0 + a;
+        const bf_fig_sample *r = &D->smp[s];
+        w->slabels[a] = bf_fig_sample_tick(st, s, w->slabel[a],
+                                           sizeof w->slabel[a]);
+        for (b = 0; b < nm; b++) {
+            size_t m = D->idx[b];
+            size_t p = g == GRID_PAPER ? b * ns + a : a * nm + b;
+            const bf_study_row *row = bf_fig_row(st, s, m);
+            const char *name = g == GRID_FLOW ? st->models[m]->name : "";
+            const char *sep = g == GRID_FLOW ? ": " : "";
+            bf_plot_series *ser = &w->ser[p];
+            bf_plot_panel *pan = &w->panel[p];
+            if (row->status == BF_OK) {
+                snprintf(w->notes[p], sizeof w->notes[p], "%.24s%sLSE %.2f",
+                         name, sep, row->fit.lse);
+            } else {
+                snprintf(w->notes[p], sizeof w->notes[p],
+                         "%.24s%snot evaluated", name, sep);
+            }
+            memset(ser, 0, sizeof *ser);
+            memset(pan, 0, sizeof *pan);
+            ser->kind = BF_SERIES_POINTS;
+            ser->x = r->data;
+            ser->y = &r->pred[m * r->K];
+            ser->n = r->ok[m] ? r->K : 0;
+            ser->style = bf_report_model_style(st->models[m]);
+            ser->weight = SCATTER_MARKER;
+            pan->xmin = pan->ymin = SCATTER_LO;
+            pan->xmax = pan->ymax = SCATTER_HI;
+            pan->xtick = pan->ytick = 0.5;
+            pan->diagonal = 1;
+            pan->note = w->notes[p];
+            pan->series = ser;
+            pan->n_series = 1;
+        }
+    }
+    for (b = 0; b < nm; b++) {
+        w->mlabels[b] = st->models[D->idx[b]]->name;
+    }
+    d->fig.width = D->o->width;
+    d->fig.aspect = 1.0;
+    d->fig.share_x = d->fig.share_y = 1;
+    d->fig.xlabel = "measured L/L_{max}";
+    d->fig.ylabel = "predicted L/L_{max}";
+    d->fig.panels = w->panel;
+    d->fig.n_panels = ns * nm;
+    if (g == GRID_PAPER) {
+        d->fig.nx = ns;
+        d->fig.ny = nm;
+        d->fig.col_labels = w->slabels;
+        d->fig.row_labels = w->mlabels;
+    } else if (g == GRID_TRANSPOSED) {
+        d->fig.nx = nm;
+        d->fig.ny = ns;
+        d->fig.col_labels = w->mlabels;
+        d->fig.row_labels = w->slabels;
+    } else {
+        d->fig.nx = nm;
+        d->fig.ny = 1;
+    }
+}
+
+/* Describes the group of samples [s0, s0 + ns) (ns >= 2) in the paper's
+ * grid, or transposed when that does not fit; *g is the grid, GRID_FLOW
+ * when neither fits. */
+static int scatter_grid_of(const bf_fig_data *D, size_t s0, size_t ns,
+                           scatter_mem *w, bf_fig_desc *d, scatter_grid *g)
+{
+    static const scatter_grid tries[2] = {GRID_PAPER, GRID_TRANSPOSED};
+    size_t t;
+    for (t = 0; t < 2; t++) {
+        scatter_fill(D, s0, ns, tries[t], w, d);
+        if (bf_plot_fits(&d->fig, SCATTER_GRID_MIN)) {
+            *g = tries[t];
+            return BF_OK;
+        }
+    }
+    *g = GRID_FLOW;
+    return BF_OK;
+}
+
+size_t bf_fig_scatter_group(const bf_fig_data *D, size_t s0)
+{
+    size_t left = D->st->n_samples - s0;
+    size_t ns = left < BF_FIG_SCATTER_SAMPLES ? left
+                                              : BF_FIG_SCATTER_SAMPLES;
+    for (; ns > 1; ns--) {
+        bf_fig_desc d;
+        scatter_mem w;
+        scatter_grid g = GRID_FLOW;
+        memset(&d, 0, sizeof d);
+        if (scatter_alloc(D, ns, &d, &w) == BF_OK) {
+            (void)scatter_grid_of(D, s0, ns, &w, &d, &g);
+        }
+        bf_fig_desc_free(&d);
+        if (g != GRID_FLOW) {
+            break;
+        }
+    }
+    return ns;
+}
+
 int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full)
 {
     const bf_cli_study *st = D->st;
     int one = e->kind == BF_FIG_SAMPLE;
-    size_t s0 = one ? e->index : e->index * BF_FIG_SCATTER_SAMPLES;
-    size_t ns = one ? 1 : st->n_samples - s0;
+    size_t s0 = one ? e->index : e->first;
+    size_t ns = one ? 1 : e->count;
     size_t nm = D->nm;
-    size_t groups = (st->n_samples + BF_FIG_SCATTER_SAMPLES - 1) /
-                    BF_FIG_SCATTER_SAMPLES;
-    bf_plot_panel *panel;
-    bf_plot_series *ser;
-    char (*notes)[32];
-    char (*slabel)[256];
-    const char **cols;
-    const char **rows;
+    scatter_grid g = GRID_FLOW;
+    scatter_mem w;
     char models[256];
     char key[64];
     char ktext[48];
-    size_t a;
-    size_t b;
+    char where[256];
+    int rc;
 
     (void)full;
-    ns = ns > BF_FIG_SCATTER_SAMPLES ? BF_FIG_SCATTER_SAMPLES : ns;
-    panel = bf_fig_alloc(d, ns * nm * sizeof *panel);
-    ser = bf_fig_alloc(d, ns * nm * sizeof *ser);
-    notes = bf_fig_alloc(d, ns * nm * sizeof *notes);
-    slabel = bf_fig_alloc(d, ns * sizeof *slabel);
-    cols = bf_fig_alloc(d, (ns > nm ? ns : nm) * sizeof *cols);
-    rows = bf_fig_alloc(d, nm * sizeof *rows);
-    if (panel == NULL || ser == NULL || notes == NULL || slabel == NULL ||
-        cols == NULL || rows == NULL) {
-        return BF_ENOMEM;
+    rc = scatter_alloc(D, ns, d, &w);
+    if (rc == BF_OK && ns > 1) {
+        rc = scatter_grid_of(D, s0, ns, &w, d, &g);
     }
-    /* a group: one column per sample, one row per model; one sample: one
-     * row, a column per model */
-    for (a = 0; a < ns; a++) {
-        size_t s = s0 + a;
-        const bf_fig_sample *r = &D->smp[s];
-        bf_fig_sample_tick(st, s, slabel[a], sizeof slabel[a]);
-        for (b = 0; b < nm; b++) {
-            size_t m = D->idx[b];
-            size_t p = one ? b : b * ns + a;
-            const bf_study_row *row = bf_fig_row(st, s, m);
-            if (row->status == BF_OK) {
-                snprintf(notes[p], sizeof notes[p], "LSE %.2f", row->fit.lse);
-            } else {
-                snprintf(notes[p], sizeof notes[p], "not evaluated");
-            }
-            ser[p].kind = BF_SERIES_POINTS;
-            ser[p].x = r->data;
-            ser[p].y = &r->pred[m * r->K];
-            ser[p].n = r->ok[m] ? r->K : 0;
-            ser[p].style = bf_report_model_style(st->models[m]);
-            ser[p].weight = SCATTER_MARKER;
-            panel[p].xmin = panel[p].ymin = SCATTER_LO;
-            panel[p].xmax = panel[p].ymax = SCATTER_HI;
-            panel[p].xtick = panel[p].ytick = 0.5;
-            panel[p].diagonal = 1;
-            panel[p].note = notes[p];
-            panel[p].series = &ser[p];
-            panel[p].n_series = 1;
+    if (rc == BF_OK && g == GRID_FLOW) {
+        if (ns != 1) {
+            return BF_EINVAL; /* groups are chosen to fit */
         }
+        scatter_fill(D, s0, ns, GRID_FLOW, &w, d);
+        rc = bf_plot_flow(&d->fig, SCATTER_FLOW_MIN);
     }
-    for (b = 0; b < nm; b++) {
-        rows[b] = st->models[D->idx[b]]->name;
+    if (rc != BF_OK) {
+        return rc;
     }
-    d->fig.width = D->o->width;
-    d->fig.aspect = 1.0;
-    d->fig.nx = one ? nm : ns;
-    d->fig.ny = one ? 1 : nm;
-    d->fig.share_x = d->fig.share_y = 1;
-    d->fig.xlabel = "measured L/L_{max}";
-    d->fig.ylabel = "predicted L/L_{max}";
-    if (one) {
-        d->fig.col_labels = rows;
-    } else {
-        for (a = 0; a < ns; a++) {
-            cols[a] = slabel[a];
-        }
-        d->fig.col_labels = cols;
-        d->fig.row_labels = rows;
-    }
-    d->fig.panels = panel;
-    d->fig.n_panels = ns * nm;
 
     bf_fig_model_list(st, D->idx, nm, models, sizeof models);
+    snprintf(where, sizeof where, " of %.200s", w.slabel[0]);
     if (one) {
+        where[0] = '\0'; /* the title names the sample */
+    }
+    if (ns == 1) {
         snprintf(ktext, sizeof ktext, "K = %zu", D->smp[s0].K);
     } else {
         bf_fig_k_text(st, ktext, sizeof ktext);
@@ -373,23 +477,28 @@ int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         snprintf(e->base, sizeof e->base, "scatter_%s",
                  bf_fig_target_key(st, s0, key, sizeof key));
         snprintf(e->title, sizeof e->title, "%s: predicted against measured",
-                 slabel[0]);
+                 w.slabel[0]);
     } else {
         snprintf(e->base, sizeof e->base, "scatter%zu", e->index + 1);
         snprintf(e->title, sizeof e->title,
                  "Figures 3–6, part %zu of %zu: predicted against measured",
-                 e->index + 1, groups);
+                 e->index + 1, e->parts);
     }
     snprintf(e->caption, sizeof e->caption,
              "Predicted against measured radiance on the %s used "
-             "configurations%s, one %s per model (%s); measured and "
+             "configurations%s, %s (%s); measured and "
              "predicted radiance are each divided by their maximum over the "
              "K configurations (SPEC §2), the models at their fitted "
              "parameters; the grey diagonal is perfect agreement, and each "
              "panel gives the model's LSE.",
              ktext,
-             one ? "" : ", one column per sample",
-             one ? "column" : "row", models);
+             g == GRID_PAPER        ? ", one column per sample"
+             : g == GRID_TRANSPOSED ? ", one row per sample"
+                                    : where,
+             g == GRID_PAPER        ? "one row per model"
+             : g == GRID_TRANSPOSED ? "one column per model"
+                                    : "one panel per model",
+             models);
     snprintf(e->alt, sizeof e->alt,
              "Grid of %zu scatter plots: predicted against measured "
              "normalised radiance of %zu sample%s for the models %s.",

@@ -340,13 +340,22 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 {
     const bf_cli_study *st = D->st;
     size_t N = st->n_samples;
-    size_t groups = (N + BF_FIG_SCATTER_SAMPLES - 1) / BF_FIG_SCATTER_SAMPLES;
+    size_t first_group = set->n + 2;
     size_t g;
     size_t s;
     int ok = add_entry(set, BF_FIG_LSE, 0, 0) != NULL &&
              add_entry(set, BF_FIG_WINS, 0, 0) != NULL;
-    for (g = 0; g < groups && ok; g++) {
-        ok = add_entry(set, BF_FIG_SCATTER, g, 0) != NULL;
+    for (g = 0, s = 0; s < N && ok; g++) {
+        bf_fig_entry *e = add_entry(set, BF_FIG_SCATTER, g, 0);
+        ok = e != NULL;
+        if (ok) {
+            e->first = s;
+            e->count = bf_fig_scatter_group(D, s);
+            s += e->count;
+        }
+    }
+    for (s = first_group; s < set->n && ok; s++) {
+        set->fig[s].parts = g;
     }
     for (s = 0; s < N && ok; s++) {
         int sample = st->samples[s];

@@ -37,7 +37,7 @@ typedef struct {
 typedef enum {
     BF_FIG_LSE,       /* Figure 2(b) */
     BF_FIG_WINS,      /* samples won per model */
-    BF_FIG_SCATTER,   /* Figures 3-6: six samples per figure */
+    BF_FIG_SCATTER,   /* Figures 3-6: up to six samples per figure */
     BF_FIG_DELTA_BIC, /* analysis: samples x models, delta BIC */
     BF_FIG_FOREST,    /* analysis: one model's parameters and intervals */
     BF_FIG_SAMPLE,    /* one sample's scatter panels (--per-sample) */
@@ -53,6 +53,9 @@ typedef struct {
     size_t index;           /* kind-specific: the group of a scatter
                                figure, the model of a forest plot, the
                                sample index of per-sample figures */
+    size_t first, count;    /* scatter groups: the sample indices
+                               [first, first + count) */
+    size_t parts;           /* scatter groups: how many there are */
     char base[64];          /* file name without extension */
     char title[256];        /* short heading (never drawn in the image) */
     char caption[1536];     /* what is plotted and how it is normalised */

@@ -322,8 +322,13 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             size_t count = 0;
             char msg[128];
             int zero = strcmp(optarg, "0") == 0;
-            if (!zero && (bf_cli_parse_int_list(optarg, &list, &count, msg,
-                                                sizeof msg) != 0 ||
+            int e = zero ? 0 : bf_cli_parse_int_list(optarg, &list, &count,
+                                                     msg, sizeof msg);
+            if (e == -2) {
+                bf_cli_err("out of memory");
+                return BF_EXIT_SOFTWARE;
+            }
+            if (!zero && (e != 0 ||
                           count != 1 || strchr(optarg, ',') != NULL ||
                           strchr(optarg, '-') != NULL)) {
                 free(list);

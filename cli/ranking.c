@@ -92,6 +92,16 @@ static const char *best_name(const bf_cli_study *st, size_t s, size_t b,
     return buf;
 }
 
+/* t, or NULL (t freed) when a cell could not be stored. */
+static bf_tt *complete(bf_tt *t)
+{
+    if (bf_tt_failed(t)) {
+        bf_tt_free(t);
+        return NULL;
+    }
+    return t;
+}
+
 bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
 {
     bf_tt *t = bf_tt_alloc(2 + st->n_models + BF_CLI_NCRIT);
@@ -138,7 +148,7 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
         }
     }
     free(rank);
-    return t;
+    return complete(t);
 }
 
 /* "1.2345 [1.20, 1.30]" (profile interval), with " {1.21, 1.29}" for the
@@ -172,7 +182,7 @@ static size_t fitted_params(const bf_model_type *type, size_t *idx)
     return n;
 }
 
-bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m)
+int bf_cli_params_table(const bf_cli_study *st, size_t m, bf_tt **out)
 {
     const bf_model_type *type = st->models[m];
     size_t idx[BF_MAX_PARAMS];
@@ -180,8 +190,12 @@ bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m)
     bf_tt *t;
     size_t s;
     size_t q;
-    if (np == 0 || (t = bf_tt_alloc(3 + np)) == NULL) {
-        return NULL;
+    *out = NULL;
+    if (np == 0) {
+        return BF_EXIT_OK;
+    }
+    if ((t = bf_tt_alloc(3 + np)) == NULL) {
+        return BF_EXIT_SOFTWARE;
     }
     sample_headers(t);
     for (q = 0; q < np; q++) {
@@ -193,7 +207,7 @@ bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m)
         char flags[512];
         if (bf_tt_add_row(t) != 0) {
             bf_tt_free(t);
-            return NULL;
+            return BF_EXIT_SOFTWARE;
         }
         sample_cells(t, st, s);
         for (q = 0; q < np; q++) {
@@ -202,7 +216,8 @@ bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m)
         bf_fit_flags_format(type, &st->stats[i], flags, sizeof flags);
         bf_tt_set(t, 2 + np, "%s", flags);
     }
-    return t;
+    *out = complete(t);
+    return *out != NULL ? BF_EXIT_OK : BF_EXIT_SOFTWARE;
 }
 
 bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
@@ -247,7 +262,7 @@ bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
         }
         bf_tt_set(t, 3, "%s", np == 0 ? "(none)" : cell);
     }
-    return t;
+    return complete(t);
 }
 
 /* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first;

@@ -25,9 +25,11 @@ size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c);
 /* The per-sample table of criterion crit (caller frees), NULL on ENOMEM. */
 struct bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit);
 /* The fitted parameters with their 95% profile intervals (and bootstrap
- * intervals when run) of model m for every sample (caller frees), NULL on
- * ENOMEM or when m fits nothing. */
-struct bf_tt *bf_cli_params_table(const bf_cli_study *st, size_t m);
+ * intervals when run) of model m for every sample into *out (caller
+ * frees; NULL when m fits nothing). Returns BF_EXIT_OK, or
+ * BF_EXIT_SOFTWARE (*out NULL) when out of memory. */
+int bf_cli_params_table(const bf_cli_study *st, size_t m,
+                        struct bf_tt **out);
 /* The best model of each sample by crit with its parameters and
  * intervals (caller frees), NULL on ENOMEM. */
 struct bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit);

@@ -37,7 +37,13 @@ static int parse_samples(const char *hint, const bf_cli_opts *o, int **out,
         return BF_EXIT_OK;
     }
     *mode = SAMPLES_LIST;
-    if (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg) != 0) {
+    switch (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg)) {
+    case 0:
+        break;
+    case -2:
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    default:
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--samples: %s",
                                  msg);
     }
@@ -96,6 +102,7 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
     list = calloc(cap, sizeof *list);
     *out = list;
     if (list == NULL) {
+        bf_cli_err("out of memory");
         return BF_EXIT_SOFTWARE;
     }
     if (o->models != NULL && strcmp(o->models, "all") == 0) {
@@ -309,8 +316,12 @@ int bf_cli_study_prepare(bf_cli_study *st)
         /* syntax now; range once the data are read */
         char msg[256];
         int *ex = NULL;
-        if (bf_cli_parse_int_list(o->exclude, &ex, &st->n_exclude, msg,
-                                  sizeof msg) != 0) {
+        int e = bf_cli_parse_int_list(o->exclude, &ex, &st->n_exclude, msg,
+                                      sizeof msg);
+        if (e == -2) {
+            bf_cli_err("out of memory");
+            rc = BF_EXIT_SOFTWARE;
+        } else if (e != 0) {
             rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
                                    msg);
         } else {
@@ -340,7 +351,7 @@ int bf_cli_study_prepare(bf_cli_study *st)
         bf_study_targets(st->in.ds, materials, n_materials, o->channel,
                          &st->targets, &st->n_samples, &err) != BF_OK) {
         rc = err.code == BF_ENOMEM
-                 ? BF_EXIT_SOFTWARE
+                 ? bf_cli_load_error(&err)
                  : bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--channel: %s",
                                      err.msg);
     }

@@ -89,7 +89,7 @@ void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
 
 /* One line per group of targets with the same material configuration
  * list and selection: K, how many the cone left out, and which ones. */
-static void describe_configs(const bf_cli_study *st, FILE *fp)
+static int describe_configs(const bf_cli_study *st, FILE *fp)
 {
     const bf_dataset *ds = st->in.ds;
     size_t s;
@@ -118,7 +118,9 @@ static void describe_configs(const bf_cli_study *st, FILE *fp)
             sel = malloc(cap * sizeof *sel);
             data = malloc(cap * sizeof *data);
             if (sel == NULL || data == NULL) {
-                break;
+                free(sel);
+                free(data);
+                return -1;
             }
         }
         if (bf_cli_target_data(st, s, sel, &k, data) != BF_OK) {
@@ -149,6 +151,7 @@ static void describe_configs(const bf_cli_study *st, FILE *fp)
     }
     free(sel);
     free(data);
+    return 0;
 }
 
 /* The "Free parameters" line of the exact fit: each model's parameters
@@ -222,11 +225,14 @@ static void describe_fit(const bf_cli_study *st, FILE *fp)
     fprintf(fp, " (doc/methods.md §4-5)\n");
 }
 
-void bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
+int bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
 {
     const bf_cli_opts *o = &st->opts;
     bf_cli_describe_data(st, fp);
-    describe_configs(st, fp);
+    if (describe_configs(st, fp) != 0) {
+        bf_cli_err("out of memory");
+        return BF_EXIT_SOFTWARE;
+    }
     fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided by "
                 "its maximum over the K used configurations (SPEC §2)\n");
     if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
@@ -249,6 +255,7 @@ void bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
                 o->on_file);
     }
     fputc('\n', fp);
+    return BF_EXIT_OK;
 }
 
 static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
@@ -331,7 +338,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
             }
         }
     }
-    return 0;
+    return bf_tt_failed(*t2) || bf_tt_failed(*t3) ? -1 : 0;
 }
 
 static int any_bound_hit(const bf_study_spec *spec, const bf_study_row *rows)
@@ -503,7 +510,10 @@ int bf_cli_study_write_tables(const bf_cli_study *st)
     if (rc != BF_EXIT_OK || st->opts.quiet) {
         goto done;
     }
-    bf_cli_study_describe(st, stdout);
+    rc = bf_cli_study_describe(st, stdout);
+    if (rc != BF_EXIT_OK) {
+        goto done;
+    }
     printf("Table 2: fitted parameters (%s%s)\n\n",
            st->opts.exact ? "exact optimum (grid optimum)" : "grid optima",
            any_bound_hit(&st->spec, st->rows)

@@ -17,8 +17,9 @@ void bf_cli_describe_data(const bf_cli_study *st, FILE *fp);
 void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len);
 
 /* Prints what was run: data, configurations used, conventions, the fit,
- * its free parameters and the analysis. */
-void bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
+ * its free parameters and the analysis. Returns BF_EXIT_OK, or
+ * BF_EXIT_SOFTWARE after the message when out of memory. */
+int bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
 
 /* Writes fits.csv, table2.md and table3.md atomically into the output
  * folder and, unless quiet, prints the description and both tables. Returns

@@ -11,6 +11,8 @@ struct bf_tt {
     size_t nrows;     /* body rows */
     char **cells;     /* (nrows + 1) x ncols, row 0 = header */
     unsigned char *right;
+    size_t *w;        /* bf_tt_print's column widths */
+    int failed;       /* a cell or row could not be stored */
 };
 
 bf_tt *bf_tt_alloc(size_t ncols)
@@ -22,7 +24,8 @@ bf_tt *bf_tt_alloc(size_t ncols)
     t->ncols = ncols;
     t->cells = calloc(ncols, sizeof *t->cells);
     t->right = calloc(ncols, 1);
-    if (t->cells == NULL || t->right == NULL) {
+    t->w = calloc(ncols + 1, sizeof *t->w);
+    if (t->cells == NULL || t->right == NULL || t->w == NULL) {
         bf_tt_free(t);
         return NULL;
     }
@@ -42,6 +45,7 @@ void bf_tt_free(bf_tt *t)
     }
     free(t->cells);
     free(t->right);
+    free(t->w);
     free(t);
 }
 
@@ -53,6 +57,7 @@ static int set_cell(bf_tt *t, size_t row, size_t c, const char *text)
     }
     copy = malloc(strlen(text) + 1);
     if (copy == NULL) {
+        t->failed = 1;
         return -1;
     }
     strcpy(copy, text);
@@ -78,6 +83,7 @@ int bf_tt_add_row(bf_tt *t)
     size_t n = (t->nrows + 2) * t->ncols;
     char **cells = realloc(t->cells, n * sizeof *cells);
     if (cells == NULL) {
+        t->failed = 1;
         return -1;
     }
     memset(cells + (t->nrows + 1) * t->ncols, 0, t->ncols * sizeof *cells);
@@ -118,14 +124,20 @@ static void pad(FILE *fp, size_t n, char ch)
     }
 }
 
+int bf_tt_failed(const bf_tt *t)
+{
+    return t == NULL || t->failed;
+}
+
 int bf_tt_print(const bf_tt *t, FILE *fp)
 {
-    size_t *w = calloc(t->ncols ? t->ncols : 1, sizeof *w);
+    size_t *w = t->w;
     size_t r;
     size_t c;
-    if (w == NULL) {
+    if (t->failed) {
         return -1;
     }
+    memset(w, 0, t->ncols * sizeof *w);
     for (r = 0; r <= t->nrows; r++) {
         for (c = 0; c < t->ncols; c++) {
             size_t cw = width(t->cells[r * t->ncols + c]);
@@ -159,7 +171,6 @@ int bf_tt_print(const bf_tt *t, FILE *fp)
             fputs("|\n", fp);
         }
     }
-    free(w);
     return ferror(fp) ? -1 : 0;
 }
 
@@ -180,6 +191,9 @@ int bf_tt_print_html(const bf_tt *t, const char *id, FILE *fp)
 {
     size_t r;
     size_t c;
+    if (t->failed) {
+        return -1;
+    }
     fputs("<table", fp);
     if (id != NULL) {
         fputs(" id=\"", fp);

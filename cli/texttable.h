@@ -24,6 +24,10 @@ int bf_tt_set(bf_tt *t, size_t c, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* 1 when a header, row or cell could not be stored (out of memory) since
+ * bf_tt_alloc (or t is NULL): the table is incomplete, and the print
+ * functions write nothing and return -1. One check after building it. */
+int bf_tt_failed(const bf_tt *t);
 /* Prints the table; returns 0, or -1 when a write failed. */
 int bf_tt_print(const bf_tt *t, FILE *fp);
 /* Writes the table as an HTML <table> (id attribute when id is not NULL;

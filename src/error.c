@@ -2,6 +2,7 @@
  * (bf_version, bf_strerror, bf_error_format; bf__error_* of internal.h). */
 #include "internal.h"
 
+#include <errno.h>
 #include <stdarg.h>
 #include <string.h>
 
@@ -76,6 +77,11 @@ void bf__error_clear(bf_error *err, const char *name)
     copy_truncated(err->file, sizeof err->file,
                    name != NULL ? name : BF__NONAME);
     err->msg[0] = '\0';
+}
+
+int bf__errno_code(int e)
+{
+    return e == ENOMEM ? BF_ENOMEM : BF_EIO;
 }
 
 int bf__error_set(bf_error *err, int code, long line, const char *fmt, ...)

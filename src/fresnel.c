@@ -72,6 +72,20 @@ double bf__fresnel_fc2_sc(double si, double ci, double ss, double cs,
     return bf__fc2_inline(si, ci, ss, cs, n); /* (P6), SPEC §4.2 */
 }
 
+/* F_FC^2 of (P6), SPEC §4.2, for n configurations at once: the models'
+ * kernels (FC's workspace, WNO's and WNO-R's terms). */
+BF__CLONES
+void bf__fc2_values(size_t n, const double *si, const double *ci,
+                    const double *ss, const double *cs, double n_index,
+                    double *out)
+{
+    size_t k;
+#pragma omp simd
+    for (k = 0; k < n; k++) {
+        out[k] = bf__fc2_inline(si[k], ci[k], ss[k], cs[k], n_index);
+    }
+}
+
 /* Public entry point of SPEC §4.2. Returns NaN for n < 1, non-finite
  * arguments or angles outside [0, pi/2]. */
 double bf_fresnel_fc2(double theta_i, double theta_s, double n)

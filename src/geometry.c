@@ -94,3 +94,11 @@ int bf_geom_is_specular(const bf_geom *g)
     return (fabs(g->theta_s - g->theta_i) < BF_SPECULAR_TOL)
            && (fabs(bf_wrap_angle(g->phi_s)) < BF_SPECULAR_TOL);
 }
+
+void bf__geom_trig(const bf_geom *g, bf__trig_t *tr)
+{
+    tr->sp = sin(g->phi_s);
+    tr->cp = cos(g->phi_s);
+    bf__zenith_sincos(g->theta_i, &tr->si, &tr->ci);
+    bf__zenith_sincos(g->theta_s, &tr->ss, &tr->cs);
+}

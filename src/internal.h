@@ -32,6 +32,10 @@ void bf__error_clear(bf_error *err, const char *name);
 int bf__error_set(bf_error *err, int code, long line, const char *fmt, ...)
     BF__PRINTF(4, 5);
 
+/* The code of a failed system call on a file (open, stat) whose errno is
+ * e: BF_ENOMEM when the kernel or libc ran out of memory, else BF_EIO. */
+int bf__errno_code(int e);
+
 /* ======================================================================
  * --- line reader and strict number parsing (src/data/lineio.c) ---
  * ====================================================================== */
@@ -239,8 +243,8 @@ void bf__format_double(double v, char *buf);
 
 #include <math.h>
 
-/* Run-time dispatch of the vector loops (src/fit/kernels.c and WNO-R's
- * facet loop): compiled for x86-64-v4 (AVX-512), x86-64-v3 (AVX2 + FMA) and
+/* Run-time dispatch of the vector loops (src/fit/kernels.c, weights.c and
+ * the models' kernels, src/models/): compiled for x86-64-v4 (AVX-512), x86-64-v3 (AVX2 + FMA) and
  * the baseline; the loader picks one (GCC's target_clones). Never
  * -march=native. Empty elsewhere. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&   \
@@ -334,19 +338,13 @@ double bf__fresnel_sc(double s, double c, double r);
 double bf__fresnel_fc2_sc(double si, double ci, double ss, double cs,
                           double n);
 
-/* Geometry-only terms of the BK family at one configuration (SPEC §3):
- * F^2 (the factor replacing F_BK^2, Table 1), vz^2, vxy^2, |vz|. */
-typedef struct {
-    double f2;
-    double vz2;
-    double vxy2;
-    double abs_vz;
-} bf__bk_terms_t;
-
-/* Members of the BK family: the factor (Table 1, SPEC §3.3) and the
- * correlation function (SPEC §3.1, §3.2). */
-enum { BF__BK_FACTOR_BK, BF__BK_FACTOR_VH, BF__BK_FACTOR_FC };
-enum { BF__BK_CORR_GAUSS, BF__BK_CORR_EXP };
+/* F_FC^2 of (P6), SPEC §4.2, at n >= 1 for n configurations given by
+ * their sines and cosines (SoA), vectorised: bf__fc2_inline per value, the
+ * same bits as bf__fresnel_fc2_sc (src/fresnel.c; the kernels of the
+ * models with this factor use it). */
+void bf__fc2_values(size_t n, const double *si, const double *ci,
+                    const double *ss, const double *cs, double n_index,
+                    double *out);
 
 /* Sines and cosines of one configuration: zenith angles as
  * bf__zenith_sincos gives them, sin and cos of phi_s. */
@@ -354,42 +352,9 @@ typedef struct {
     double si, ci, ss, cs, sp, cp;
 } bf__trig_t;
 
-/* Terms of one configuration for factor (n is FC's refractive index);
- * BF_EDOM where F_BK diverges (BK at theta_i = pi/2). src/models/bk.c.
- * bf__bk_terms = bf__geom_trig, then bf__bk_terms_trig (the study path
- * takes the trigonometry once per configuration for all models). */
-int bf__bk_terms(int factor, double n, const bf_geom *g, bf__bk_terms_t *t);
+/* The sines and cosines of g (src/geometry.c): the engine takes them once
+ * per configuration for all models (bf__cset). */
 void bf__geom_trig(const bf_geom *g, bf__trig_t *tr);
-int bf__bk_terms_trig(int factor, double n, const bf__trig_t *tr,
-                      bf__bk_terms_t *t);
-/* cos ti cos ts, the base of LFTG's power (P7) (src/models/lafortune.c). */
-double bf__lftg_base(const bf_geom *g);
-
-/* Geometry-only terms of Oren-Nayar (SPEC §5) at one configuration. */
-typedef struct {
-    double ci;        /* cos theta_i (0: the value is 0, nothing else set) */
-    double cos_dphi;  /* cos of the sample-frame azimuth difference */
-    double sin_alpha; /* sin alpha */
-    double b3;        /* (2 beta / pi)^3 */
-    double q2;        /* (2 beta / pi)^2 */
-    double r2;        /* (4 alpha beta / pi^2)^2 */
-    double tan_beta;  /* tan beta */
-    double tan_mean;  /* tan((alpha + beta) / 2) */
-} bf__on_terms_t;
-
-/* Coefficients of SPEC §5 that depend on (rho, sigma) only. */
-typedef struct {
-    double c1;
-    double c2_scale;
-    double c3_scale;
-    double l2_scale;
-    double rho_pi;
-} bf__on_coef_t;
-
-/* src/models/oren_nayar.c: the terms, the coefficients, the value. */
-void bf__on_terms(const bf_geom *g, bf__on_terms_t *t);
-void bf__on_coef(double rho, double sigma, bf__on_coef_t *c);
-double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c);
 
 /* The 4-point Gauss-Legendre abscissae and weights WNO-R's rule uses on
  * each panel (src/models/wno_r.c; 2 positive abscissae, GSL's layout);
@@ -466,8 +431,9 @@ void bf__study_groups_free(bf__groups_t *gs);
  * of a power of two would map every row to the same cache set. */
 #define BF__ROW_PAD 8
 
-/* e^x for x <= 0 as the kernels compute it (within 1 ulp of exp on
- * [-708, 0], 0 below); exposed for the tests. */
+/* e^x for x <= 0 as the block kernels compute it (bf__vexp_nonpos of
+ * src/fit/block.h: within 1 ulp of exp on [-708, 0], 0 below); exposed
+ * for the tests. */
 double bf__exp_nonpos(double x);
 /* lse[s * cols + g] = LSE of grid column g < cols against data[s]
  * (SPEC §7.3) in index order. */

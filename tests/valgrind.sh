@@ -46,6 +46,8 @@
 # once under valgrind; cli/all_61_samples... fits every model to every
 # sample (WNO-R's quadrature included), code test_cli's smaller runs and
 # test_wno_r cover.
+# test_oom preloads its own allocator (tests/oom/oom_shim.c), which
+# valgrind's replaces; it runs in the plain build only.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -55,6 +57,7 @@ build=$1
 jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
+    test_oom
     test_uncertainty
     test_coverage
     test_before

@@ -269,8 +269,8 @@ int bf_format_detect(const char *path, bf_format *f, bf_error *err)
         return bf__error_set(err, BF_EINVAL, 0, "no file name given");
     }
     if (stat(path, &st) != 0) {
-        return bf__error_set(err, BF_EIO, 0, "cannot open: %s",
-                             strerror(errno));
+        return bf__error_set(err, bf__errno_code(errno), 0,
+                             "cannot open: %s", strerror(errno));
     }
     if (S_ISDIR(st.st_mode)) {
         bf_format g = folder_format(path, 0);

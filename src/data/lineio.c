@@ -496,8 +496,8 @@ int bf__open(const char *path, FILE **fp, bf_error *err)
      * A FIFO blocks in fopen until a writer opens it, as FIFOs do. */
     f = fopen(path, "r");
     if (f == NULL) {
-        return bf__error_set(err, BF_EIO, 0, "cannot open: %s",
-                             strerror(errno));
+        return bf__error_set(err, bf__errno_code(errno), 0,
+                             "cannot open: %s", strerror(errno));
     }
     if (fstat(fileno(f), &st) != 0) {
         int e = errno;

@@ -57,9 +57,10 @@ static int plain_values(const bf__prep *pm, const double *param, void *work,
     return pm->type->eval(param, pm->n, pm->geom, out, work);
 }
 
-const bf_kernel bf__plain_kernel = {0,    0, NULL, NULL, plain_values,
-                                    NULL, BF__BLOCK_NONE, 0, 0, -1, NULL,
-                                    NULL};
+const bf_kernel bf__plain_kernel = {
+    .values = plain_values,
+    .cheap = -1,
+};
 
 /* ==== prepared models ==================================================== */
 
@@ -142,11 +143,12 @@ int bf__curve(const bf__prep *pm, const double *param, void *work,
     if (rc != BF_OK) {
         return BF_EDOM;
     }
-    /* SPEC §2. Models with grid kernels (BK, LFTG) normalise as those do,
-     * so a point's curve has the bits of the same grid point's; the others
-     * as bf_normalise, the bits the paper's protocol has for them. */
-    if (pm->kr->block != BF__BLOCK_NONE) {
-        return bf__normalise_recip(pm->n, curve);
+    /* SPEC §2. Models with block kernels normalise as those do (their
+     * kr->normalise), so a point's curve has the bits of the same grid
+     * point's; the others as bf_normalise, the bits the paper's protocol
+     * has for them. */
+    if (pm->kr->normalise != NULL) {
+        return pm->kr->normalise(pm->n, curve);
     }
     return bf_normalise(pm->n, curve, curve);
 }

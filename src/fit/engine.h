@@ -45,14 +45,16 @@ void bf__cset_free(bf__cset *cs);
  * ====================================================================== */
 
 typedef struct bf__prep bf__prep;
-
-/* The grid kernels of src/fit/kernels.c that a model's curves can use
- * (a block of grid values at once): none, the BK family with the slope m
- * free, LFTG with n_d free. */
-enum { BF__BLOCK_NONE = 0, BF__BLOCK_BK, BF__BLOCK_LFTG };
+/* A model's block kernel set up for one grid (src/fit/block.h). */
+typedef struct bf__block bf__block;
 
 /* A model's evaluation in the engine. The engine never looks at a model's
- * name, eval pointer or parameter names: what it needs is here. */
+ * name, eval pointer or parameter names: what it needs is here, filled by
+ * the model's file with designated initialisers (STYLE §2; a field left
+ * out is 0/NULL: not provided). A model with constants of its own for
+ * these functions (the BK family's member) embeds its bf_kernel as the
+ * first member of its own struct and converts kr back (src/models/bk.c);
+ * the engine never looks beyond the bf_kernel. */
 struct bf_kernel {
     /* doubles per configuration of geometry-only terms, and doubles of
      * terms that do not depend on the configuration (after them) */
@@ -75,13 +77,29 @@ struct bf_kernel {
     /* Number of configurations at which the model's formula was clamped
      * at param (ON's clamp at 0, doc/methods.md §8); NULL: never. */
     size_t (*clamped)(const bf__prep *pm, const double *param);
-    int block;  /* BF__BLOCK_*: the grid kernel that applies */
-    int factor; /* block == BF__BLOCK_BK: BF__BK_FACTOR_* */
-    int corr;   /*   and BF__BK_CORR_* */
+    /* The normalisation of SPEC §2 for bf__curve when the model's block
+     * kernel normalises otherwise than bf_normalise (bf__normalise_recip:
+     * by the reciprocal of the maximum, as src/fit/kernels.c does every
+     * block), so that a point's curve has the bits of the same grid
+     * point's. NULL: bf_normalise. */
+    int (*normalise)(size_t n, double *curve);
+    /* The model's block kernel for the study/grid/bootstrap path: sets blk
+     * up (src/fit/block.h: its state, raw(), optionally its streaming
+     * scorers, release()) for the grid lay of one free parameter (lay->
+     * n_free == 1, checked by the caller) on pm's configurations, copying
+     * what it needs of pm->terms (pm may be freed before blk). Returns 1,
+     * 0 when it does not apply to this grid (which parameter is free, its
+     * range; blk then holds nothing), or -BF_ENOMEM. NULL: no block
+     * kernel; the grid's curves come from values() point by point. Called
+     * once per grid; blk's functions once per block of BF__BLOCK_LANES
+     * points. */
+    int (*block)(const bf__prep *pm, const bf__grid_layout_t *lay,
+                 bf__block *blk);
     /* The parameter that is cheap to vary while the others stay (its
      * values need none of the cached terms recomputed: WNO-R's sigma
      * given its ring sums at n), or -1: the refinement of two parameters
-     * then nests its searches, this one inside. */
+     * then nests its searches, this one inside. Not a default: 0 names
+     * parameter 0, so every kernel sets it (-1 when none is). */
     int cheap;
     /* Tables a kernel builds for a configuration set on demand (WNO-R's
      * ring sums in Chebyshev form, one panel of n at a time): prepare
@@ -133,35 +151,11 @@ void *bf__work_alloc(const bf__prep *pm);
  * when the model is undefined at a configuration or not normalisable. */
 int bf__curve(const bf__prep *pm, const double *param, void *work,
               double *curve);
-/* The normalisation of bf__curve for the block-kernel models (BK, LFTG):
- * multiplied by the reciprocal of the maximum, as the grid kernels do
- * (src/fit/kernels.c). BF_EDOM when a value is not finite or the maximum
- * is not positive. */
+/* The normalisation of bf__curve for models with a block kernel (their
+ * bf_kernel.normalise): multiplied by the reciprocal of the maximum, as
+ * the grid kernels do (src/fit/kernels.c). BF_EDOM when a value is not
+ * finite or the maximum is not positive. */
 int bf__normalise_recip(size_t n, double *curve);
-
-/* ======================================================================
- * --- the kernels of the registry's models ---
- * ====================================================================== */
-
-/* The BK family (SPEC §3; src/fit/kernels.c, the same operations as the
- * grid kernels): terms, workspace (FC's Fresnel factor for the last n)
- * and values; kr->factor and kr->corr say the member. */
-void bf__bk_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms);
-size_t bf__bk_kwork(const bf_kernel *kr, size_t n);
-int bf__bk_kvalues(const bf__prep *pm, const double *param, void *work,
-                   double *out);
-#define BF__BK_NTERMS 11
-#define BF__BK_NEXTRA 1
-/* LFTG (P7): the values exp(n_d ln(cos ti cos ts)) (src/fit/kernels.c). */
-int bf__lftg_kvalues(const bf__prep *pm, const double *param, void *work,
-                     double *out);
-
-/* Unpolarised Fresnel factor F_FC^2 of (P6), SPEC §4.2, at n >= 1 for n
- * configurations given by their sines and cosines (SoA), vectorised, the
- * same bits as bf__fresnel_fc2_sc (src/fit/kernels.c). */
-void bf__fc2_values(size_t n, const double *si, const double *ci,
-                    const double *ss, const double *cs, double n_index,
-                    double *out);
 
 /* ======================================================================
  * --- the objective of a fit (doc/methods.md §1) ---
@@ -396,13 +390,14 @@ int bf__weights_tile(int generic, size_t n, const double *rho,
                      const int *cand, double *out);
 
 /* ======================================================================
- * --- grids and the study path (grid.c, kernels.c) ---
+ * --- grids and the study path (grid.c, kernels.c: any model's block
+ *     kernel, src/fit/block.h) ---
  * ====================================================================== */
 
 /* Transposed normalised curves curves[k * stride + g], g < cols, of every
- * grid point of lay by a block kernel (pm's kernel with block BK and the
- * slope m free, or LFTG with n_d free on positive values). Returns 1 when
- * done, 0 when no block kernel applies, -BF_ENOMEM. */
+ * grid point of lay by pm's block kernel (bf_kernel.block, one free
+ * parameter). Returns 1 when done, 0 when no block kernel applies,
+ * -BF_ENOMEM. */
 int bf__curves_fast(const bf__prep *pm, const bf__grid_layout_t *lay,
                     size_t cols, size_t stride, double *curves,
                     unsigned char *ok);
@@ -480,12 +475,13 @@ void bf__score_folds(size_t n, size_t cols, size_t stride,
  * data vectors and of their folds' training sets, best[q * (folds + 1) +
  * b] (b = 0 the full data, 1 + f fold f), from one pass over the curves
  * for all of them: bf__score_folds's sums, bf__argmin's choice. Points
- * with ok 0 never win. */
-void bf__folds_argmin(size_t n, size_t cols, size_t stride,
-                      const double *curves, const unsigned char *ok,
-                      size_t points, size_t n_data, const double *const *data,
-                      const double *cw, const size_t *fold, size_t folds,
-                      double *best_lse, size_t *best);
+ * with ok 0 never win. Returns BF_OK, or BF_ENOMEM (no optimum) when its
+ * workspace cannot be allocated. */
+int bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                     const double *curves, const unsigned char *ok,
+                     size_t points, size_t n_data, const double *const *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *best_lse, size_t *best);
 /* The same on a grid (folds may be 0: only the full data). BF_OK or
  * BF_ENOMEM. */
 int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,

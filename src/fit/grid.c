@@ -513,9 +513,12 @@ int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
         rc = BF_ENOMEM;
         goto done;
     }
-    bf__folds_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
-                     gr->layout.points, n_data, data, cw, fold, folds, lse,
-                     best);
+    rc = bf__folds_argmin(gr->n, gr->cols, gr->stride, gr->curves, gr->ok,
+                          gr->layout.points, n_data, data, cw, fold, folds,
+                          lse, best);
+    if (rc != BF_OK) {
+        goto done;
+    }
     for (q = 0; q < total; q++) {
         if (bf__grid_result(&gr->layout, best[q], lse[q], &results[q]) !=
             BF_OK) {

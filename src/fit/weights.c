@@ -562,11 +562,11 @@ void bf__score_folds(size_t n, size_t cols, size_t stride,
  * 16-lane block of stored curves (in L1) every data vector's full and
  * training sums (folds_block), the smallest defined value of each and its
  * first index (strict <, in index order: bf__argmin's result). */
-void bf__folds_argmin(size_t n, size_t cols, size_t stride,
-                      const double *curves, const unsigned char *ok,
-                      size_t points, size_t n_data, const double *const *data,
-                      const double *cw, const size_t *fold, size_t folds,
-                      double *best_lse, size_t *best)
+int bf__folds_argmin(size_t n, size_t cols, size_t stride,
+                     const double *curves, const unsigned char *ok,
+                     size_t points, size_t n_data, const double *const *data,
+                     const double *cw, const size_t *fold, size_t folds,
+                     double *best_lse, size_t *best)
 {
     double *held = malloc((folds + 1) * FLANES * sizeof *held);
     double full[FLANES];
@@ -581,7 +581,7 @@ void bf__folds_argmin(size_t n, size_t cols, size_t stride,
         best[q] = SIZE_MAX;
     }
     if (held == NULL) {
-        return; /* no optimum: the callers report BF_ENOMEM */
+        return BF_ENOMEM; /* no optimum */
     }
     for (g0 = 0; g0 < points; g0 += FLANES) {
         size_t width = points - g0 < FLANES ? points - g0 : FLANES;
@@ -609,4 +609,5 @@ void bf__folds_argmin(size_t n, size_t cols, size_t stride,
         }
     }
     free(held);
+    return BF_OK;
 }

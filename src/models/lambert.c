@@ -44,13 +44,21 @@ static int lambert_values(const bf__prep *pm, const double *param,
     return BF_OK;
 }
 
-static const bf_kernel lambert_kernel = {1,    0, lambert_terms, NULL,
-                                         lambert_values, NULL,
-                                         BF__BLOCK_NONE, 0, 0, -1, NULL,
-                                         NULL};
+static const bf_kernel lambert_kernel = {
+    .n_terms = 1,
+    .terms = lambert_terms,
+    .values = lambert_values,
+    .cheap = -1,
+};
 
 static const bf_model_type lambert_type = {
-    "LAMBERT", "Lambertian baseline (cos theta_i)", "SPEC §6a", 0, NULL,
-    eval_lambert, 0, &lambert_kernel, 8, NULL, 0, 0.0};
+    .name = "LAMBERT",
+    .title = "Lambertian baseline (cos theta_i)",
+    .reference = "SPEC §6a",
+    .p = 0,
+    .eval = eval_lambert,
+    .kernel = &lambert_kernel,
+    .style = 8,
+};
 
 const bf_model_type *const bf_model_lambert = &lambert_type;

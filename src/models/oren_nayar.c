@@ -48,11 +48,32 @@
 
 #include "fit/engine.h"
 
+/* Geometry-only terms of Oren-Nayar (SPEC §5) at one configuration. */
+typedef struct {
+    double ci;        /* cos theta_i (0: the value is 0, nothing else set) */
+    double cos_dphi;  /* cos of the sample-frame azimuth difference */
+    double sin_alpha; /* sin alpha */
+    double b3;        /* (2 beta / pi)^3 */
+    double q2;        /* (2 beta / pi)^2 */
+    double r2;        /* (4 alpha beta / pi^2)^2 */
+    double tan_beta;  /* tan beta */
+    double tan_mean;  /* tan((alpha + beta) / 2) */
+} on_terms_t;
+
+/* Coefficients of SPEC §5 that depend on (rho, sigma) only. */
+typedef struct {
+    double c1;
+    double c2_scale;
+    double c3_scale;
+    double l2_scale;
+    double rho_pi;
+} on_coef_t;
+
 /* The geometry-only terms of SPEC §5 at one configuration: everything but
  * rho and sigma. The study path computes them once per configuration and
- * evaluates every sample's (rho, sigma) with bf__on_value; eval_on does the
+ * evaluates every sample's (rho, sigma) with on_value; eval_on does the
  * same per call, so both give the same bits. */
-void bf__on_terms(const bf_geom *g, bf__on_terms_t *t)
+static void on_terms(const bf_geom *g, on_terms_t *t)
 {
     double ti = g->theta_i;
     double ts = g->theta_s;
@@ -80,12 +101,12 @@ void bf__on_terms(const bf_geom *g, bf__on_terms_t *t)
 
 /* L1 + L2 of SPEC §5, unclamped, from one configuration's terms (theta_i
  * < pi/2) and the coefficients of one (rho, sigma). Inline and branch-free
- * so that the engine's loop vectorises; bf__on_value and the kernel both
+ * so that the engine's loop vectorises; on_value and the kernel both
  * use it, so they give the same bits. */
 static inline double on_formula(double ci, double cos_dphi, double sin_alpha,
                                 double b3, double q2, double r2,
                                 double tan_beta, double tan_mean,
-                                const bf__on_coef_t *c)
+                                const on_coef_t *c)
 {
     /* C2, SPEC §5: the backward half-plane subtracts (2 beta / pi)^3 */
     double c2 = (cos_dphi >= 0.0) ? c->c2_scale * sin_alpha
@@ -99,8 +120,8 @@ static inline double on_formula(double ci, double cos_dphi, double sin_alpha,
 }
 
 /* L of SPEC §5 from the terms of one configuration and the coefficients
- * of one (rho, sigma) (bf__on_coef), clamped at 0 (doc/methods.md §8). */
-double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c)
+ * of one (rho, sigma) (on_coef), clamped at 0 (doc/methods.md §8). */
+static double on_value(const on_terms_t *t, const on_coef_t *c)
 {
     if (t->ci == 0.0) {
         return 0.0; /* theta_i = pi/2: cos ti = 0, SPEC §5 */
@@ -110,7 +131,7 @@ double bf__on_value(const bf__on_terms_t *t, const bf__on_coef_t *c)
 }
 
 /* The coefficients of SPEC §5 that depend on rho and sigma only. */
-void bf__on_coef(double rho, double sigma, bf__on_coef_t *c)
+static void on_coef(double rho, double sigma, on_coef_t *c)
 {
     double s2 = sigma * sigma;
     c->c1 = 1.0 - (0.5 * s2 / (s2 + 0.33));  /* C1, SPEC §5 */
@@ -124,21 +145,21 @@ void bf__on_coef(double rho, double sigma, bf__on_coef_t *c)
 static int eval_on(const double *param, size_t count, const bf_geom *geom,
                    double *out, void *work)
 {
-    bf__on_coef_t c;
+    on_coef_t c;
     size_t k;
     (void)work;
-    bf__on_coef(param[0], param[1], &c);
+    on_coef(param[0], param[1], &c);
     for (k = 0; k < count; k++) {
-        bf__on_terms_t t;
-        bf__on_terms(&geom[k], &t);
-        out[k] = bf__on_value(&t, &c);
+        on_terms_t t;
+        on_terms(&geom[k], &t);
+        out[k] = on_value(&t, &c);
     }
     return BF_OK;
 }
 
 /* ==== the engine's kernel ================================================ */
 
-/* The terms of bf__on_terms as 8 rows of n (SoA); at theta_i = pi/2 only
+/* The terms of on_terms as 8 rows of n (SoA); at theta_i = pi/2 only
  * ci = 0 matters and the others are 0 so the loop stays finite. */
 enum { ON_CI = 0, ON_CDPHI, ON_SA, ON_B3, ON_Q2, ON_R2, ON_TB, ON_TM, ON_NT };
 
@@ -148,9 +169,9 @@ static void on_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
     size_t k;
     (void)kr;
     for (k = 0; k < n; k++) {
-        bf__on_terms_t t;
+        on_terms_t t;
         memset(&t, 0, sizeof t);
-        bf__on_terms(&cs->geom[k], &t);
+        on_terms(&cs->geom[k], &t);
         terms[ON_CI * n + k] = t.ci;
         terms[ON_CDPHI * n + k] = t.cos_dphi;
         terms[ON_SA * n + k] = t.sin_alpha;
@@ -167,9 +188,9 @@ static void on_unclamped(const bf__prep *pm, const double *param, double *out)
 {
     const double *t = pm->terms;
     size_t n = pm->n;
-    bf__on_coef_t c;
+    on_coef_t c;
     size_t k;
-    bf__on_coef(param[0], param[1], &c); /* rho, sigma: SPEC §5 */
+    on_coef(param[0], param[1], &c); /* rho, sigma: SPEC §5 */
 #pragma omp simd
     for (k = 0; k < n; k++) {
         out[k] = on_formula(t[ON_CI * n + k], t[ON_CDPHI * n + k],
@@ -200,10 +221,10 @@ static size_t on_kclamped(const bf__prep *pm, const double *param)
 {
     const double *t = pm->terms;
     size_t n = pm->n;
-    bf__on_coef_t c;
+    on_coef_t c;
     size_t k;
     size_t count = 0;
-    bf__on_coef(param[0], param[1], &c);
+    on_coef(param[0], param[1], &c);
     for (k = 0; k < n; k++) {
         double v = on_formula(t[ON_CI * n + k], t[ON_CDPHI * n + k],
                               t[ON_SA * n + k], t[ON_B3 * n + k],
@@ -214,9 +235,13 @@ static size_t on_kclamped(const bf__prep *pm, const double *param)
     return count;
 }
 
-static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
-                                    on_kclamped, BF__BLOCK_NONE, 0, 0, -1,
-                                    NULL, NULL};
+static const bf_kernel on_kernel = {
+    .n_terms = ON_NT,
+    .terms = on_kterms,
+    .values = on_kvalues,
+    .clamped = on_kclamped,
+    .cheap = -1,
+};
 
 /* rho and sigma are fixed inputs of the study (CURET's op.dat, the paper's
  * Table 2), not fitted: no grid. Defaults give Lambert (sigma = 0). The
@@ -224,17 +249,29 @@ static const bf_kernel on_kernel = {ON_NT, 0, on_kterms, NULL, on_kvalues,
  * gives no radiance to normalise), step 0.05; sigma over [0, 1.57] rad
  * (SPEC §5's domain is [0, pi/2]), step 0.01. */
 static const bf_param param_on[2] = {
-    {"rho", "albedo rho", "1", 0.0, 1.0, 1.0, 0, 0.0, 0.0, 0, BF_INPUT_ON,
-     0, 0.05, 1.0, 0.05},
-    {"sigma", "facet slope sigma", "rad", 0.0, BF__PI_2, 0.0, 0, 0.0, 0.0, 0,
-     BF_INPUT_ON, 1, 0.0, 1.57, 0.01},
+    {.name = "rho", .label = "albedo rho", .unit = "1", .min = 0.0,
+     .max = 1.0, .value = 1.0, .fitted = 0, .input = BF_INPUT_ON,
+     .input_col = 0, .free_lo = 0.05, .free_hi = 1.0, .free_step = 0.05},
+    {.name = "sigma", .label = "facet slope sigma", .unit = "rad",
+     .min = 0.0, .max = BF__PI_2, .value = 0.0, .fitted = 0,
+     .input = BF_INPUT_ON, .input_col = 1, .free_lo = 0.0, .free_hi = 1.57,
+     .free_step = 0.01},
 };
 
 /* At sigma = 0, C1 = 1 and C2 = C3 = L2 = 0: L = rho/pi cos ti, LAMBERT
  * after normalisation (SPEC §5, §6a). */
 static const bf_model_type on_type = {
-    "ON", "Oren-Nayar with interreflections",
-    "Oren & Nayar IJCV 1995 (full model), SPEC §5", 2, param_on, eval_on, 0,
-    &on_kernel, 2, "LAMBERT", 1, 0.0};
+    .name = "ON",
+    .title = "Oren-Nayar with interreflections",
+    .reference = "Oren & Nayar IJCV 1995 (full model), SPEC §5",
+    .p = 2,
+    .param = param_on,
+    .eval = eval_on,
+    .kernel = &on_kernel,
+    .style = 2,
+    .reduces_to = "LAMBERT",
+    .reduces_param = 1,
+    .reduces_at = 0.0,
+};
 
 const bf_model_type *const bf_model_on = &on_type;

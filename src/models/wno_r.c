@@ -701,27 +701,46 @@ static int wnor_values(const bf__prep *pm, const double *param, void *work,
 }
 
 static const bf_kernel wnor_kernel = {
-    R_NT,        R_EXTRA,        wnor_terms, wnor_work_bytes,
-    wnor_values, NULL,           BF__BLOCK_NONE, 0,
-    0,           0,              wnor_prepare, wnor_release};
+    .n_terms = R_NT,
+    .n_extra = R_EXTRA,
+    .terms = wnor_terms,
+    .work_bytes = wnor_work_bytes,
+    .values = wnor_values,
+    .cheap = 0,
+    .prepare = wnor_prepare,
+    .release = wnor_release,
+};
 
 /* ==== the type ============================================================ */
 
 /* sigma as Oren-Nayar's (radians, [0, pi/2]), fitted over [0, 1.55] step
  * 0.05; n as WNO's, over [1.2, 2.5] step 0.1. */
 static const bf_param param_wnor[2] = {
-    {"sigma", "facet slope sigma", "rad", 0.0, BF__PI_2, 0.0, 1, 0.0, 0.05,
-     32, BF_INPUT_DEFAULT, 0, 0.0, 0.0, 0.0},
-    {"n", "refractive index n", "1", 1.0, 10.0, BF_DEFAULT_N, 1, BF_FREE_N_LO,
-     0.1, 14, BF_INPUT_DEFAULT, 0, 0.0, 0.0, 0.0},
+    {.name = "sigma", .label = "facet slope sigma", .unit = "rad",
+     .min = 0.0, .max = BF__PI_2, .value = 0.0, .fitted = 1, .grid_lo = 0.0,
+     .grid_step = 0.05, .grid_n = 32, .input = BF_INPUT_DEFAULT},
+    {.name = "n", .label = "refractive index n", .unit = "1", .min = 1.0,
+     .max = 10.0, .value = BF_DEFAULT_N, .fitted = 1,
+     .grid_lo = BF_FREE_N_LO, .grid_step = 0.1, .grid_n = 14,
+     .input = BF_INPUT_DEFAULT},
 };
 
 /* At sigma = 0 the facets are level: WNO itself. */
 static const bf_model_type wnor_type = {
-    "WNO-R", "Wolff-Nayar-Oren rough dielectric (V-cavities of WNO facets)",
-    "Wolff, Nayar & Oren IJCV 1998; Oren & Nayar IJCV 1995; "
-    "Torrance & Sparrow JOSA 1967; SPEC §4.1, §5; doc/methods.md §7",
-    2, param_wnor, eval_wnor, sizeof(wnor_eval_work), &wnor_kernel, 10,
-    "WNO", 0, 0.0};
+    .name = "WNO-R",
+    .title = "Wolff-Nayar-Oren rough dielectric (V-cavities of WNO facets)",
+    .reference = "Wolff, Nayar & Oren IJCV 1998; Oren & Nayar IJCV 1995; "
+                 "Torrance & Sparrow JOSA 1967; SPEC §4.1, §5; "
+                 "doc/methods.md §7",
+    .p = 2,
+    .param = param_wnor,
+    .eval = eval_wnor,
+    .work_size = sizeof(wnor_eval_work),
+    .kernel = &wnor_kernel,
+    .style = 10,
+    .reduces_to = "WNO",
+    .reduces_param = 0,
+    .reduces_at = 0.0,
+};
 
 const bf_model_type *const bf_model_wno_r = &wnor_type;

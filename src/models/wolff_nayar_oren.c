@@ -84,22 +84,32 @@ static int wno_values(const bf__prep *pm, const double *param, void *work,
     return BF_OK;
 }
 
-static const bf_kernel wno_kernel = {F_NT,       0, wno_terms, NULL,
-                                     wno_values, NULL, BF__BLOCK_NONE,
-                                     0,          0, -1,        NULL,
-                                     NULL};
+static const bf_kernel wno_kernel = {
+    .n_terms = F_NT,
+    .terms = wno_terms,
+    .values = wno_values,
+    .cheap = -1,
+};
 
 /* n is fitted over [1.2, 2.5] (typical dielectrics, SPEC §4.2), step 0.01;
  * the domain is that of FC's n. */
 static const bf_param param_wno[1] = {
-    {"n", "refractive index n", "1", 1.0, 10.0, BF_DEFAULT_N, 1, BF_FREE_N_LO,
-     0.01, 131, BF_INPUT_DEFAULT, 0, 0.0, 0.0, 0.0},
+    {.name = "n", .label = "refractive index n", .unit = "1", .min = 1.0,
+     .max = 10.0, .value = BF_DEFAULT_N, .fitted = 1,
+     .grid_lo = BF_FREE_N_LO, .grid_step = 0.01, .grid_n = 131,
+     .input = BF_INPUT_DEFAULT},
 };
 
 static const bf_model_type wno_type = {
-    "WNO", "Wolff-Nayar-Oren smooth dielectric diffuse (Wolff 1994)",
-    "Wolff JOSA A 1994; Wolff, Nayar & Oren IJCV 1998; SPEC §4; "
-    "doc/methods.md §7",
-    1, param_wno, eval_wno, 0, &wno_kernel, 9, NULL, 0, 0.0};
+    .name = "WNO",
+    .title = "Wolff-Nayar-Oren smooth dielectric diffuse (Wolff 1994)",
+    .reference = "Wolff JOSA A 1994; Wolff, Nayar & Oren IJCV 1998; SPEC §4; "
+                 "doc/methods.md §7",
+    .p = 1,
+    .param = param_wno,
+    .eval = eval_wno,
+    .kernel = &wno_kernel,
+    .style = 9,
+};
 
 const bf_model_type *const bf_model_wno = &wno_type;

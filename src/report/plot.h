@@ -164,6 +164,9 @@ typedef struct {
 
 /* Largest accepted width or height, points. */
 #define BF_PLOT_MAX_SIZE 2000u
+/* A figure fits a page: its height is at most BF_PLOT_MAX_TALL times its
+ * width (a taller description is invalid). */
+#define BF_PLOT_MAX_TALL 1.5
 
 /* The size fig is drawn at, points: its width, and its height (computed
  * from the width and the aspect when fig->height is 0). BF_EINVAL for an
@@ -171,9 +174,22 @@ typedef struct {
 int bf_plot_size(const bf_plot_figure *fig, unsigned *width,
                  unsigned *height);
 
+/* 1 when fig lays out (bf_plot_size gives BF_OK: within BF_PLOT_MAX_SIZE
+ * and BF_PLOT_MAX_TALL) with axes at least min_axes points wide, else 0. */
+int bf_plot_fits(const bf_plot_figure *fig, double min_axes);
+
+/* Re-flows the n_panels panels of fig (filled row by row, each labelled by
+ * its own note, not by column or row labels) into the grid of the fewest
+ * rows whose axes are at least min_axes points wide and that fits the
+ * page (bf_plot_fits); when no grid has axes that wide, into the one with
+ * the widest axes that fits. Sets fig->nx and fig->ny. BF_OK, BF_EINVAL
+ * when no grid fits, BF_ENOMEM. */
+int bf_plot_flow(bf_plot_figure *fig, double min_axes);
+
 /* Draws fig in format fmt into the file path (created or truncated).
  * Returns BF_OK; BF_EINVAL for an invalid description (width 0, a size
- * above BF_PLOT_MAX_SIZE, no panel, more panels than nx * ny, an unknown
+ * above BF_PLOT_MAX_SIZE, a height above BF_PLOT_MAX_TALL times the
+ * width, no panel, more panels than nx * ny, an unknown
  * format or style, an empty range, a log axis with ymin <= 0, a series
  * with n > 0 and NULL arrays, cells without classes); BF_EIO when path
  * cannot be written or the driver produced an empty file. The same

@@ -559,6 +559,10 @@ int bf__layout_make(const bf_plot_figure *fig, bf__layout *L)
         }
     }
 
+    if ((double)L->height > BF_PLOT_MAX_TALL * (double)fig->width) {
+        return BF_EINVAL; /* taller than a page allows */
+    }
+
     /* place the axes, row by row from the top */
     L->polar_side = side;
     L->polar_top = ptop;
@@ -626,6 +630,57 @@ int bf_plot_size(const bf_plot_figure *fig, unsigned *width,
     }
     free(L);
     return rc;
+}
+
+int bf_plot_fits(const bf_plot_figure *fig, double min_axes)
+{
+    bf__layout *L = malloc(sizeof *L);
+    int fits = L != NULL && bf__layout_make(fig, L) == BF_OK &&
+               L->axes[0].x1 - L->axes[0].x0 >= min_axes;
+    free(L);
+    return fits;
+}
+
+int bf_plot_flow(bf_plot_figure *fig, double min_axes)
+{
+    bf__layout *L = malloc(sizeof *L);
+    size_t n = fig->n_panels;
+    size_t rows;
+    size_t best_nx = 0;
+    double best_aw = 0.0;
+    if (L == NULL) {
+        return BF_ENOMEM;
+    }
+    /* from one row down to one column: the first grid whose axes are
+     * min_axes wide; else the one with the widest axes that fits */
+    for (rows = 1; rows <= n; rows++) {
+        size_t nx = (n + rows - 1) / rows;
+        double aw;
+        if (rows > 1 && nx == (n + rows - 2) / (rows - 1)) {
+            continue; /* the same grid as one row fewer */
+        }
+        fig->nx = nx;
+        fig->ny = (n + nx - 1) / nx;
+        if (bf__layout_make(fig, L) != BF_OK) {
+            continue;
+        }
+        aw = L->axes[0].x1 - L->axes[0].x0;
+        if (aw >= min_axes) {
+            free(L);
+            return BF_OK;
+        }
+        if (aw > best_aw) {
+            best_aw = aw;
+            best_nx = nx;
+        }
+    }
+    free(L);
+    if (best_nx == 0) {
+        return BF_EINVAL;
+    }
+    fig->nx = best_nx;
+    fig->ny = (n + best_nx - 1) / best_nx;
+    return BF_OK;
 }
 
 unsigned bf_plot_png_pixels(unsigned points)

@@ -3,8 +3,9 @@
  * the size bf_plot_size reports, without title or date metadata; markers
  * are one path a series in SVG; the same description gives the same bytes
  * whatever was drawn before; the style slots tell every registry model
- * apart; invalid descriptions are refused without writing; an unwritable
- * path is an I/O error. */
+ * apart; invalid descriptions are refused without writing; no figure is
+ * taller than BF_PLOT_MAX_TALL times its width, and panels re-flow into a
+ * grid that fits; an unwritable path is an I/O error. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <sys/stat.h>
@@ -112,15 +113,104 @@ Test(plot, takes_the_height_from_the_width_and_the_aspect)
     fig.n_panels = 1;
     fig.nx = 1;
     cr_assert_eq(bf_plot_size(&fig, &w, &h1), BF_OK);
-    fig.aspect = 1.6;
+    fig.aspect = 1.2;
     cr_assert_eq(bf_plot_size(&fig, &w, &h2), BF_OK);
-    /* axes twice as tall, the same margins: the height grows by 0.8 times
-     * the axes width, which is less than the figure's */
+    /* axes 1.5 times as tall, the same margins: the height grows by 0.4
+     * times the axes width, which is less than the figure's */
     cr_expect_gt(h2, h1);
-    cr_expect_lt(h2 - h1, (unsigned)(0.8 * w) + 1);
+    cr_expect_lt(h2 - h1, (unsigned)(0.4 * w) + 1);
     fig.height = 400;
     cr_assert_eq(bf_plot_size(&fig, &w, &h2), BF_OK);
     cr_expect_eq(h2, 400u, "a given height is kept");
+}
+
+/* n scatter-like panels (aspect 1, shared axes, each named by its note)
+ * of a double-column figure. */
+static void panels_of(bf_plot_figure *fig, bf_plot_panel *panel, size_t n)
+{
+    size_t i;
+    memset(panel, 0, n * sizeof *panel);
+    for (i = 0; i < n; i++) {
+        panel[i].xmax = panel[i].ymax = 1.0;
+        panel[i].diagonal = 1;
+        panel[i].note = "model: LSE 1.00";
+    }
+    memset(fig, 0, sizeof *fig);
+    fig->width = BF_PLOT_DOUBLE_COLUMN;
+    fig->aspect = 1.0;
+    fig->share_x = fig->share_y = 1;
+    fig->xlabel = "measured";
+    fig->ylabel = "predicted";
+    fig->panels = panel;
+    fig->n_panels = n;
+}
+
+Test(plot, refuses_a_figure_taller_than_a_page_allows)
+{
+    bf_plot_figure fig;
+    bf_plot_panel panel[3];
+    unsigned w;
+    unsigned h;
+    const char *path = path_in(bf_test_tmpdir(), "tall.png");
+    struct stat sb;
+    panels_of(&fig, panel, 3);
+    fig.nx = 1; /* three square panels in a column: about 3 widths tall */
+    fig.ny = 3;
+    cr_expect_eq(bf_plot_size(&fig, &w, &h), BF_EINVAL);
+    cr_expect_eq(bf_plot_fits(&fig, 0.0), 0);
+    cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path), BF_EINVAL);
+    cr_expect_neq(stat(path, &sb), 0, "nothing written");
+    fig.nx = 3; /* in a row: fits */
+    fig.ny = 1;
+    cr_assert_eq(bf_plot_size(&fig, &w, &h), BF_OK);
+    cr_expect_leq((double)h, BF_PLOT_MAX_TALL * w);
+    fig.nx = 1; /* a given height is held to the same bound */
+    fig.ny = 1;
+    fig.n_panels = 1;
+    fig.height = (unsigned)(BF_PLOT_MAX_TALL * fig.width) + 1;
+    cr_expect_eq(bf_plot_size(&fig, &w, &h), BF_EINVAL);
+    fig.height -= 1;
+    cr_expect_eq(bf_plot_size(&fig, &w, &h), BF_OK);
+}
+
+Test(plot, re_flows_panels_into_the_fewest_rows_of_wide_enough_axes)
+{
+    bf_plot_figure fig;
+    bf_plot_panel panel[11];
+    unsigned w;
+    unsigned h;
+    size_t n;
+    for (n = 1; n <= 11; n++) {
+        panels_of(&fig, panel, n);
+        cr_assert_eq(bf_plot_flow(&fig, 100.0), BF_OK, "%zu panels", n);
+        cr_expect_geq(fig.nx * fig.ny, n);
+        cr_expect_lt(fig.nx * (fig.ny - 1), n, "%zu panels: no empty row",
+                     n);
+        cr_assert_eq(bf_plot_size(&fig, &w, &h), BF_OK);
+        cr_expect_leq((double)h, BF_PLOT_MAX_TALL * w, "%zu panels", n);
+        cr_expect(bf_plot_fits(&fig, 100.0), "%zu panels: axes >= 100 pt",
+                  n);
+        if (fig.ny > 1) { /* one row fewer would be too narrow */
+            size_t nx = fig.nx;
+            fig.nx = (n + fig.ny - 2) / (fig.ny - 1);
+            fig.ny = (n + fig.nx - 1) / fig.nx;
+            cr_expect(!bf_plot_fits(&fig, 100.0), "%zu panels in %zu rows",
+                      n, fig.ny);
+            fig.nx = nx;
+        }
+    }
+    /* four panels fit in one row; eleven take rows of at most 4 */
+    panels_of(&fig, panel, 4);
+    cr_assert_eq(bf_plot_flow(&fig, 100.0), BF_OK);
+    cr_expect_eq(fig.ny, 1u);
+    panels_of(&fig, panel, 11);
+    cr_assert_eq(bf_plot_flow(&fig, 100.0), BF_OK);
+    cr_expect_leq(fig.nx, 4u);
+    /* wider than any grid allows: the widest axes that fit */
+    panels_of(&fig, panel, 11);
+    cr_assert_eq(bf_plot_flow(&fig, 1000.0), BF_OK);
+    cr_assert_eq(bf_plot_size(&fig, &w, &h), BF_OK);
+    cr_expect_leq((double)h, BF_PLOT_MAX_TALL * w);
 }
 
 Test(plot, writes_a_well_formed_svg_in_points_without_a_title)
