@@ -1013,8 +1013,9 @@ typedef struct {
     bf_ci_method method;
     bf_noise noise;           /* the model asked for */
     double noise_power;       /* p used (NaN for BF_NOISE_OBJECTIVE) */
-    double sigma;             /* noise sd at L = 1 (the normalised maximum):
-                                 sqrt(RSS_v / (n - k)) */
+    double sigma;             /* noise sd at the fitted curve's maximum,
+                                 relative to it: sqrt(RSS_v / (n - k)) /
+                                 scale (bf_calibrate's sigma) */
     double scale;             /* maximum-likelihood scale s */
     bf_fit_result ml;         /* the estimate the intervals are about: the
                                  maximum-likelihood one (BF_NOISE_OBJECTIVE:
@@ -1343,7 +1344,8 @@ typedef struct {
                                        split (BF_STAT_BOOT_SPLIT) */
     bf_ci_method ci_method;         /* of ci_low, ci_high */
     double noise_power;             /* p of the noise model (NaN: none) */
-    double noise_sigma;             /* its sd at the normalised maximum */
+    double noise_sigma;             /* its sd at the fitted maximum,
+                                       relative (bf_interval.sigma) */
     double ml_param[BF_MAX_PARAMS]; /* the estimate the intervals are
                                        about (bf_interval.ml) */
     unsigned not_identified;        /* bit j (bf_interval.not_identified) */
@@ -1359,6 +1361,31 @@ typedef struct {
  * as bf_study_run. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+
+/* bf_calibrate for pair u (target u / n_models, model u % n_models) of a
+ * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
+ * target's configurations, the pair's refined parameters as the truth and
+ * its fitted noise model (stats[u].noise_power, noise_sigma), under
+ * opts's objective, noise and level; n_sim simulations, seed. Errors as
+ * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
+ * not be estimated); BF_EINVAL for a pair that was not analysed. */
+int bf_study_calibrate(const bf_study_spec *spec,
+                       const bf_analysis_opts *opts,
+                       const bf_study_row *rows, const bf_fit_stats *stats,
+                       size_t u, size_t n_sim, unsigned long seed,
+                       bf_calibration *out, bf_error *err);
+
+/* Writes calibrate.csv: a header line, then one line per (pair of pairs[],
+ * fitted parameter): sample, name, channel, model, parameter, value (the
+ * truth simulated), objective, noise_power (p), noise_sd,
+ * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
+ * not_identified (share). Formats as bf_fits_csv_write. */
+int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
+                             const bf_study_row *rows,
+                             const bf_fit_stats *stats,
+                             const bf_analysis_opts *opts,
+                             const size_t *pairs, size_t n_pairs,
+                             const bf_calibration *cal);
 
 /* ======================================================================
  * --- model selection: ranks, ties, the best model (doc/methods.md §5) ---

@@ -158,7 +158,7 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
         bf__lik_scale(&lik, fc->curve, nu, fc->scratch, &out->scale,
                       &sigma2);
         out->noise_power = p;
-        out->sigma = sqrt(sigma2);
+        out->sigma = sqrt(sigma2) / out->scale; /* of the fitted max */
         out->method = BF_CI_PROFILE_LIK;
         rc = profiles(fc, level,
                       n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu),
