@@ -183,5 +183,6 @@ int bf_cmd_info(int argc, char **argv);
 int bf_cmd_models(int argc, char **argv);
 int bf_cmd_report(int argc, char **argv);
 int bf_cmd_rank(int argc, char **argv);
+int bf_cmd_calibrate(int argc, char **argv);
 
 #endif

@@ -18,6 +18,7 @@ static void usage(FILE *fp)
 "            MERL, CSV); print Tables 2 and 3, write CSV\n"
 "  report    run compare and write every figure and report.html\n"
 "  rank      rank the models per sample by AIC, BIC and cross-validation\n"
+"  calibrate check the 95% intervals on simulated copies of one's own fits\n"
 "  info      describe a data file or folder (format, materials, angles)\n"
 "  convert   write any data file brdffit reads as tidy CSV\n"
 "  models    list the models, their parameters, ranges and equations\n"
@@ -62,6 +63,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "rank") == 0) {
         return bf_cmd_rank(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "calibrate") == 0) {
+        return bf_cmd_calibrate(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "info") == 0) {
         return bf_cmd_info(argc - 1, argv + 1);

@@ -95,7 +95,11 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    scale, theta <= 80 deg, a free scale rho_d); needs\n"
 "                    --fit exact unless max; see doc/methods.md\n"
 "  --range P=LO:HI   search range of parameter P, e.g. m=0.01:20 (grid\n"
-"                    keeps its step; repeatable)\n",
+"                    keeps its step; repeatable)\n"
+"  --noise MODEL     the intervals' noise model: auto (power law var ~\n"
+"                    mu^p, p from the residuals; default), absolute,\n"
+"                    relative, or objective (the objective's own profile,\n"
+"                    the intervals before issue 18); doc/methods.md §3\n",
             BF_DEFAULT_N, d->exact ? "exact" : "paper");
     if (d->stats) {
         fputs(
@@ -146,7 +150,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
            O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
-           O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE };
+           O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE, O_NOISE };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -166,6 +170,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         {"fit", required_argument, NULL, O_FIT},
         {"objective", required_argument, NULL, O_OBJECTIVE},
         {"range", required_argument, NULL, O_RANGE},
+        {"noise", required_argument, NULL, O_NOISE},
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
         {"folds", required_argument, NULL, O_FOLDS},
         {"seed", required_argument, NULL, O_SEED},
@@ -289,6 +294,13 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
                                          "--objective: '%s' is not max, scale, "
                                          "cosw, log, ngan, cuberoot or log1p",
                                          optarg);
+            }
+            break;
+        case O_NOISE:
+            if (bf_noise_find(optarg, &o->noise) != BF_OK) {
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--noise: '%s' is not "
+                                          "auto, absolute, relative or objective",
+                                          optarg);
             }
             break;
         case O_RANGE: {

@@ -35,6 +35,7 @@ typedef struct {
     /* beyond the paper (doc/methods.md) */
     int exact;                /* --fit exact */
     bf_objective objective;   /* --objective */
+    bf_noise noise;           /* --noise (BF_NOISE_AUTO) */
     const char *range[BF_CLI_MAX_RANGES]; /* --range NAME=LO:HI */
     size_t n_range;
     size_t n_boot;            /* --bootstrap N */

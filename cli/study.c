@@ -474,6 +474,7 @@ static int run_analysis(bf_cli_study *st)
     }
     bf_analysis_opts_init(&st->analysis);
     st->analysis.objective = o->objective;
+    st->analysis.noise = o->noise;
     st->analysis.exact = o->exact;
     st->analysis.n_boot = o->n_boot;
     st->analysis.folds = o->folds;

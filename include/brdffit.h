@@ -1007,6 +1007,8 @@ typedef struct {
     const double *data;          /* n normalised measured values */
     const double *weight;        /* n weights >= 0, or NULL for all 1 */
     bf_objective objective;
+    double noise_power;          /* p of the likelihood's noise model
+                                    (bf_fit_intervals sets it; 0 else) */
 } bf_problem;
 
 /* Fills pb for type on (n, geom, data): free parameters are the ones the
@@ -1090,6 +1092,104 @@ int bf_curves_best(const bf_curves *c, const bf_problem *pb,
 int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
                       size_t j, double level, double *low, double *high,
                       unsigned *open);
+
+/* The noise model behind the intervals (doc/methods.md §3): the data are
+ * D_k = s L_k(theta) + e_k with an unknown scale s (a nuisance parameter,
+ * never the one noisy maximum), e_k independent Gaussian, var e_k =
+ * sigma^2 max(L_k, BF_LOG_FLOOR)^p:
+ *   BF_NOISE_AUTO      p estimated from the residuals (power law, p in
+ *                      [0, BF_NOISE_PMAX]; the default);
+ *   BF_NOISE_ABSOLUTE  p = 0 (constant variance);
+ *   BF_NOISE_RELATIVE  p = 2 (sd proportional to the value);
+ *   BF_NOISE_OBJECTIVE the objective's own S as a constant-variance RSS
+ *                      with the scale the objective gives it: the profile
+ *                      intervals before issue 18, kept to compare with
+ *                      earlier results (they undercover under max). */
+typedef enum {
+    BF_NOISE_AUTO = 0,
+    BF_NOISE_ABSOLUTE,
+    BF_NOISE_RELATIVE,
+    BF_NOISE_OBJECTIVE
+} bf_noise;
+
+/* Largest noise power p BF_NOISE_AUTO considers. */
+#define BF_NOISE_PMAX 3.0
+
+/* "auto", "absolute", "relative", "objective" (static storage), NULL for
+ * an unknown value; bf_noise_find: BF_ENOTFOUND for an unknown name. */
+const char *bf_noise_name(bf_noise noise);
+int bf_noise_find(const char *name, bf_noise *noise);
+
+/* How an interval was computed (bf_interval.method, fits.csv ci_method). */
+typedef enum {
+    BF_CI_NONE = 0,
+    BF_CI_PROFILE,    /* "profile": the objective's S (BF_NOISE_OBJECTIVE) */
+    BF_CI_PROFILE_LIK /* "profile-lik": the noise model's likelihood, scale
+                         and noise level profiled, F threshold */
+} bf_ci_method;
+
+/* "", "profile", "profile-lik" (static storage), NULL for unknown. */
+const char *bf_ci_method_name(bf_ci_method m);
+
+/* The intervals of every free parameter of one fit. */
+typedef struct {
+    bf_ci_method method;
+    bf_noise noise;           /* the model asked for */
+    double noise_power;       /* p used (NaN for BF_NOISE_OBJECTIVE) */
+    double sigma;             /* noise sd at the fitted curve's maximum,
+                                 relative to it: sqrt(RSS_v / (n - k)) /
+                                 scale (bf_calibrate's sigma) */
+    double scale;             /* maximum-likelihood scale s */
+    bf_fit_result ml;         /* the estimate the intervals are about: the
+                                 maximum-likelihood one (BF_NOISE_OBJECTIVE:
+                                 best) */
+    double low[BF_MAX_PARAMS]; /* NaN for parameters that are not free */
+    double high[BF_MAX_PARAMS];
+    unsigned open;            /* bits 2j, 2j+1: low/high end at the range */
+    unsigned not_identified;  /* bit j: the profile stays below the
+                                 threshold to a bound of the search range
+                                 on a side where the estimate is not on
+                                 that bound (the end is the bound) */
+} bf_interval;
+
+/* The intervals at level (e.g. 0.95) of pb's free parameters around the
+ * fit best (bf_fit_refine under pb's objective) under the noise model
+ * noise (doc/methods.md §3). BF_EDOM when the noise cannot be estimated
+ * (the sum of the weights is not above the number of estimated
+ * parameters: free ones, the scale, p when estimated) or no interval can
+ * be found; BF_EINVAL, BF_ENOMEM. */
+int bf_fit_intervals(const bf_problem *pb, const bf_fit_result *best,
+                     bf_noise noise, double level, bf_interval *out);
+
+/* What simulated measurements say about a fit's intervals
+ * (bf_calibrate, `brdffit calibrate`, doc/methods.md §3). */
+typedef struct {
+    size_t n_sim;                    /* simulations fitted */
+    size_t n_failed;                 /* simulations that could not be */
+    double truth[BF_MAX_PARAMS];     /* the parameters simulated */
+    double coverage[BF_MAX_PARAMS];  /* share of intervals with the truth */
+    double bias[BF_MAX_PARAMS];      /* mean estimate - truth (the
+                                        objective's estimate) */
+    double sd[BF_MAX_PARAMS];        /* sd of those estimates */
+    double ml_bias[BF_MAX_PARAMS];   /* the same for the maximum-likelihood */
+    double ml_sd[BF_MAX_PARAMS];     /*   estimates the intervals are about */
+    double width[BF_MAX_PARAMS];     /* median interval width */
+    double not_identified[BF_MAX_PARAMS]; /* share flagged not identified */
+} bf_calibration;
+
+/* Simulates n_sim measurements of pb's model at truth on pb's
+ * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
+ * eps_k, eps ~ N(0, 1) (GSL mt19937 seeded with seed), normalised by
+ * their maximum as measured data are -- fits each under pb's objective
+ * (grid optimum, refinement) and computes its intervals under noise at
+ * level; out gets each free parameter's coverage, bias, spread and median
+ * width (NaN for the others). BF_EINVAL for bad arguments or n_sim < 10,
+ * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
+ * BF_ENOMEM. */
+int bf_calibrate(const bf_problem *pb, const double *truth,
+                 double noise_power, double sigma, bf_noise noise,
+                 size_t n_sim, unsigned long seed, double level,
+                 bf_calibration *out);
 
 /* Percentile bootstrap over configurations (doc/methods.md §3): n_boot
  * replicates, each resampling the n configurations with replacement
@@ -1321,6 +1421,7 @@ typedef struct {
     unsigned long seed;     /* of the bootstrap and the folds */
     bf_progress_fn progress; /* NULL: none */
     void *progress_ctx;
+    bf_noise noise;         /* the intervals' noise model (BF_NOISE_AUTO) */
 } bf_analysis_opts;
 
 /* Fills o with the defaults of the analysis (the CLI's): objective max
@@ -1376,6 +1477,13 @@ typedef struct {
                                        rho_d (SPEC §9.4) under the
                                        objectives that keep the scale
                                        (bf_fit_scale), NaN otherwise */
+    bf_ci_method ci_method;         /* of ci_low, ci_high */
+    double noise_power;             /* p of the noise model (NaN: none) */
+    double noise_sigma;             /* its sd at the fitted maximum,
+                                       relative (bf_interval.sigma) */
+    double ml_param[BF_MAX_PARAMS]; /* the estimate the intervals are
+                                       about (bf_interval.ml) */
+    unsigned not_identified;        /* bit j (bf_interval.not_identified) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1392,6 +1500,31 @@ typedef struct {
  * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+
+/* bf_calibrate for pair u (target u / n_models, model u % n_models) of a
+ * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
+ * target's configurations, the pair's refined parameters as the truth and
+ * its fitted noise model (stats[u].noise_power, noise_sigma), under
+ * opts's objective, noise and level; n_sim simulations, seed. Errors as
+ * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
+ * not be estimated); BF_EINVAL for a pair that was not analysed. */
+int bf_study_calibrate(const bf_study_spec *spec,
+                       const bf_analysis_opts *opts,
+                       const bf_study_row *rows, const bf_fit_stats *stats,
+                       size_t u, size_t n_sim, unsigned long seed,
+                       bf_calibration *out, bf_error *err);
+
+/* Writes calibrate.csv: a header line, then one line per (pair of pairs[],
+ * fitted parameter): sample, name, channel, model, parameter, value (the
+ * truth simulated), objective, noise_power (p), noise_sd,
+ * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
+ * not_identified (share). Formats as bf_fits_csv_write. */
+int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
+                             const bf_study_row *rows,
+                             const bf_fit_stats *stats,
+                             const bf_analysis_opts *opts,
+                             const size_t *pairs, size_t n_pairs,
+                             const bf_calibration *cal);
 
 /* ======================================================================
  * --- model selection: ranks, ties, the best model (doc/methods.md §5) ---

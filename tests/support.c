@@ -226,6 +226,20 @@ bf_table *bf_test_load_table(void)
     return t;
 }
 
+size_t bf_test_curet_geometry(bf_geom *geom, size_t stride)
+{
+    bf_table *t = bf_test_load_table();
+    size_t sel[BF_CURET_NCONF];
+    size_t n = bf_table_select(t, M_PI, sel);
+    size_t k;
+    size_t m = 0;
+    for (k = 0; k < n; k += stride) {
+        geom[m++] = bf_table_geom(t, sel[k]);
+    }
+    bf_table_free(t);
+    return m;
+}
+
 bf_brdf *bf_test_load_abrdf(void)
 {
     bf_brdf *b = NULL;

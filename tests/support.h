@@ -107,6 +107,9 @@ const char *bf_test_fixture_path(const char *file);
 
 /* Loads CURET's table.txt and abrdf.dat, failing the test loudly. */
 bf_table *bf_test_load_table(void);
+/* Every stride-th of the 198 non-specular CURET configurations into geom
+ * (room for BF_CURET_NCONF); returns how many. */
+size_t bf_test_curet_geometry(bf_geom *geom, size_t stride);
 bf_brdf *bf_test_load_abrdf(void);
 
 /* Opens a read-only in-memory stream over the NUL-terminated text. The

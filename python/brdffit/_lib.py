@@ -193,6 +193,13 @@ typedef enum { BF_OBJ_MAX = 0, BF_OBJ_SCALE, BF_OBJ_COSW, BF_OBJ_LOG,
 int bf_objective_keeps_scale(bf_objective obj);
 const char *bf_objective_name(bf_objective obj);
 int bf_objective_find(const char *name, bf_objective *obj);
+typedef enum { BF_NOISE_AUTO = 0, BF_NOISE_ABSOLUTE, BF_NOISE_RELATIVE,
+               BF_NOISE_OBJECTIVE } bf_noise;
+const char *bf_noise_name(bf_noise noise);
+int bf_noise_find(const char *name, bf_noise *noise);
+typedef enum { BF_CI_NONE = 0, BF_CI_PROFILE, BF_CI_PROFILE_LIK }
+    bf_ci_method;
+const char *bf_ci_method_name(bf_ci_method m);
 
 /* --- the study on a dataset --- */
 typedef struct {
@@ -240,6 +247,7 @@ typedef struct {
     unsigned long seed;
     bf_progress_fn progress;
     void *progress_ctx;
+    bf_noise noise;
 } bf_analysis_opts;
 void bf_analysis_opts_init(bf_analysis_opts *o);
 enum { BF_STAT_NOCONV = 1, BF_STAT_REDUCED = 2, BF_STAT_CLAMPED = 4,
@@ -264,6 +272,11 @@ typedef struct {
     const char *reduces_to;
     unsigned boot_split;
     double scale;
+    bf_ci_method ci_method;
+    double noise_power;
+    double noise_sigma;
+    double ml_param[4];
+    unsigned not_identified;
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);

@@ -49,6 +49,19 @@ def _objective(name):
     return obj[0]
 
 
+NOISES = ("auto", "absolute", "relative", "objective")
+
+
+def _noise(name):
+    """The bf_noise called name; InvalidArgumentError otherwise."""
+    nz = ffi.new("bf_noise *")
+    if not isinstance(name, str) or lib.bf_noise_find(name.encode(),
+                                                      nz) != 0:
+        raise InvalidArgumentError("noise must be one of %s, got %r"
+                                   % (", ".join(NOISES), name), 1)
+    return nz[0]
+
+
 def _sample_table(kind, value):
     """A bf_sample_table (owned, freed with the returned cdata) from a file
     path, or from a mapping number -> value(s) written as the file's rows
@@ -259,12 +272,13 @@ class Spec:
         return rows
 
     def analysis_opts(self, objective, exact, level, bootstrap, folds,
-                      seed):
+                      seed, noise="auto"):
         """A bf_analysis_opts: the library's defaults
         (bf_analysis_opts_init), with the arguments that are not None."""
         opts = ffi.new("bf_analysis_opts *")
         lib.bf_analysis_opts_init(opts)
         opts.objective = _objective(objective)
+        opts.noise = _noise(noise)
         opts.exact = 1 if exact else 0
         if level is not None:
             opts.level = float(level)
@@ -390,12 +404,14 @@ class Study:
                  fit="paper", objective="max", stats=False, bootstrap=0,
                  folds=None, seed=None, level=None, n=None, n_file=None,
                  on_params=None, exclude=(), max_theta=None, cone=None,
-                 ranges=None, threads=1, progress=None, context="study"):
+                 ranges=None, threads=1, progress=None, context="study",
+                 noise="auto"):
         if fit not in FITS:
             raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
                                        "%r" % (fit,), 1)
         exact = fit == "exact"
         _objective(objective)
+        _noise(noise)
         if objective != "max" and not exact:
             raise InvalidArgumentError("objective %r needs fit='exact' (the "
                                        "paper's grid minimises 'max')"
@@ -413,7 +429,8 @@ class Study:
             self.rows = self.spec.run(context)
         if exact or stats or bootstrap:
             self.opts = self.spec.analysis_opts(objective, exact, level,
-                                                bootstrap, folds, seed)
+                                                bootstrap, folds, seed,
+                                                noise)
             self.stats = self.spec.analyse(self.rows, self.opts, progress,
                                            context)
         self.missing = self.spec.check_rows(self.rows, context)

@@ -65,7 +65,9 @@ class FitResult:
         reduces_to: the model the fit is (ON at sigma = 0 is "LAMBERT"),
             or None.
         not_identified: names of the parameters along which the objective
-            is flat at the optimum (ON's rho at sigma = 0).
+            is flat at the optimum (ON's rho at sigma = 0), or whose
+            profile stays below the interval's threshold to a bound of the
+            search range (the interval ends there, open).
         clamped: on how many configurations the model's formula was
             clamped at 0 at the optimum (ON, doc/methods.md §8), else 0.
         not_converged: True when the refinement stopped at its iteration
@@ -80,6 +82,14 @@ class FitResult:
             view; LAMBERT's albedo), else None. objective is then the
             value SPEC §10 reports (ngan: E); measured and predicted stay
             the normalised radiances of SPEC §2.
+        ci_method: how intervals were computed, fits.csv's ci_method
+            ("profile-lik": the noise model's likelihood; "profile": the
+            objective's own S, noise="objective").
+        noise_power: p of the noise model var ~ mu^p (0 absolute, 2
+            relative; NaN for noise="objective").
+        ml_estimate: {name: value}, the maximum-likelihood estimate the
+            intervals are about (the scale free; under the max objective
+            it differs from refined, doc/methods.md §3).
       Without the analysis these are None.
     """
 
@@ -116,6 +126,7 @@ class FitResult:
         self.rho_d = None
         self.cv = self.flags = self.reduces_to = self.not_identified = None
         self.clamped = self.not_converged = self.interval_failed = None
+        self.ci_method = self.noise_power = self.ml_estimate = None
         self.bootstrap_failed = self.bootstrap_split = None
         if stats is not None:
             self._stats(m, stats[0], mask, int(study.opts.n_boot) > 0)
@@ -140,6 +151,10 @@ class FitResult:
                                           float(st.boot_high[j]))
         if lib.bf_objective_keeps_scale(st.objective):
             self.rho_d = float(st.scale)  # SPEC §9.4: the free scale
+        self.ci_method = ffi.string(lib.bf_ci_method_name(
+            int(st.ci_method))).decode()
+        self.noise_power = float(st.noise_power)
+        self.ml_estimate = _by_name(m, st.ml_param, mask)
         self.n_params = int(st.k)
         self.aic = float(st.aic)
         self.bic = float(st.bic)
@@ -152,7 +167,8 @@ class FitResult:
         f = int(st.flags)
         self.reduces_to = text(st.reduces_to) if (
             f & lib.BF_STAT_REDUCED and st.reduces_to != ffi.NULL) else None
-        self.not_identified = _names(m, int(st.refined.flat))
+        self.not_identified = _names(m, int(st.refined.flat) |
+                                     int(st.not_identified))
         self.clamped = int(st.n_clamped) if f & lib.BF_STAT_CLAMPED else 0
         self.not_converged = bool(f & lib.BF_STAT_NOCONV)
         self.interval_failed = bool(f & lib.BF_STAT_CI_FAIL)
@@ -181,7 +197,8 @@ class FitResult:
 def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective="max", stats=True, bootstrap=0, folds=None, seed=None,
         level=None, n=None, n_file=None, on_params=None, exclude=(),
-        max_theta=None, cone=None, ranges=None, threads=1, progress=None):
+        max_theta=None, cone=None, ranges=None, threads=1, progress=None,
+        noise="auto"):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -225,6 +242,10 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         progress: None, or a callable progress(done, total) the analysis
             calls as it goes (from the library's threads; an exception it
             raises is re-raised when the fit ends).
+        noise: the intervals' noise model (doc/methods.md §3): "auto"
+            (var ~ mu^p, p estimated; default), "absolute", "relative", or
+            "objective" (the objective's own profile, the intervals before
+            issue 18).
     Returns a FitResult.
     Raises InvalidArgumentError (bad option), NotFoundError (material,
     channel or model unknown; ON without on_params), DomainError (data
@@ -243,7 +264,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
                   folds=folds, seed=seed, level=level, n=n, n_file=n_file,
                   on_params=on_params, exclude=exclude, max_theta=max_theta,
                   cone=cone, ranges=ranges, threads=threads,
-                  progress=progress, context=context)
+                  progress=progress, context=context, noise=noise)
     row = study.rows[0]
     if study.missing:
         m = study.spec.models[0]

@@ -57,7 +57,7 @@ def expected_row(r, param):
                bound_hit=str(int(r.bound[param])),
                grid_value=g(r.grid[param]),
                refined_value=g(r.refined[param]), ci_low=g(lo),
-               ci_high=g(hi), ci_method="profile",
+               ci_high=g(hi), ci_method=r.ci_method,
                ci_open=str(int(lo_open) + 2 * int(hi_open)))
     return row
 

@@ -126,8 +126,13 @@ def test_lambertian_data_reduce_on_to_lambert():
 def test_the_flags_of_curet_fits_are_the_librarys_words(curet):
     # Felt (1): ON's optimum is sigma = 0, where rho is not identified.
     r = brdffit.fit(curet, "ON", material=1, fit="exact")
-    assert r.flags == "reduces_to=LAMBERT not_identified=rho"
+    assert r.flags == ("reduces_to=LAMBERT not_identified=rho "
+                       "noise=power:%.3g" % r.noise_power
+                       if 0 < r.noise_power < 2 or r.noise_power > 2 else
+                       "reduces_to=LAMBERT not_identified=rho noise=%s"
+                       % ("absolute" if r.noise_power == 0 else "relative"))
     assert r.reduces_to == "LAMBERT" and r.not_identified == ("rho",)
+    assert r.ci_method == "profile-lik"
     assert r.clamped == 0 and r.parameters["sigma"] == 0.0
     # Velvet (7): both ON parameters on their exact-fit range's ends, the
     # formula clamped at 0 on some configurations.
@@ -136,8 +141,13 @@ def test_the_flags_of_curet_fits_are_the_librarys_words(curet):
     assert r.parameters == {"rho": rho.exact_range[0],
                             "sigma": sigma.exact_range[1]}
     assert r.bound == {"rho": True, "sigma": True}
-    assert r.clamped > 0 and r.flags == "clamped=%d" % r.clamped
-    assert r.reduces_to is None and r.not_identified == ()
+    # Both profiles stay below the threshold to the other ends of their
+    # ranges: the likelihood's intervals are the whole ranges, flagged.
+    assert r.clamped > 0 and r.flags == (
+        "not_identified=rho not_identified=sigma clamped=%d noise=absolute"
+        % r.clamped)
+    assert r.reduces_to is None and r.not_identified == ("rho", "sigma")
+    assert r.intervals["rho"] == rho.exact_range[:2]
 
 
 def test_progress_reports_the_pair(curet):

@@ -58,7 +58,10 @@ static void stats_clear(bf_fit_stats *st)
         st->ci_high[j] = NAN;
         st->boot_low[j] = NAN;
         st->boot_high[j] = NAN;
+        st->ml_param[j] = NAN;
     }
+    st->noise_power = NAN;
+    st->noise_sigma = NAN;
     st->aic = NAN;
     st->bic = NAN;
     st->cv = NAN;
@@ -240,22 +243,28 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
             return rc;
         }
     }
-    for (j = 0; j < pb.type->p; j++) {
-        unsigned open = 0;
-        if (!((pb.free_mask >> j) & 1u)) {
-            continue;
-        }
-        rc = bf__profile_ci(fc, &st->refined, j, opts->level, &st->ci_low[j],
-                            &st->ci_high[j], &open);
+    if (pb.free_mask != 0) {
+        bf_interval iv;
+        rc = bf__intervals(fc, &st->refined, opts->noise, opts->level,
+                           &iv);
         if (rc == BF_ENOMEM) {
             return rc;
         }
         if (rc != BF_OK) {
-            st->ci_low[j] = NAN;
-            st->ci_high[j] = NAN;
             st->flags |= BF_STAT_CI_FAIL;
         }
-        st->ci_open |= open << (2 * j);
+        for (j = 0; j < pb.type->p; j++) {
+            if ((pb.free_mask >> j) & 1u) {
+                st->ci_low[j] = iv.low[j];
+                st->ci_high[j] = iv.high[j];
+                st->ml_param[j] = iv.ml.param[j];
+            }
+        }
+        st->ci_open = iv.open;
+        st->ci_method = iv.method;
+        st->noise_power = iv.noise_power;
+        st->noise_sigma = iv.sigma;
+        st->not_identified = iv.not_identified;
     }
     if (opts->n_boot >= 2 && pb.free_mask != 0) {
         unsigned split = 0;
@@ -515,4 +524,5 @@ void bf_analysis_opts_init(bf_analysis_opts *o)
     o->level = 0.95;
     o->folds = 10;
     o->seed = 1;
+    o->noise = BF_NOISE_AUTO;
 }

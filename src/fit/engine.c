@@ -69,11 +69,14 @@ int bf__prep_init(bf__prep *pm, const bf_model_type *type,
 {
     int rc = cs != NULL ? bf__prep_plain(pm, type, cs->n, cs->geom)
                         : BF_EINVAL;
-    if (rc != BF_OK || type->kernel == NULL) {
+    if (rc != BF_OK) {
+        return rc;
+    }
+    pm->cs = cs; /* the plain kernel's fits need cos theta_i too (cosw) */
+    if (type->kernel == NULL) {
         return rc;
     }
     pm->kr = type->kernel;
-    pm->cs = cs;
     if (pm->kr->n_terms + pm->kr->n_extra > 0) {
         size_t len;
         if (pm->kr->n_terms > (SIZE_MAX / sizeof(double) - 64) / cs->n) {

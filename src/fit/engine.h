@@ -222,6 +222,29 @@ double bf__fit_scale_of(const bf_problem *pb, const double *log_d,
 void bf__residuals(const bf_problem *pb, const double *cti,
                    const double *log_d, const double *curve, double *resid);
 
+/* The likelihood of the noise model (src/fit/noise.c, doc/methods.md §3)
+ * as an objective of the engine: never a user's objective (no name), set
+ * by the intervals on a copy of the problem with pb->noise_power = p:
+ *   S = g * sum_k w_k (D_k - s* L_k)^2 / v_k,  v_k = max(L_k, f)^p,
+ *   s* = sum w L D / v / sum w L^2 / v,  g = exp(sum w ln v / sum w),
+ * so that -2 ln(profile likelihood over s, sigma^2) = n ln S + const. */
+#define BF__OBJ_LIK ((bf_objective)64)
+
+/* S of the likelihood objective on a normalised curve (scratch: n
+ * doubles), and its residuals r_k (S = sum w r_k^2). */
+double bf__lik_value(const bf_problem *pb, const double *curve,
+                     double *scratch);
+void bf__lik_residuals(const bf_problem *pb, const double *curve,
+                       double *resid);
+/* The noise power p in [0, BF_NOISE_PMAX] that maximises the likelihood
+ * at the normalised curve (sigma and s profiled; scratch: n doubles). */
+double bf__noise_power(const bf_problem *pb, const double *curve,
+                       double *scratch);
+/* The likelihood's scale s* and sigma^2 = RSS_v / dof at the curve
+ * (scratch: n doubles). */
+void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,
+                   double *scratch, double *scale, double *sigma2);
+
 /* One problem's own engine (the public API's fits: bf_fit_refine,
  * bf_fit_profile_ci, ... called on a bf_problem): a configuration set, the
  * prepared model and one context, made per call. */
@@ -322,6 +345,16 @@ int bf__curves_check(const bf_curves *c, const bf_problem *pb);
 /* bf_fit_profile_ci on fc (fc->pb the problem; restored on return). */
 int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                    double level, double *low, double *high, unsigned *open);
+/* The sum of pb's weights (n without weights): the n of the profile
+ * criteria. */
+double bf__weight_sum(const bf_problem *pb);
+/* bf__profile_ci with the criterion n ln(S_p / S_min) <= thr. */
+int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                       double thr, double *low, double *high,
+                       unsigned *open);
+/* bf_fit_intervals on fc (fc->pb the problem; restored on return). */
+int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
+                  double level, bf_interval *out);
 /* bf_fit_bootstrap on fc with the grid gr of fc->pb's free parameters;
  * est (n_boot x BF_MAX_PARAMS, parameter-major, sorted per parameter on
  * return, NULL: not kept) and *n_est (may be NULL) get the estimates;

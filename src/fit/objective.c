@@ -289,6 +289,10 @@ void bf__residuals(const bf_problem *pb, const double *cti,
 {
     size_t k;
     double s;
+    if (pb->objective == BF__OBJ_LIK) { /* src/fit/noise.c */
+        bf__lik_residuals(pb, curve, resid);
+        return;
+    }
     if (pb->objective == BF_OBJ_CUBEROOT) { /* t cbrt(L) - cbrt(rho) */
         double t;
         for (k = 0; k < pb->n; k++) {
@@ -340,6 +344,9 @@ double bf__objective(const bf_problem *pb, const double *cti,
     if (pb->objective == BF_OBJ_MAX || pb->objective == BF_OBJ_COSW) {
         return bf__sum_weighted(pb->n, curve, pb->data, pb->weight,
                                 pb->objective == BF_OBJ_COSW ? cti : NULL);
+    }
+    if (pb->objective == BF__OBJ_LIK) { /* src/fit/noise.c */
+        return bf__lik_value(pb, curve, scratch);
     }
     bf__residuals(pb, cti, log_d, curve, scratch);
     for (k = 0; k < pb->n; k++) {

@@ -57,7 +57,8 @@ typedef struct {
     size_t j;
     double s_min;                /* objective at the optimum */
     double n_w;                  /* sum of the weights */
-    double chi2;                 /* chi2_1(level) */
+    double chi2;                 /* the threshold: chi2_1(level), or the
+                                    likelihood's F form (intervals.c) */
     int status;                  /* first failure, BF_OK if none */
 } profile_t;
 
@@ -283,7 +284,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     return p->status != BF_OK ? p->status : rc;
 }
 
-static double weight_sum(const bf_problem *pb)
+double bf__weight_sum(const bf_problem *pb)
 {
     double s = 0.0;
     size_t k;
@@ -298,6 +299,15 @@ static double weight_sum(const bf_problem *pb)
 
 int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                    double level, double *low, double *high, unsigned *open)
+{
+    /* Wilks: chi2_1(level), 3.841 at 95% [1] §2.6 */
+    return bf__profile_ci_thr(fc, best, j, gsl_cdf_chisq_Pinv(level, 1.0),
+                              low, high, open);
+}
+
+int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                       double thr, double *low, double *high,
+                       unsigned *open)
 {
     const bf_problem *pb = fc->pb;
     profile_t p;
@@ -315,8 +325,8 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     memcpy(p.sub.fixed, best->param, sizeof p.sub.fixed);
     memcpy(p.start, best->param, sizeof p.start);
     p.j = j;
-    p.n_w = weight_sum(pb);
-    p.chi2 = gsl_cdf_chisq_Pinv(level, 1.0); /* 3.841 at 95% */
+    p.n_w = bf__weight_sum(pb);
+    p.chi2 = thr;
     rc = bf__fit_value(fc, best->param, &p.s_min);
     if (rc == BF_OK) {
         if (!(p.s_min > DBL_MIN)) {

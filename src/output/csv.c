@@ -114,7 +114,7 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
         word(buf, len, &at, "reduces_to=%s", st->reduces_to);
     }
     for (j = 0; j < type->p; j++) {
-        if ((st->refined.flat >> j) & 1u) {
+        if (((st->refined.flat | st->not_identified) >> j) & 1u) {
             word(buf, len, &at, "not_identified=%s", type->param[j].name);
         }
     }
@@ -123,6 +123,15 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
     }
     if (st->flags & BF_STAT_NOCONV) {
         word(buf, len, &at, "not_converged");
+    }
+    if (st->ci_method == BF_CI_PROFILE_LIK) {
+        if (st->noise_power == 0.0) {
+            word(buf, len, &at, "noise=absolute");
+        } else if (st->noise_power == 2.0) {
+            word(buf, len, &at, "noise=relative");
+        } else {
+            word(buf, len, &at, "noise=power:%.3g", st->noise_power);
+        }
     }
     if (st->flags & BF_STAT_CI_FAIL) {
         word(buf, len, &at, "interval_failed");

@@ -31,7 +31,7 @@ static void analysis_cols(FILE *fp, const bf_study_row *r,
     bf__csv_num(fp, s->refined.lse);
     bf__csv_num(fp, has ? s->ci_low[j] : NAN);
     bf__csv_num(fp, has ? s->ci_high[j] : NAN);
-    fprintf(fp, ",%s", has ? "profile" : "");
+    fprintf(fp, ",%s", has ? bf_ci_method_name(s->ci_method) : "");
     if (has) {
         fprintf(fp, ",%u", (s->ci_open >> (2 * j)) & 3u);
     } else {

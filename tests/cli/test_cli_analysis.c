@@ -52,6 +52,9 @@ Test(cli_analysis, fits_where_the_oren_nayar_clamp_acts_are_flagged)
 
 /* ==== defect 2: profile ends whose inner fit missed the minimum ========= */
 
+/* The two tests below check the profile's inner fits on the objective's
+ * own S (--noise objective: the values were confirmed by dense scans of
+ * that S); the same machinery profiles the default likelihood. */
 Test(cli_analysis, profile_ends_are_those_of_the_true_profile)
 {
     /* Moss (61), FC-G: the upper end of n is 1.21954 (peer); before, the
@@ -64,7 +67,8 @@ Test(cli_analysis, profile_ends_are_those_of_the_true_profile)
         const char *dir = bf_test_tmpdir();
         const char *argv[] = {"compare", "--data", "DATA", "--samples", "61",
                               "--models", "FC-G", "--fit", "exact",
-                              "--folds", "0", "--out", dir, "-q",
+                              "--noise", "objective", "--folds", "0",
+                              "--out", dir, "-q",
                               ranges[i] != NULL ? "--range" : NULL,
                               ranges[i], NULL};
         size_t r;
@@ -84,8 +88,9 @@ Test(cli_analysis, profile_ends_find_a_nuisance_minimum_between_grid_points)
      * 0 between 1.0468 and 1.0500), not 1.03977. */
     const char *dir = bf_test_tmpdir();
     const char *argv[] = {"compare", "--data", "DATA", "--samples", "33",
-                          "--models", "FC-E", "--fit", "exact", "--folds",
-                          "0", "--out", dir, "-q", NULL};
+                          "--models", "FC-E", "--fit", "exact", "--noise",
+                          "objective", "--folds", "0", "--out", dir, "-q",
+                          NULL};
     cr_assert_eq(run(argv), 0);
     bf_test_csv_load(dir, "fits.csv");
     bf_assert_abs(bf_test_csv_num(bf_test_csv_find("33", "FC-E", "m"),

@@ -39,21 +39,6 @@ static void setup(void)
 
 TestSuite(uncertainty, .init = setup);
 
-/* Every stride-th of the 198 non-specular CURET configurations. */
-static size_t curet_geometry(bf_geom *geom, size_t stride)
-{
-    bf_table *t = bf_test_load_table();
-    size_t sel[BF_CURET_NCONF];
-    size_t n = bf_table_select(t, M_PI, sel);
-    size_t k;
-    size_t m = 0;
-    for (k = 0; k < n; k += stride) {
-        geom[m++] = bf_table_geom(t, sel[k]);
-    }
-    bf_table_free(t);
-    return m;
-}
-
 /* Synthesises type at truth on geom, adds noise, fits (grid on curves, then
  * refinement) and counts how often each free parameter's profile interval
  * covers the truth. The synthetic data are the normalised model curve plus
@@ -64,7 +49,7 @@ static void profile_coverage(const bf_model_type *type, const double *truth,
     static bf_geom geom[BF_CURET_NCONF];
     double curve[BF_CURET_NCONF];
     double data[BF_CURET_NCONF];
-    size_t n = curet_geometry(geom, stride);
+    size_t n = bf_test_curet_geometry(geom, stride);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     size_t covered[BF_MAX_PARAMS] = {0};
     size_t n_open[BF_MAX_PARAMS] = {0};
@@ -194,7 +179,7 @@ Test(uncertainty, bootstrap_intervals_cover_the_slope_of_vh_e)
     double curve[BF_CURET_NCONF];
     double data[BF_CURET_NCONF];
     const double truth[1] = {0.2417};
-    size_t n = curet_geometry(geom, 1);
+    size_t n = bf_test_curet_geometry(geom, 1);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     size_t covered = 0;
     bf_problem pb;

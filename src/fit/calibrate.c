@@ -1,0 +1,198 @@
+/* calibrate.c: the intervals of a fit checked on simulated measurements
+ * of the fitted model (doc/methods.md §3, `brdffit calibrate`).
+ *
+ * [1] SPEC §2 (measured data normalised by their maximum).
+ * [2] src/fit/noise.c: the noise model, var e_k = sigma^2 max(L_k, f)^p.
+ *
+ * Each simulation: D_k = L_k(truth) + sigma max(L_k, f)^(p/2) eps_k,
+ * eps_k ~ N(0, 1), divided by max_k D_k [1] (so the value that sets the
+ * scale is as noisy as a measurement's); the fit under pb's objective
+ * (grid optimum on stored curves, refinement) and its intervals
+ * (bf__intervals); the truth inside or not. Coverage is the share of
+ * simulations whose interval holds the truth; bias and sd are those of
+ * the objective's estimates and of the maximum-likelihood ones.
+ */
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+/* Fewest simulations a calibration accepts. */
+#define MIN_SIM 10
+
+/* One simulated data set into d (n values): false when not normalisable. */
+static int simulate(const bf_problem *pb, const double *curve, double p,
+                    double sigma, gsl_rng *rng, double *d)
+{
+    double top = -HUGE_VAL;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double l = curve[k] > BF_LOG_FLOOR ? curve[k] : BF_LOG_FLOOR;
+        d[k] = curve[k] + sigma * pow(l, 0.5 * p) * gsl_ran_gaussian(rng, 1.0);
+        top = d[k] > top ? d[k] : top;
+    }
+    if (!(top > 0.0)) {
+        return 0;
+    }
+    for (k = 0; k < pb->n; k++) {
+        d[k] /= top; /* [1] */
+    }
+    return 1;
+}
+
+typedef struct {
+    double *est;   /* n_sim x BF_MAX_PARAMS, parameter-major */
+    double *ml;
+    double *width;
+    size_t *cover; /* BF_MAX_PARAMS */
+    size_t *flag;
+} tally_t;
+
+static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
+                      size_t n_sim, bf_calibration *out)
+{
+    size_t j;
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
+        double *e = t->est + j * n_sim;
+        double *q = t->ml + j * n_sim;
+        double *w = t->width + j * n_sim;
+        if (j >= pb->type->p || !((pb->free_mask >> j) & 1u) || m < 2) {
+            continue;
+        }
+        out->coverage[j] = (double)t->cover[j] / (double)m;
+        out->not_identified[j] = (double)t->flag[j] / (double)m;
+        out->bias[j] = gsl_stats_mean(e, 1, m) - out->truth[j];
+        out->sd[j] = gsl_stats_sd(e, 1, m);
+        out->ml_bias[j] = gsl_stats_mean(q, 1, m) - out->truth[j];
+        out->ml_sd[j] = gsl_stats_sd(q, 1, m);
+        gsl_sort(w, 1, m);
+        out->width[j] = gsl_stats_median_from_sorted_data(w, 1, m);
+    }
+}
+
+static void clear(bf_calibration *out, const double *truth, size_t p)
+{
+    size_t j;
+    memset(out, 0, sizeof *out);
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
+        out->truth[j] = j < p ? truth[j] : NAN;
+        out->coverage[j] = out->bias[j] = out->sd[j] = NAN;
+        out->ml_bias[j] = out->ml_sd[j] = out->width[j] = NAN;
+        out->not_identified[j] = NAN;
+    }
+}
+
+int bf_calibrate(const bf_problem *pb, const double *truth,
+                 double noise_power, double sigma, bf_noise noise,
+                 size_t n_sim, unsigned long seed, double level,
+                 bf_calibration *out)
+{
+    bf__solo so;
+    bf__grid_layout_t lay;
+    bf_grid *gr = NULL;
+    gsl_rng *rng = NULL;
+    bf_problem sim;
+    tally_t t;
+    size_t cover[BF_MAX_PARAMS] = {0};
+    size_t flag[BF_MAX_PARAMS] = {0};
+    double *curve = NULL;
+    double *d = NULL;
+    size_t m = 0;
+    size_t r;
+    size_t j;
+    int rc;
+
+    if (pb == NULL || truth == NULL || out == NULL || pb->type == NULL ||
+        pb->weight != NULL || n_sim < MIN_SIM || !(sigma >= 0.0) ||
+        !(noise_power >= 0.0 && noise_power <= BF_NOISE_PMAX) ||
+        bf_noise_name(noise) == NULL || !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    clear(out, truth, pb->type->p);
+    if (!((double)pb->n > (double)bf_problem_nfree(pb) + 1.0 +
+                             (noise == BF_NOISE_AUTO ? 1.0 : 0.0))) {
+        return BF_EDOM; /* no noise estimate (bf_fit_intervals) */
+    }
+    memset(&t, 0, sizeof t);
+    sim = *pb;
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    t.est = malloc(3 * n_sim * BF_MAX_PARAMS * sizeof *t.est);
+    curve = malloc(2 * pb->n * sizeof *curve);
+    rng = gsl_rng_alloc(gsl_rng_mt19937);
+    rc = t.est == NULL || curve == NULL || rng == NULL ? BF_ENOMEM : BF_OK;
+    if (rc == BF_OK) {
+        t.ml = t.est + n_sim * BF_MAX_PARAMS;
+        t.width = t.ml + n_sim * BF_MAX_PARAMS;
+        t.cover = cover;
+        t.flag = flag;
+        d = curve + pb->n;
+        sim.data = d;
+        gsl_rng_set(rng, seed);
+        rc = bf__curve(&so.pm, truth, so.fc.work, curve);
+    }
+    if (rc == BF_OK) {
+        rc = bf__grid_layout_range(pb->type, pb->fixed, pb->free_mask, pb->lo,
+                                   pb->hi, &lay);
+    }
+    if (rc == BF_OK) {
+        gr = bf__grid_make(&so.pm, &lay, &rc);
+    }
+    for (r = 0; rc == BF_OK && r < n_sim; r++) {
+        const double *w[1] = {NULL};
+        bf_fit_result g;
+        bf_fit_result best;
+        bf_interval iv;
+        int st;
+        if (!simulate(&sim, curve, noise_power, sigma, rng, d)) {
+            out->n_failed++;
+            continue;
+        }
+        bf__fitctx_use(&so.fc, &sim);
+        rc = bf__grid_optima(gr, &sim, so.cs.cti, 1, w, &g);
+        if (rc != BF_OK) {
+            break;
+        }
+        st = isfinite(g.lse) ? bf__refine(&so.fc, &g, &best) : BF_EDOM;
+        if (st == BF_OK || st == BF_ENOCONV) {
+            st = bf__intervals(&so.fc, &best, noise, level, &iv);
+        }
+        if (st == BF_ENOMEM) {
+            rc = st;
+            break;
+        }
+        if (st != BF_OK) {
+            out->n_failed++;
+            continue;
+        }
+        for (j = 0; j < pb->type->p; j++) {
+            if (!((pb->free_mask >> j) & 1u)) {
+                continue;
+            }
+            t.est[j * n_sim + m] = best.param[j];
+            t.ml[j * n_sim + m] = iv.ml.param[j];
+            t.width[j * n_sim + m] = iv.high[j] - iv.low[j];
+            cover[j] += iv.low[j] <= truth[j] && truth[j] <= iv.high[j];
+            flag[j] += (iv.not_identified >> j) & 1u;
+        }
+        m++;
+    }
+    if (rc == BF_OK) {
+        out->n_sim = m;
+        summarise(pb, &t, m, n_sim, out);
+        rc = m >= 2 ? BF_OK : BF_EDOM;
+    }
+    bf_grid_free(gr);
+    gsl_rng_free(rng);
+    free(t.est);
+    free(curve);
+    bf__solo_free(&so);
+    return rc;
+}

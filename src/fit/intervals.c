@@ -1,0 +1,188 @@
+/* intervals.c: the intervals of a fit under its noise model
+ * (doc/methods.md §3) -- the noise power estimated from the residuals,
+ * the maximum-likelihood fit with the scale and the noise level profiled
+ * (src/fit/noise.c), and each free parameter's profile-likelihood
+ * interval with an F threshold; open ends and not-identified parameters
+ * said.
+ *
+ * [1] Y. Pawitan, "In All Likelihood", OUP 2001, §9.2 (profile likelihood
+ *     intervals), §10.6 (nuisance parameters).
+ * [2] D. M. Bates, D. G. Watts, "Nonlinear Regression Analysis and Its
+ *     Applications", Wiley 1988, §6.1.2 (profile t: the likelihood-ratio
+ *     interval with sigma^2 estimated, calibrated by F(1, n - k)).
+ *
+ * Equations: theta_j is inside when
+ *   n ln(S_p(theta_j) / S_min) <= n ln(1 + F_{1,nu}(level) / nu)      [2]
+ * with S the likelihood objective (noise.c; -2 ln L = n ln S + const),
+ * S_p minimised over the other free parameters and the scale, nu = n - k,
+ * k = free parameters + the scale + the noise power when estimated. As
+ * nu grows the threshold tends to Wilks' chi2_1(level) [1] §9.2; at small
+ * n it is the exact interval of a linear model with unknown variance.
+ */
+#include <gsl/gsl_cdf.h>
+#include <math.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+/* Passes of (noise power at the estimate, estimate at that power). */
+#define NOISE_PASSES 4
+/* The noise power has converged when it moves less than this. */
+#define NOISE_TOL 1e-3
+
+/* The optimum of fc->pb (the likelihood), refined from start (the
+ * objective's optimum: the same basin wherever the objective and the
+ * likelihood agree on the data; where they do not, the profile's grid
+ * fits find the lower basin and widen the interval to it). */
+static int ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out)
+{
+    bf_fit_result s0;
+    int rc;
+    memset(&s0, 0, sizeof s0);
+    memcpy(s0.param, start, sizeof s0.param);
+    rc = bf__fit_value(fc, s0.param, &s0.lse);
+    if (rc == BF_OK) {
+        rc = bf__refine(fc, &s0, out);
+        rc = rc == BF_ENOCONV ? BF_OK : rc; /* the best point found */
+    }
+    return rc;
+}
+
+/* The noise power at param under lik (fc->pb). */
+static int power_at(bf__fitctx *fc, const double *param, double *p)
+{
+    int rc = bf__curve(fc->pm, param, fc->work, fc->curve);
+    if (rc == BF_OK) {
+        *p = bf__noise_power(fc->pb, fc->curve, fc->scratch);
+    }
+    return rc;
+}
+
+static void clear(bf_interval *out, bf_noise noise)
+{
+    size_t j;
+    memset(out, 0, sizeof *out);
+    out->noise = noise;
+    out->noise_power = NAN;
+    out->sigma = NAN;
+    out->scale = NAN;
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
+        out->low[j] = NAN;
+        out->high[j] = NAN;
+    }
+}
+
+/* Each free parameter's interval around out->ml under fc->pb with the
+ * threshold thr (level: the objective's own chi2 when thr is NaN). */
+static int profiles(bf__fitctx *fc, double level, double thr,
+                    bf_interval *out)
+{
+    const bf_problem *pb = fc->pb;
+    size_t j;
+    for (j = 0; j < pb->type->p; j++) {
+        unsigned open = 0;
+        int rc;
+        if (!((pb->free_mask >> j) & 1u)) {
+            continue;
+        }
+        rc = isnan(thr) ? bf__profile_ci(fc, &out->ml, j, level,
+                                         &out->low[j], &out->high[j], &open)
+                        : bf__profile_ci_thr(fc, &out->ml, j, thr,
+                                             &out->low[j], &out->high[j],
+                                             &open);
+        if (rc != BF_OK) {
+            out->low[j] = NAN;
+            out->high[j] = NAN;
+            return rc;
+        }
+        out->open |= open << (2 * j);
+        /* open where the estimate is not on the bound: the profile stays
+         * below the threshold all the way there */
+        if (((open & 1u) && out->ml.param[j] > pb->lo[j]) ||
+            ((open & 2u) && out->ml.param[j] < pb->hi[j])) {
+            out->not_identified |= 1u << j;
+        }
+    }
+    return BF_OK;
+}
+
+int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
+                  double level, bf_interval *out)
+{
+    const bf_problem *pb = fc->pb;
+    bf_problem lik;
+    double n_w = bf__weight_sum(pb);
+    double k = (double)bf_problem_nfree(pb) + 1.0 +
+               (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
+    double nu = n_w - k;
+    double p = noise == BF_NOISE_RELATIVE ? 2.0 : 0.0;
+    double sigma2 = NAN;
+    size_t pass;
+    int rc = BF_OK;
+
+    clear(out, noise);
+    if (noise == BF_NOISE_OBJECTIVE) { /* the objective's own S */
+        out->method = BF_CI_PROFILE;
+        out->ml = *best;
+        return profiles(fc, level, NAN, out);
+    }
+    if (!(nu >= 1.0)) {
+        return BF_EDOM; /* K <= estimated parameters: no noise estimate */
+    }
+    lik = *pb;
+    lik.objective = BF__OBJ_LIK;
+    lik.noise_power = p;
+    bf__fitctx_use(fc, &lik);
+    out->ml = *best;
+    if (noise == BF_NOISE_AUTO) {
+        rc = power_at(fc, best->param, &p);
+    }
+    for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
+        double p_new;
+        lik.noise_power = p;
+        rc = ml_fit(fc, out->ml.param, &out->ml);
+        if (rc != BF_OK || noise != BF_NOISE_AUTO) {
+            break;
+        }
+        rc = power_at(fc, out->ml.param, &p_new);
+        if (rc != BF_OK || fabs(p_new - p) < NOISE_TOL ||
+            pass + 1 == NOISE_PASSES) {
+            break;
+        }
+        p = p_new;
+    }
+    if (rc == BF_OK) {
+        rc = bf__curve(fc->pm, out->ml.param, fc->work, fc->curve);
+    }
+    if (rc == BF_OK) {
+        bf__lik_scale(&lik, fc->curve, nu, fc->scratch, &out->scale,
+                      &sigma2);
+        out->noise_power = p;
+        out->sigma = sqrt(sigma2) / out->scale; /* of the fitted max */
+        out->method = BF_CI_PROFILE_LIK;
+        rc = profiles(fc, level,
+                      n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu),
+                      out);
+    }
+    bf__fitctx_use(fc, pb);
+    return rc;
+}
+
+int bf_fit_intervals(const bf_problem *pb, const bf_fit_result *best,
+                     bf_noise noise, double level, bf_interval *out)
+{
+    bf__solo so;
+    int rc;
+    if (pb == NULL || best == NULL || out == NULL || pb->type == NULL ||
+        pb->data == NULL || bf_noise_name(noise) == NULL ||
+        !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    rc = bf__intervals(&so.fc, best, noise, level, out);
+    bf__solo_free(&so);
+    return rc;
+}
