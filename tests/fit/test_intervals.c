@@ -203,15 +203,17 @@ static int flat_eval(const double *param, size_t n, const bf_geom *geom,
 }
 
 static const bf_param flat_params[2] = {
-    {"a", "a", "1", 0.0, 10.0, 1.0, 1, 0.5, 0.05, 51, BF_INPUT_DEFAULT, 0, 0, 0,
-     0},
-    {"b", "b", "1", 0.0, 1.0, 0.5, 1, 0.0, 0.05, 21, BF_INPUT_DEFAULT, 0, 0, 0,
-     0},
+    {.name = "a", .label = "a", .unit = "1", .min = 0.0, .max = 10.0,
+     .value = 1.0, .fitted = 1, .grid_lo = 0.5, .grid_step = 0.05,
+     .grid_n = 51, .input = BF_INPUT_DEFAULT},
+    {.name = "b", .label = "b", .unit = "1", .min = 0.0, .max = 1.0,
+     .value = 0.5, .fitted = 1, .grid_lo = 0.0, .grid_step = 0.05,
+     .grid_n = 21, .input = BF_INPUT_DEFAULT},
 };
 
 static const bf_model_type flat_type = {
-    "FLAT", "test: b without effect", "test", 2, flat_params, flat_eval, 0,
-    NULL, 0, NULL, 0, 0.0,
+    .name = "FLAT", .title = "test: b without effect", .reference = "test",
+    .p = 2, .param = flat_params, .eval = flat_eval,
 };
 
 static void flat_case(double eps)
