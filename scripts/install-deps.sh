@@ -12,14 +12,15 @@ set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
 # figures (PNG, SVG, PDF through PLplot's cairo drivers, and a font);
-# zlib1g-dev: the report's PNG writer; python3-html5lib: the test that
+# zlib1g-dev: the report's PNG writer; nettle-dev: the SHA-256 sums of
+# the report's inputs; python3-html5lib: the test that
 # parses report.html; curl: `make run` fetches the CURET files when they
 # are not on the machine (scripts/curet-data.sh).
 # python3-numpy, python3-cffi, python3-pytest: the Python package (python/)
 # and its tests; python3-pandas: the test of Records.to_dataframe (the
 # package itself never needs pandas); python3-pip: `pip install ./python`.
 PACKAGES="pkg-config libgsl-dev libcriterion-dev libplplot-dev \
-plplot-driver-cairo fonts-dejavu-core zlib1g-dev python3-html5lib curl \
+plplot-driver-cairo fonts-dejavu-core zlib1g-dev nettle-dev python3-html5lib curl \
 python3-numpy python3-cffi python3-pytest python3-pandas python3-pip"
 for group in "$@"; do
     case $group in

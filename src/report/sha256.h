@@ -1,6 +1,6 @@
-/* sha256.h: SHA-256 message digests (FIPS 180-4), used by the report to
- * record checksums of the data files it was made from. Private: not
- * installed. */
+/* sha256.h: SHA-256 message digests (FIPS 180-4, computed by GNU Nettle),
+ * used by the report to record checksums of the data files it was made
+ * from. Private: not installed. */
 #ifndef BF_REPORT_SHA256_H
 #define BF_REPORT_SHA256_H
 
@@ -8,22 +8,21 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include <nettle/sha2.h>
+
 #define BF_SHA256_SIZE 32 /* digest bytes */
 #define BF_SHA256_HEX (2 * BF_SHA256_SIZE + 1) /* hex digest + NUL */
 
-/* Running state of one digest. */
+/* Running state of one digest (Nettle's). */
 typedef struct {
-    uint32_t h[8];      /* hash value H(i), FIPS 180-4 §6.2 */
-    uint8_t block[64];  /* pending message bytes */
-    size_t fill;        /* bytes in block */
-    uint64_t length;    /* message length so far, bytes */
+    struct sha256_ctx ctx;
 } bf_sha256;
 
-/* Starts a digest (initial hash value, FIPS 180-4 §5.3.3). */
+/* Starts a digest. */
 void bf_sha256_init(bf_sha256 *c);
 /* Adds len bytes of message. */
 void bf_sha256_update(bf_sha256 *c, const void *data, size_t len);
-/* Pads the message (FIPS 180-4 §5.1.1) and writes the digest. */
+/* Writes the digest of the message added so far. */
 void bf_sha256_final(bf_sha256 *c, uint8_t digest[BF_SHA256_SIZE]);
 
 /* Writes the digest as 64 lowercase hex digits and a NUL into hex. */

@@ -1,6 +1,7 @@
-/* test_sha256.c: SHA-256 (src/report/sha256.c) against the published
- * examples of NIST (FIPS 180-2 Appendix B; the CSRC "SHA256.pdf" example
- * values) and against the system's sha256sum on a real data file. */
+/* test_sha256.c: the SHA-256 wrapper (src/report/sha256.c over GNU Nettle)
+ * against the published examples of NIST (FIPS 180-2 Appendix B; the CSRC
+ * "SHA256.pdf" example values), fed whole and in pieces, and against the
+ * system's sha256sum on a real data file. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <string.h>
