@@ -666,8 +666,9 @@ static void analysis(const char *cli, const char *peer, const char *dir,
                       arg("--models"),
                       arg("VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO"),
                       arg("--out"), tmpl, arg("-q"), NULL};
-        char *ap[] = {arg("/usr/bin/python3"), arg(peer), arg("--data"),
-                      arg(dir), arg("--out"), peer_out, NULL};
+        /* without --peer, no peer command line (arg(NULL) would crash) */
+        char *ap[] = {arg("/usr/bin/python3"), arg(have_peer ? peer : ""),
+                      arg("--data"), arg(dir), arg("--out"), peer_out, NULL};
         t_rank[r] = time_process(a9);
         c_rank[r] = last_cpu;
         t_rank8[r] = time_process(a8);
