@@ -52,6 +52,22 @@
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
+# test_intervals' coverage checks (intervals/cover_*, the_objectives_own_*:
+# 200 simulated fits per model, over five minutes each under valgrind) run
+# the code of bf_calibrate, which calibrate_reports_coverage_... runs here,
+# and ASan runs them on 20 simulations.
+# The repeated fits of the grid's round trip over every model and of its
+# thread-count check (grid/round_trip_recovers..., grid/study_results...),
+# WNO-R's sweeps against the quadrature and its fit back
+# (wno_r/the_engines_evaluation..., wno_r/fits_its_own_curve...),
+# calibrate's CLI run over
+# every fitted parameter (cli_calibrate/writes_coverage...) and the
+# report's figure check without --stats (report/writes_every_figure...)
+# repeat, for many parameters or sizes, code that the other tests of their
+# files run under valgrind once (grid/round_trip_with_fixed_seed_noise...,
+# wno_r/matches_the_integral..., cli_calibrate's error tests and
+# intervals/calibrate_reports..., report/stats_add...). test_stream's one
+# test streams a large K in blocks (seconds of fitting); ASan runs it.
 # test_oom preloads its own allocator (tests/oom/oom_shim.c), which
 # valgrind's replaces; it runs in the plain build only.
 # test_cli_matrix runs report, compare and rank over every combination of
@@ -103,7 +119,16 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     keep_scale/recovery_cuberoot_and_log1p
     keep_scale/cornell_lambert_at_most_the_peers_e
     specular_models/ggx_without_fresnel_conserves_energy
-    specular_models/ward_gmd_is_bounded_and_ward_duer_is_not"}
+    specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
+    intervals/cover_*
+    intervals/the_objectives_own_profile_undercovers_under_max
+    grid/round_trip_recovers_every_model_exactly_at_grid_values
+    grid/study_results_do_not_depend_on_the_thread_count
+    wno_r/the_engines_evaluation_is_the_quadrature_to_rounding
+    wno_r/fits_its_own_curve_back_to_the_parameters
+    test_stream
+    cli_calibrate/writes_coverage_and_bias_of_every_fitted_parameter
+    report/writes_every_figure_valid_and_sized_as_the_page_says"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
