@@ -5,11 +5,11 @@
 
 #include "setup.h"
 
-void bf_cli_message(void *ctx, int usage, const char *text)
+void bf_cli_message(void *ctx, int kind, const char *text)
 {
     const char *cmd = ctx;
-    if (usage != 0) {
-        (void)bf_cli_usage_fail(usage, cmd, "%s", text);
+    if (kind == BF_REPORT_MSG_USAGE) {
+        (void)bf_cli_usage_fail(BF_EXIT_BADVALUE, cmd, "%s", text);
     } else {
         bf_cli_err("%s", text);
     }

@@ -33,6 +33,6 @@ void bf_cli_run_free(bf_cli_run *r);
 /* The library's messages on stderr ("brdffit: ..."; an option's error
  * with the hint to run 'brdffit CMD --help', ctx the command name): a
  * bf_report_message_fn. */
-void bf_cli_message(void *ctx, int usage, const char *text);
+void bf_cli_message(void *ctx, int kind, const char *text);
 
 #endif

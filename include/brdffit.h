@@ -1685,10 +1685,11 @@ struct bf_report_inputs {
     void *load_ctx;
 };
 
-/* A message of the run: a note, or the error ending it. usage is the
- * status of an error that is an option's fault (BF_REPORT_CONFLICT,
- * BF_REPORT_BADVALUE), else 0. */
-typedef void (*bf_report_message_fn)(void *ctx, int usage, const char *text);
+/* A message of the run (kind): the error that ends it, an option's error
+ * (BF_REPORT_CONFLICT, BF_REPORT_BADVALUE: the CLI adds its --help hint),
+ * or a note (a model left out for want of its inputs). */
+enum { BF_REPORT_MSG_ERROR = 0, BF_REPORT_MSG_USAGE, BF_REPORT_MSG_NOTE };
+typedef void (*bf_report_message_fn)(void *ctx, int kind, const char *text);
 /* Progress of the run: what (a phase: "analysing (sample, model) pairs",
  * "drawing figures"), done of total; what NULL ends the phase. */
 typedef void (*bf_report_progress_fn)(void *ctx, const char *what,

@@ -36,15 +36,15 @@ const char *bf_rep_last(void)
     return last;
 }
 
-static void emit(int usage, int error, const char *fmt, va_list ap)
+static void emit(int kind, const char *fmt, va_list ap)
 {
     char buf[sizeof last];
     vsnprintf(buf, sizeof buf, fmt, ap);
-    if (error && last[0] == '\0') {
+    if (kind != BF_REPORT_MSG_NOTE && last[0] == '\0') {
         memcpy(last, buf, sizeof last);
     }
     if (sink_fn != NULL) {
-        sink_fn(sink_ctx, usage, buf);
+        sink_fn(sink_ctx, kind, buf);
     }
 }
 
@@ -52,7 +52,7 @@ void bf_rep_err(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    emit(0, 1, fmt, ap);
+    emit(BF_REPORT_MSG_ERROR, fmt, ap);
     va_end(ap);
 }
 
@@ -60,7 +60,7 @@ void bf_rep_note(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    emit(0, 0, fmt, ap);
+    emit(BF_REPORT_MSG_NOTE, fmt, ap);
     va_end(ap);
 }
 
@@ -69,7 +69,7 @@ int bf_rep_usage_fail(int status, const char *cmd, const char *fmt, ...)
     va_list ap;
     (void)cmd;
     va_start(ap, fmt);
-    emit(status, 1, fmt, ap);
+    emit(BF_REPORT_MSG_USAGE, fmt, ap);
     va_end(ap);
     return status;
 }
