@@ -4,7 +4,7 @@
  * points into, and one describe function per figure kind. figures.c
  * prepares the data and draws; fig_paper.c (Figures 2(b), 3-6, wins),
  * fig_plane.c (plane of incidence) and fig_analysis.c (intervals,
- * profiles, delta BIC) describe. Private to cli/. */
+ * profiles, delta BIC) describe. Private to src/report. */
 #ifndef BF_REPORT_FIG_INTERNAL_H
 #define BF_REPORT_FIG_INTERNAL_H
 

@@ -444,7 +444,7 @@ static int n_formats(unsigned formats)
 }
 
 /* Draws entry e in every format of the set; calls tick after each file.
- * Returns BF_REPORT_OK or an exit status after printing the error. */
+ * Returns BF_REPORT_OK or a status after the message. */
 static int draw_entry(const bf_fig_data *D, const bf_fig_set *set,
                       bf_fig_entry *e, void (*tick)(void *), void *arg)
 {
@@ -541,7 +541,7 @@ struct bf_fig_run {
  * reads) before any worker starts reading, each worker draws the figures
  * it reads, reports each file drawn on the progress pipe and exits with
  * its status. With jobs = 1 the figures are drawn here. Returns
- * BF_REPORT_OK or an exit status (after printing the error). */
+ * BF_REPORT_OK or a status (after the message). */
 static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
                       int jobs, pool_t *p, progress_t *pr)
 {

@@ -76,8 +76,8 @@ typedef struct {
 
 /* Draws every figure of the study st into temporary files in
  * out_dir/BF_FIG_DIR (created if missing) and describes them in set:
- * bf_figures_start then bf_figures_finish. Returns BF_REPORT_OK or an exit
- * status after printing the error (the temporaries are then removed). */
+ * bf_figures_start then bf_figures_finish. Returns BF_REPORT_OK or an status
+ * after the message (the temporaries are then removed). */
 int bf_figures_render(const bf_rep_study *st, const bf_fig_opts *o,
                       const char *out_dir, bf_fig_set *set);
 
@@ -85,19 +85,19 @@ int bf_figures_render(const bf_rep_study *st, const bf_fig_opts *o,
  * with_analysis and st->stats, those of the analysis): with o->jobs > 1 in
  * drawing processes, and returns while they draw, so that the caller can
  * run the analysis meanwhile (st's rows must not change: the paper's
- * protocol, not --fit exact). Returns BF_REPORT_OK or an exit status after
- * printing the error (set is then freed). */
+ * protocol, not --fit exact). Returns BF_REPORT_OK or a status after
+ * the message (set is then freed). */
 int bf_figures_start(const bf_rep_study *st, const bf_fig_opts *o,
                      const char *out_dir, bf_fig_set *set,
                      int with_analysis);
 
 /* Draws the analysis figures if st->stats is now there and they were not
  * started, and waits for every drawing process. Returns BF_REPORT_OK or an
- * exit status after printing the error (set is then freed). */
+ * status after the message (set is then freed). */
 int bf_figures_finish(const bf_rep_study *st, bf_fig_set *set);
 
-/* Renames every temporary file into place. Returns BF_REPORT_OK or an exit
- * status after printing the error; the files not yet renamed are removed. */
+/* Renames every temporary file into place. Returns BF_REPORT_OK or an status
+ * after the message; the files not yet renamed are removed. */
 int bf_figures_commit(bf_fig_set *set);
 
 /* Stops any drawing process, removes any temporary file left and frees
@@ -111,8 +111,8 @@ const char *bf_fig_sample_label(const bf_rep_study *st, size_t s, char *buf,
 /* Chooses o's incidence angles from the configurations of st's
  * materials (bf_geom_plane_incidences: those with the most views in their
  * plane of incidence, within BF_FIG_PLANE_TOL, spread over their range);
- * none when no configuration lies in its plane. BF_REPORT_OK, or an exit
- * status after printing the error. */
+ * none when no configuration lies in its plane. BF_REPORT_OK, or an status
+ * after the message. */
 int bf_figures_choose_incidence(const bf_rep_study *st, bf_fig_opts *o);
 
 /* Longest name (characters) a figure shows on an axis or above a panel. */

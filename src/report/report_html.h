@@ -35,7 +35,7 @@ typedef struct {
 } bf_report_meta;
 
 /* Fills meta->inputs with the input files of st and their SHA-256. Returns
- * BF_REPORT_OK or an exit status after printing the error. */
+ * BF_REPORT_OK or a status after the message. */
 int bf_report_checksums(const bf_rep_study *st, bf_report_meta *meta);
 
 /* Writes the page to fp. Deterministic: the same run gives the same bytes

@@ -39,15 +39,15 @@ typedef struct {
 } bf_rep_study;
 
 /* Loads the inputs and resolves the selections of st->opts. Returns
- * BF_REPORT_OK or an exit status after printing the error. */
+ * BF_REPORT_OK or a status after the message. */
 int bf_rep_study_prepare(bf_rep_study *st);
 
-/* Prints a study error (naming the material's file and line when known)
- * and returns its exit status. */
+/* Reports a study error (naming the material's file and line when known)
+ * and returns its status. */
 int bf_rep_study_error(const bf_error *err);
 
 /* Runs the study (after prepare): the paper's protocol, then the analysis
- * when asked. Returns BF_REPORT_OK or an exit status. */
+ * when asked. Returns BF_REPORT_OK or a status. */
 int bf_rep_study_run(bf_rep_study *st);
 
 /* The two halves of bf_rep_study_run: the paper's protocol (nothing with

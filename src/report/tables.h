@@ -22,8 +22,8 @@ void bf_rep_describe_cone(const bf_rep_study *st, char *buf, size_t len);
 int bf_rep_study_describe(const bf_rep_study *st, FILE *fp);
 
 /* Writes fits.csv, table2.md and table3.md atomically into the output
- * folder and, unless quiet, prints the description and both tables. Returns
- * BF_REPORT_OK or an exit status after printing the error. */
+ * folder and, when st->opts.echo is set, prints the description and both
+ * tables there. Returns BF_REPORT_OK or a status after the message. */
 int bf_rep_study_write_tables(const bf_rep_study *st);
 
 #endif
