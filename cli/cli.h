@@ -6,23 +6,31 @@
 #include <stdio.h>
 
 #include "brdffit.h"
+#include "rep.h"
 
 /* Exit statuses (documented in README.md, --help and brdffit.1); 64-74
  * follow BSD sysexits.h. Command-line errors get one code per kind (61-64)
  * so scripts can tell a typo from a bad value. */
 enum {
-    BF_EXIT_OK = 0,        /* success */
-    BF_EXIT_NOVALUE = 61,  /* missing argument: no command, or an option
-                              without its value */
-    BF_EXIT_CONFLICT = 62, /* options that cannot be combined */
-    BF_EXIT_BADVALUE = 63, /* malformed or out-of-range option value */
-    BF_EXIT_USAGE = 64,    /* unknown command or option, unexpected
-                              argument */
-    BF_EXIT_DATAERR = 65,  /* malformed or unusable input data */
-    BF_EXIT_NOINPUT = 66,  /* an input file cannot be opened */
-    BF_EXIT_SOFTWARE = 70, /* internal error (a bug: please report it) */
-    BF_EXIT_CANTCREAT = 73,/* the output folder or a file cannot be created */
-    BF_EXIT_IOERR = 74     /* an output file cannot be written */
+    BF_EXIT_OK = 0,       /* success */
+    BF_EXIT_NOVALUE = 61, /* missing argument: no command, or an option
+                             without its value */
+    BF_EXIT_CONFLICT = BF_REPORT_CONFLICT, /* options that cannot be
+                                              combined (62) */
+    BF_EXIT_BADVALUE = BF_REPORT_BADVALUE, /* malformed or out-of-range
+                                              option value (63) */
+    BF_EXIT_USAGE = 64,   /* unknown command or option, unexpected
+                             argument */
+    BF_EXIT_DATAERR = BF_REPORT_DATAERR,   /* malformed or unusable input
+                                              data (65) */
+    BF_EXIT_NOINPUT = BF_REPORT_NOINPUT,   /* an input file cannot be
+                                              opened (66) */
+    BF_EXIT_SOFTWARE = BF_REPORT_SOFTWARE, /* internal error (a bug:
+                                              please report it; 70) */
+    BF_EXIT_CANTCREAT = BF_REPORT_CANTCREAT, /* the output folder or a
+                                                file cannot be created */
+    BF_EXIT_IOERR = BF_REPORT_IOERR        /* an output file cannot be
+                                              written (74) */
 };
 
 extern const char *bf_cli_prog; /* "brdffit" */
@@ -56,20 +64,6 @@ void bf_cli_exit_usage(FILE *fp);
 
 /* Maps a loader failure to a message on stderr and an exit status. */
 int bf_cli_load_error(const bf_error *err);
-
-/* A library writer's failure (code, a BF_E* code) on output file name:
- * prints "name could not be written: out of memory" for BF_ENOMEM, else
- * an internal error; returns BF_EXIT_SOFTWARE. */
-int bf_cli_write_error(const char *name, int code);
-
-/* Parses a list "1,5,7-9" of positive integers into a new array (caller
- * frees). Returns 0 on success, -1 with a message in msg otherwise (-2
- * with "out of memory": not the user's mistake). */
-int bf_cli_parse_int_list(const char *s, int **out, size_t *n, char *msg,
-                          size_t msglen);
-
-/* Parses a finite double; returns 0 on success. */
-int bf_cli_parse_double(const char *s, double *out);
 
 /* At most this many --input files. */
 #define BF_CLI_MAX_INPUTS 64
@@ -130,35 +124,6 @@ void bf_cli_file_args_usage(FILE *fp);
 /* Makes path src's only input: a folder is read as CURET, anything else
  * as an --input file. */
 void bf_cli_source_path(bf_cli_source *src, const char *path);
-
-/* The label of material m: "16 Leather" (number, name), or "16". */
-void bf_cli_material_label(const bf_dataset *ds, size_t m, char *buf,
-                           size_t len);
-
-/* An output file written atomically: data go to a temporary file in the
- * same folder, renamed over the final path by bf_out_commit. */
-typedef struct {
-    FILE *fp;
-    char path[4096];
-    char tmp[4096];
-} bf_out;
-
-/* Checks, before any work, that folder dir exists and is writable, or that
- * it can be created (tried with mkdir and removed again: permission bits do
- * not stop root). Leaves nothing behind. Returns 0 or BF_EXIT_CANTCREAT after printing the error. */
-int bf_cli_check_outdir(const char *dir);
-
-/* Creates folder dir if missing (one level). Returns 0 or an exit status
- * after printing the error. */
-int bf_cli_make_outdir(const char *dir);
-
-/* Opens dir/name for atomic writing. Returns 0 or an exit status. */
-int bf_out_open(bf_out *o, const char *dir, const char *name);
-/* Flushes, closes and renames into place. Returns 0 or an exit status; on
- * failure the temporary file is removed and no output is left. */
-int bf_out_commit(bf_out *o);
-/* Abandons the file: closes and removes the temporary. */
-void bf_out_abort(bf_out *o);
 
 /* Subcommands. */
 /* The progress line of a long run (cli/progress.c): on stderr when it is

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "study.h"
+#include "setup.h"
 #include "texttable.h"
 
 /* calibrate's defaults: the paper's samples on CURET, its six models, the
@@ -61,7 +61,7 @@ static int handle(int val, const char *arg, void *ctx)
 }
 
 /* The table: one row per (pair, fitted parameter). */
-static bf_tt *table(const bf_cli_study *st, const size_t *pairs, size_t n,
+static bf_tt *table(const bf_rep_study *st, const size_t *pairs, size_t n,
                     const bf_calibration *cal)
 {
     bf_tt *t = bf_tt_alloc(10);
@@ -110,15 +110,15 @@ static bf_tt *table(const bf_cli_study *st, const size_t *pairs, size_t n,
     return t;
 }
 
-static int write_csv(const bf_cli_study *st, const size_t *pairs, size_t n,
+static int write_csv(const bf_rep_study *st, const size_t *pairs, size_t n,
                      const bf_calibration *cal)
 {
     bf_out csv;
-    int rc = bf_cli_make_outdir(st->opts.out_dir);
+    int rc = bf_rep_make_outdir(st->out_dir);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = bf_out_open(&csv, st->opts.out_dir, "calibrate.csv");
+    rc = bf_out_open(&csv, st->out_dir, "calibrate.csv");
     if (rc != BF_EXIT_OK) {
         return rc;
     }
@@ -133,7 +133,7 @@ static int write_csv(const bf_cli_study *st, const size_t *pairs, size_t n,
 
 /* Calibrates every analysed pair with fitted parameters into pairs, cal
  * (*n of them). */
-static int calibrate_all(const bf_cli_study *st, size_t sims, size_t *pairs,
+static int calibrate_all(const bf_rep_study *st, size_t sims, size_t *pairs,
                          bf_calibration *cal, size_t *n)
 {
     size_t u;
@@ -152,7 +152,7 @@ static int calibrate_all(const bf_cli_study *st, size_t sims, size_t *pairs,
             return BF_EXIT_SOFTWARE;
         }
         if (rc != BF_OK) {
-            return bf_cli_study_error(&err);
+            return bf_rep_study_error(&err);
         }
         pairs[(*n)++] = u;
     }
@@ -165,7 +165,8 @@ int bf_cmd_calibrate(int argc, char **argv)
         {"sims", required_argument, NULL, O_SIMS}, {NULL, 0, NULL, 0}};
     size_t sims = 200;
     bf_cli_extra extra = {longopts, handle, &sims};
-    bf_cli_study st;
+    bf_rep_study st;
+    bf_cli_run r;
     size_t *pairs = NULL;
     bf_calibration *cal = NULL;
     size_t n = 0;
@@ -173,16 +174,17 @@ int bf_cmd_calibrate(int argc, char **argv)
     int rc;
 
     memset(&st, 0, sizeof st);
+    memset(&r, 0, sizeof r);
     st.cmd = "calibrate";
     rc = bf_cli_opts_parse_defaults(st.cmd, argc, argv, usage, &extra,
-                                    &calibrate_defaults, &st.opts);
+                                    &calibrate_defaults, &r.opts);
     if (rc != 0) {
         return rc < 0 ? BF_EXIT_OK : rc;
     }
-    st.opts.stats = 1;
-    rc = bf_cli_study_prepare(&st);
+    r.opts.stats = 1;
+    rc = bf_cli_study_setup(st.cmd, &r, &st);
     if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_run(&st);
+        rc = bf_rep_study_run(&st);
     }
     if (rc == BF_EXIT_OK) {
         size_t units = st.n_samples * st.n_models + 1;
@@ -206,7 +208,7 @@ int bf_cmd_calibrate(int argc, char **argv)
     if (rc == BF_EXIT_OK) {
         rc = write_csv(&st, pairs, n, cal);
     }
-    if (rc == BF_EXIT_OK && !st.opts.quiet) {
+    if (rc == BF_EXIT_OK && !r.opts.quiet) {
         printf("Calibration: %zu simulations per fit under the fitted noise "
                "model (--noise %s), objective %s\n\n",
                sims, bf_noise_name(st.analysis.noise),
@@ -216,11 +218,12 @@ int bf_cmd_calibrate(int argc, char **argv)
                "simulated; bias, sd: of the objective's estimates; ML sd: of "
                "the estimates the intervals are about\nWritten: "
                "%s/calibrate.csv\n",
-               100.0 * st.analysis.level, st.opts.out_dir);
+               100.0 * st.analysis.level, st.out_dir);
     }
     bf_tt_free(t);
     free(pairs);
     free(cal);
-    bf_cli_study_free(&st);
+    bf_rep_study_free(&st);
+    bf_cli_run_free(&r);
     return rc;
 }

@@ -4,6 +4,7 @@
  * table2.md and table3.md atomically into the output folder. */
 #include <string.h>
 
+#include "setup.h"
 #include "tables.h"
 
 static void usage(FILE *fp)
@@ -26,22 +27,25 @@ static void usage(FILE *fp)
 
 int bf_cmd_compare(int argc, char **argv)
 {
-    bf_cli_study st;
+    bf_rep_study st;
+    bf_cli_run r;
     int rc;
 
     memset(&st, 0, sizeof st);
+    memset(&r, 0, sizeof r);
     st.cmd = "compare";
-    rc = bf_cli_opts_parse(st.cmd, argc, argv, usage, NULL, &st.opts);
+    rc = bf_cli_opts_parse(st.cmd, argc, argv, usage, NULL, &r.opts);
     if (rc != 0) {
         return rc < 0 ? BF_EXIT_OK : rc;
     }
-    rc = bf_cli_study_prepare(&st);
+    rc = bf_cli_study_setup(st.cmd, &r, &st);
     if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_run(&st);
+        rc = bf_rep_study_run(&st);
     }
     if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_write_tables(&st);
+        rc = bf_rep_study_write_tables(&st);
     }
-    bf_cli_study_free(&st);
+    bf_rep_study_free(&st);
+    bf_cli_run_free(&r);
     return rc;
 }

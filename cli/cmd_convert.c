@@ -42,7 +42,7 @@ static int write_csv(const bf_dataset *ds, const char *path)
     }
     snprintf(dir_buf, sizeof dir_buf, "%s", path);
     snprintf(base_buf, sizeof base_buf, "%s", path);
-    rc = bf_cli_check_outdir(dirname(dir_buf));
+    rc = bf_rep_check_outdir(dirname(dir_buf));
     if (rc == BF_EXIT_OK) {
         snprintf(dir_buf, sizeof dir_buf, "%s", path);
         rc = bf_out_open(&o, dirname(dir_buf), basename(base_buf));

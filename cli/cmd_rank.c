@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "ranking.h"
+#include "setup.h"
 #include "tables.h"
 #include "texttable.h"
 
@@ -54,27 +55,27 @@ static int handle(int val, const char *arg, void *ctx)
     return 0;
 }
 
-static int write_md(const bf_cli_study *st, const bf_tt *t,
+static int write_md(const bf_rep_study *st, const bf_tt *t,
                     const bf_tt *best, int crit, FILE *fp)
 {
     size_t m;
     int c;
     fputs("# Model ranking\n\n", fp);
-    if (bf_cli_study_describe(st, fp) != BF_EXIT_OK) {
+    if (bf_rep_study_describe(st, fp) != BF_EXIT_OK) {
         return BF_EXIT_SOFTWARE;
     }
     fprintf(fp, "%s per sample (lower is better; * the best):\n\n",
-            bf_cli_crit_names[crit]);
+            bf_rep_crit_names[crit]);
     bf_tt_print(t, fp);
     fputs("\nSummary over samples:\n\n", fp);
-    for (c = 0; c < BF_CLI_NCRIT; c++) {
+    for (c = 0; c < BF_REP_NCRIT; c++) {
         fputs("- ", fp);
-        if (bf_cli_rank_summary(st, c, fp) != BF_EXIT_OK) {
+        if (bf_rep_rank_summary(st, c, fp) != BF_EXIT_OK) {
             return BF_EXIT_SOFTWARE;
         }
     }
     fprintf(fp, "\nBest model by %s and its fitted parameters:\n\n",
-            bf_cli_crit_names[crit]);
+            bf_rep_crit_names[crit]);
     bf_tt_print(best, fp);
     fputs("\n## Fitted parameters of every model\n\n"
           "value [95% profile interval] {bootstrap interval, when run}; "
@@ -82,7 +83,7 @@ static int write_md(const bf_cli_study *st, const bf_tt *t,
           fp);
     for (m = 0; m < st->n_models; m++) {
         bf_tt *p = NULL;
-        if (bf_cli_params_table(st, m, &p) != BF_EXIT_OK) {
+        if (bf_rep_params_table(st, m, &p) != BF_EXIT_OK) {
             bf_cli_err("out of memory");
             return BF_EXIT_SOFTWARE;
         }
@@ -96,20 +97,20 @@ static int write_md(const bf_cli_study *st, const bf_tt *t,
     return BF_EXIT_OK;
 }
 
-static int write_files(const bf_cli_study *st, const bf_tt *t,
+static int write_files(const bf_rep_study *st, const bf_tt *t,
                        const bf_tt *best, int crit)
 {
     bf_out csv;
     bf_out md;
-    int rc = bf_cli_make_outdir(st->opts.out_dir);
+    int rc = bf_rep_make_outdir(st->out_dir);
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = bf_out_open(&csv, st->opts.out_dir, "ranking.csv");
+    rc = bf_out_open(&csv, st->out_dir, "ranking.csv");
     if (rc != BF_EXIT_OK) {
         return rc;
     }
-    rc = bf_out_open(&md, st->opts.out_dir, "ranking.md");
+    rc = bf_out_open(&md, st->out_dir, "ranking.md");
     if (rc != BF_EXIT_OK) {
         bf_out_abort(&csv);
         return rc;
@@ -119,7 +120,7 @@ static int write_files(const bf_cli_study *st, const bf_tt *t,
     if (rc != BF_OK) {
         bf_out_abort(&csv);
         bf_out_abort(&md);
-        return bf_cli_write_error("ranking.csv", rc);
+        return bf_rep_write_error("ranking.csv", rc);
     }
     if (write_md(st, t, best, crit, md.fp) != BF_EXIT_OK) {
         bf_out_abort(&csv);
@@ -141,30 +142,32 @@ int bf_cmd_rank(int argc, char **argv)
         {NULL, 0, NULL, 0}};
     bf_criterion crit = BF_CRIT_BIC;
     bf_cli_extra extra = {longopts, handle, &crit};
-    bf_cli_study st;
+    bf_rep_study st;
+    bf_cli_run r;
     bf_tt *t = NULL;
     bf_tt *best = NULL;
     int rc;
 
     memset(&st, 0, sizeof st);
+    memset(&r, 0, sizeof r);
     st.cmd = "rank";
     rc = bf_cli_opts_parse_defaults(st.cmd, argc, argv, usage, &extra,
-                                    &rank_defaults, &st.opts);
+                                    &rank_defaults, &r.opts);
     if (rc != 0) {
         return rc < 0 ? BF_EXIT_OK : rc;
     }
-    st.opts.stats = 1; /* the ranking needs AIC, BIC and CV */
-    if (crit == BF_CRIT_CV && st.opts.folds < 2) {
+    r.opts.stats = 1; /* the ranking needs AIC, BIC and CV */
+    if (crit == BF_CRIT_CV && r.opts.folds < 2) {
         return bf_cli_usage_fail(BF_EXIT_CONFLICT, "rank ",
                                  "--criterion cv needs --folds >= 2");
     }
-    rc = bf_cli_study_prepare(&st);
+    rc = bf_cli_study_setup(st.cmd, &r, &st);
     if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_run(&st);
+        rc = bf_rep_study_run(&st);
     }
     if (rc == BF_EXIT_OK) {
-        t = bf_cli_rank_table(&st, (int)crit);
-        best = bf_cli_best_table(&st, (int)crit);
+        t = bf_rep_rank_table(&st, (int)crit);
+        best = bf_rep_best_table(&st, (int)crit);
         if (t == NULL || best == NULL) {
             bf_cli_err("out of memory");
             rc = BF_EXIT_SOFTWARE;
@@ -173,29 +176,30 @@ int bf_cmd_rank(int argc, char **argv)
     if (rc == BF_EXIT_OK) {
         rc = write_files(&st, t, best, (int)crit);
     }
-    if (rc == BF_EXIT_OK && !st.opts.quiet) {
-        rc = bf_cli_study_describe(&st, stdout);
+    if (rc == BF_EXIT_OK && !r.opts.quiet) {
+        rc = bf_rep_study_describe(&st, stdout);
     }
-    if (rc == BF_EXIT_OK && !st.opts.quiet) {
+    if (rc == BF_EXIT_OK && !r.opts.quiet) {
         int c;
         printf("%s per sample (lower is better; * the best)\n\n",
-               bf_cli_crit_names[crit]);
+               bf_rep_crit_names[crit]);
         bf_tt_print(t, stdout);
         printf("\nBest model by %s and its fitted parameters\n\n",
-               bf_cli_crit_names[crit]);
+               bf_rep_crit_names[crit]);
         bf_tt_print(best, stdout);
         printf("\nSummary over samples:\n");
-        for (c = 0; c < BF_CLI_NCRIT && rc == BF_EXIT_OK; c++) {
-            rc = bf_cli_rank_summary(&st, c, stdout);
+        for (c = 0; c < BF_REP_NCRIT && rc == BF_EXIT_OK; c++) {
+            rc = bf_rep_rank_summary(&st, c, stdout);
         }
     }
-    if (rc == BF_EXIT_OK && !st.opts.quiet) {
+    if (rc == BF_EXIT_OK && !r.opts.quiet) {
         printf("\nWritten: %s/ranking.csv (parameters and intervals of "
                "every model), %s/ranking.md\n",
-               st.opts.out_dir, st.opts.out_dir);
+               st.out_dir, st.out_dir);
     }
     bf_tt_free(t);
     bf_tt_free(best);
-    bf_cli_study_free(&st);
+    bf_rep_study_free(&st);
+    bf_cli_run_free(&r);
     return rc;
 }

@@ -7,19 +7,14 @@
  * the conventions and provenance of the run. */
 #include <math.h>
 #include <string.h>
-#include <unistd.h>
 
-#include "figures.h"
-#include "report_html.h"
-#include "tables.h"
+#include "setup.h"
 
 #define DEG (M_PI / 180.0)
 
 /* Largest incidence angle accepted by --incidence, degrees (the original
  * BK models diverge at grazing incidence, SPEC §3.3). */
 #define MAX_INCIDENCE_DEG 89.0
-/* Most processes drawing figures at once. */
-#define MAX_JOBS 64
 
 enum { O_FORMAT = 512, O_LOG, O_PER_SAMPLE, O_INCIDENCE, O_SIZE };
 
@@ -92,8 +87,9 @@ static int parse_formats(const char *arg, unsigned *formats)
         size_t len = strcspn(p, ",");
         int f;
         int found = 0;
-        for (f = 0; f < BF_PLOT_NFORMATS; f++) {
-            const char *ext = bf_plot_format_ext((bf_plot_format)f);
+        for (f = 0; f <= BF_REPORT_PDF; f++) {
+            static const char *const exts[] = {"png", "svg", "pdf"};
+            const char *ext = exts[f];
             if (len == strlen(ext) && strncmp(p, ext, len) == 0) {
                 *formats |= 1u << f;
                 found = 1;
@@ -110,7 +106,7 @@ static int parse_formats(const char *arg, unsigned *formats)
     return *formats != 0 ? 0 : -1;
 }
 
-static int parse_incidence(const char *arg, bf_fig_opts *o)
+static int parse_incidence(const char *arg, bf_report_options *o)
 {
     const char *p = arg;
     o->n_incidence = 0;
@@ -119,12 +115,12 @@ static int parse_incidence(const char *arg, bf_fig_opts *o)
         size_t len = strcspn(p, ",");
         double deg;
         if (len == 0 || len >= sizeof word ||
-            o->n_incidence == BF_FIG_MAX_INCIDENCE) {
+            o->n_incidence == BF_REPORT_MAX_INCIDENCE) {
             return -1;
         }
         memcpy(word, p, len);
         word[len] = '\0';
-        if (bf_cli_parse_double(word, &deg) != 0 || deg < 0.0 ||
+        if (bf_rep_parse_double(word, &deg) != 0 || deg < 0.0 ||
             deg > MAX_INCIDENCE_DEG) {
             return -1;
         }
@@ -139,7 +135,7 @@ static int parse_incidence(const char *arg, bf_fig_opts *o)
 
 static int handle(int val, const char *arg, void *ctx)
 {
-    bf_fig_opts *o = ctx;
+    bf_report_options *o = ctx;
     switch (val) {
     case O_FORMAT:
         if (parse_formats(arg, &o->formats) != 0) {
@@ -149,9 +145,9 @@ static int handle(int val, const char *arg, void *ctx)
         return 0;
     case O_SIZE:
         if (strcmp(arg, "double") == 0) {
-            o->width = BF_PLOT_DOUBLE_COLUMN;
+            o->single_column = 0;
         } else if (strcmp(arg, "single") == 0) {
-            o->width = BF_PLOT_SINGLE_COLUMN;
+            o->single_column = 1;
         } else {
             return bf_cli_usage_fail(BF_EXIT_BADVALUE, "report ",
                                      "--size: '%s' is not single or double",
@@ -165,7 +161,7 @@ static int handle(int val, const char *arg, void *ctx)
             return bf_cli_usage_fail(BF_EXIT_BADVALUE, "report ", "--incidence: '%s' is not a "
                                       "list of 1 to %d angles in [0, %g] "
                                       "degrees",
-                                      arg, BF_FIG_MAX_INCIDENCE,
+                                      arg, BF_REPORT_MAX_INCIDENCE,
                                       MAX_INCIDENCE_DEG);
         }
         return 0;
@@ -173,111 +169,44 @@ static int handle(int val, const char *arg, void *ctx)
     }
 }
 
-/* Writes report.html into the output folder's temporary file o. */
-static int write_page(const bf_cli_study *st, const bf_fig_set *figs,
-                      const bf_report_meta *meta, bf_out *o)
-{
-    int rc = bf_out_open(o, st->opts.out_dir, "report.html");
-    if (rc != BF_EXIT_OK) {
-        return rc;
-    }
-    rc = bf_report_html(st, figs, meta, o->fp);
-    if (rc != 0) {
-        bf_cli_err("%s: %s", o->path,
-                   rc == -2 ? "out of memory" : "write failed");
-        bf_out_abort(o);
-        return rc == -2 ? BF_EXIT_SOFTWARE : BF_EXIT_IOERR;
-    }
-    return BF_EXIT_OK;
-}
-
 int bf_cmd_report(int argc, char **argv)
 {
-    bf_cli_study st;
-    bf_fig_opts fo;
-    bf_fig_set figs;
-    bf_report_meta meta;
+    static char hint[] = "report ";
+    bf_report_options fig = BF_REPORT_OPTIONS_INIT; /* report's own */
+    bf_report_options ro;
+    bf_report_inputs in;
     bf_cli_extra extra;
-    bf_out page;
-    int page_open = 0;
-    int started = 0;
+    bf_cli_run r;
+    size_t n_figures = 0;
+    size_t i;
     int rc;
 
-    memset(&st, 0, sizeof st);
-    memset(&fo, 0, sizeof fo);
-    memset(&figs, 0, sizeof figs);
-    memset(&meta, 0, sizeof meta);
-    fo.formats = (1u << BF_PLOT_PNG) | (1u << BF_PLOT_PDF);
-    fo.width = BF_PLOT_DOUBLE_COLUMN;
-    fo.progress = isatty(STDERR_FILENO);
+    memset(&r, 0, sizeof r);
     extra.longopts = report_opts;
     extra.handle = handle;
-    extra.ctx = &fo;
-    st.cmd = "report";
-    rc = bf_cli_opts_parse(st.cmd, argc, argv, usage, &extra, &st.opts);
+    extra.ctx = &fig;
+    rc = bf_cli_opts_parse("report", argc, argv, usage, &extra, &r.opts);
     if (rc != 0) {
         return rc < 0 ? BF_EXIT_OK : rc;
     }
-    meta.argc = argc;
-    meta.argv = argv;
-    meta.fig = &fo;
-
-    rc = bf_cli_study_prepare(&st);
-    if (rc == BF_EXIT_OK && fo.n_incidence == 0) {
-        rc = bf_figures_choose_incidence(&st, &fo);
+    bf_cli_report_options(&r, &ro, &in);
+    ro.formats = fig.formats;
+    ro.single_column = fig.single_column;
+    ro.log_lse = fig.log_lse;
+    ro.per_sample = fig.per_sample;
+    ro.n_incidence = fig.n_incidence;
+    for (i = 0; i < fig.n_incidence; i++) {
+        ro.incidence[i] = fig.incidence[i];
     }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_report_checksums(&st, &meta);
+    ro.argc = argc;
+    ro.argv = argv;
+    ro.message = bf_cli_message;
+    ro.message_ctx = hint;
+    rc = bf_report_write(&in, &ro, r.opts.out_dir, &n_figures, NULL);
+    if (rc == BF_EXIT_OK && !r.opts.quiet) {
+        printf("Written: %s/report.html and %zu figures in %s/figures\n",
+               r.opts.out_dir, n_figures, r.opts.out_dir);
     }
-    if (rc == BF_EXIT_OK) {
-        if (fo.progress) {
-            fprintf(stderr, "brdffit report: fitting %zu models to %zu "
-                            "samples...\n",
-                    st.n_models, st.n_samples);
-        }
-        rc = bf_cli_study_run_protocol(&st);
-    }
-    /* Everything is drawn and written to temporary files first, then
-     * renamed into place: a failure leaves no partial output. The paper's
-     * figures are drawn while the analysis runs (with --fit exact the
-     * analysis is the study: the figures wait for it). */
-    fo.jobs = st.spec.n_threads > 1 ? st.spec.n_threads : 1;
-    fo.jobs = fo.jobs > MAX_JOBS ? MAX_JOBS : fo.jobs;
-    if (rc == BF_EXIT_OK && !st.opts.exact) {
-        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 0);
-        started = rc == BF_EXIT_OK;
-    }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_run_analysis(&st);
-    }
-    if (rc == BF_EXIT_OK && !started) {
-        rc = bf_figures_start(&st, &fo, st.opts.out_dir, &figs, 1);
-    }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_figures_finish(&st, &figs);
-    }
-    if (rc == BF_EXIT_OK) {
-        rc = write_page(&st, &figs, &meta, &page);
-        page_open = rc == BF_EXIT_OK;
-    }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_study_write_tables(&st);
-    }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_figures_commit(&figs);
-    }
-    if (rc == BF_EXIT_OK) {
-        page_open = 0;
-        rc = bf_out_commit(&page);
-    }
-    if (page_open) {
-        bf_out_abort(&page);
-    }
-    if (rc == BF_EXIT_OK && !st.opts.quiet) {
-        printf("Written: %s/report.html and %zu figures in %s/%s\n",
-               st.opts.out_dir, figs.n, st.opts.out_dir, BF_FIG_DIR);
-    }
-    bf_figures_free(&figs);
-    bf_cli_study_free(&st);
+    bf_cli_run_free(&r);
     return rc;
 }

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
+#include "setup.h"
 
 static void usage(FILE *fp)
 {
@@ -37,12 +37,17 @@ static void usage(FILE *fp)
 
 int main(int argc, char **argv)
 {
+    static char hint[64];
     const char *cmd;
     gsl_set_error_handler_off(); /* every GSL status is checked (STYLE §4) */
     if (argc < 2) {
         return bf_cli_usage_fail(BF_EXIT_NOVALUE, NULL, "no command given");
     }
     cmd = argv[1];
+    /* the report library's messages (bf_out_*, the study): on stderr, an
+     * option's error with the hint to run 'brdffit CMD --help' */
+    snprintf(hint, sizeof hint, "%.60s ", cmd);
+    bf_rep_set_sink(bf_cli_message, hint);
     if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 ||
         strcmp(cmd, "help") == 0) {
         usage(stdout);

@@ -233,7 +233,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         case O_CONFIGS: o->src.configs = optarg; break;
         case O_CHANNEL: o->channel = optarg; break;
         case O_CONE:
-            if (bf_cli_parse_double(optarg, &o->cone) != 0 ||
+            if (bf_rep_parse_double(optarg, &o->cone) != 0 ||
                 o->cone < 0.0 || o->cone >= 90.0) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                          "--exclude-specular: '%s' is not "
@@ -250,7 +250,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         case 'q': o->quiet = 1; break;
         case 'h': usage(stdout); return -1;
         case O_N:
-            if (bf_cli_parse_double(optarg, &o->n) != 0 || o->n <= 1.0 ||
+            if (bf_rep_parse_double(optarg, &o->n) != 0 || o->n <= 1.0 ||
                 o->n > 10.0) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                          "--n: '%s' is not a "
@@ -261,7 +261,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             break;
         case O_THREADS: {
             double t = -1.0;
-            if (bf_cli_parse_double(optarg, &t) != 0 || t < 0.0 ||
+            if (bf_rep_parse_double(optarg, &t) != 0 || t < 0.0 ||
                 t > BF_CLI_MAX_THREADS || t != floor(t)) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--threads: '%s' is not a "
                                           "whole number in [0, %d]",
@@ -271,7 +271,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             break;
         }
         case O_MAXTHETA:
-            if (bf_cli_parse_double(optarg, &o->max_theta) != 0 ||
+            if (bf_rep_parse_double(optarg, &o->max_theta) != 0 ||
                 o->max_theta <= 0.0 || o->max_theta > 90.0) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                          "--max-theta: '%s' is "
@@ -312,7 +312,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--range: at most %d",
                                           BF_CLI_MAX_RANGES);
             }
-            if (bf_cli_parse_range(optarg, name, sizeof name, &lo, &hi, msg,
+            if (bf_rep_parse_range(optarg, name, sizeof name, &lo, &hi, msg,
                                    sizeof msg) != 0) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--range: %s", msg);
             }
@@ -326,7 +326,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             size_t count = 0;
             char msg[128];
             int zero = strcmp(optarg, "0") == 0;
-            int e = zero ? 0 : bf_cli_parse_int_list(optarg, &list, &count,
+            int e = zero ? 0 : bf_rep_parse_int_list(optarg, &list, &count,
                                                      msg, sizeof msg);
             if (e == -2) {
                 bf_cli_err("out of memory");
@@ -416,34 +416,4 @@ int bf_cli_parse_smith(const char *cmd, const char *arg, bf_smith_kind *s)
                                  arg);
     }
     return BF_EXIT_OK;
-}
-
-int bf_cli_parse_range(const char *s, char *name, size_t name_len,
-                       double *lo, double *hi, char *msg, size_t msg_len)
-{
-    const char *eq = strchr(s, '=');
-    const char *colon = eq != NULL ? strchr(eq + 1, ':') : NULL;
-    char num[64];
-    size_t len;
-    if (eq == NULL || colon == NULL || eq == s ||
-        (size_t)(eq - s) >= name_len) {
-        snprintf(msg, msg_len, "'%s' is not NAME=LO:HI", s);
-        return -1;
-    }
-    memcpy(name, s, (size_t)(eq - s));
-    name[eq - s] = '\0';
-    len = (size_t)(colon - eq - 1);
-    if (len == 0 || len >= sizeof num) {
-        snprintf(msg, msg_len, "'%s': bad lower bound", s);
-        return -1;
-    }
-    memcpy(num, eq + 1, len);
-    num[len] = '\0';
-    if (bf_cli_parse_double(num, lo) != 0 ||
-        bf_cli_parse_double(colon + 1, hi) != 0 || !(*lo < *hi)) {
-        snprintf(msg, msg_len, "'%s': LO and HI must be numbers, LO < HI",
-                 s);
-        return -1;
-    }
-    return 0;
 }

@@ -9,10 +9,10 @@
 #include "cli.h"
 
 /* Upper limit of --threads (a typo guard, not a machine limit). */
-#define BF_CLI_MAX_THREADS 1024
+#define BF_CLI_MAX_THREADS BF_REPORT_MAX_THREADS
 
 /* At most this many --range options. */
-#define BF_CLI_MAX_RANGES 8
+#define BF_CLI_MAX_RANGES BF_REPORT_MAX_RANGES
 
 /* The options every study command accepts (see bf_cli_opts_usage). */
 typedef struct {
@@ -95,9 +95,5 @@ void bf_cli_opts_usage(FILE *fp);
 int bf_cli_parse_fresnel(const char *cmd, const char *arg,
                          bf_fresnel_kind *f);
 int bf_cli_parse_smith(const char *cmd, const char *arg, bf_smith_kind *s);
-
-/* Parses --range NAME=LO:HI. Returns 0, or -1 with a message in msg. */
-int bf_cli_parse_range(const char *s, char *name, size_t name_len,
-                       double *lo, double *hi, char *msg, size_t msg_len);
 
 #endif

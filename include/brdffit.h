@@ -1634,6 +1634,126 @@ int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
                          const bf_study_row *rows, const bf_fit_stats *stats,
                          const bf_analysis_opts *opts);
 
+
+/* ======================================================================
+ * --- report: a study's tables, figures and report.html (libbrdffit_report)
+ * ======================================================================
+ * The report is the work of `brdffit report`: the study of SPEC §7 on a
+ * dataset (the paper's protocol, and the analysis with stats, exact or
+ * n_boot), its tables (fits.csv, table2.md, table3.md), every figure in
+ * out_dir/figures and report.html, written atomically (a failed run leaves
+ * no output behind). These functions live in libbrdffit_report (it draws
+ * with PLplot): link -lbrdffit_report -lbrdffit. */
+
+/* What went wrong, the classes of BSD sysexits.h (the CLI exits with them). */
+typedef enum {
+    BF_REPORT_OK = 0,
+    BF_REPORT_CONFLICT = 62,  /* options that cannot be combined */
+    BF_REPORT_BADVALUE = 63,  /* an option's value does not fit the data */
+    BF_REPORT_DATAERR = 65,   /* the data cannot be fitted as asked */
+    BF_REPORT_NOINPUT = 66,   /* an input file cannot be read */
+    BF_REPORT_SOFTWARE = 70,  /* out of memory, or an internal error */
+    BF_REPORT_CANTCREAT = 73, /* the output folder cannot be used */
+    BF_REPORT_IOERR = 74      /* an output file cannot be written */
+} bf_report_status;
+
+/* Most --range options, incidence angles. */
+#define BF_REPORT_MAX_RANGES 8
+#define BF_REPORT_MAX_INCIDENCE 4
+/* Most measurement files named in the provenance. */
+#define BF_REPORT_MAX_FILES 64
+
+typedef struct bf_report_inputs bf_report_inputs;
+
+/* The data of a report and the files they came from (for the page's
+ * provenance and the description of the run). Paths may be NULL. */
+struct bf_report_inputs {
+    const bf_dataset *ds;          /* borrowed; NULL when load fills it */
+    const bf_sample_table *n_file; /* refractive indices, or NULL */
+    const bf_sample_table *on_params; /* ON's rho and sigma, or NULL */
+    int curet;                     /* the data are a CURET folder */
+    const char *table_path;        /* CURET: table.txt, abrdf.dat and */
+    const char *brdf_path;         /*   samples.tsv (NULL: none) */
+    const char *names_path;
+    const char *configs_path;      /* MERL: the sampling file, "all" */
+    const char *files[BF_REPORT_MAX_FILES]; /* other formats: the files */
+    size_t n_files;
+    /* Called once the options are checked and before any data are used,
+     * when ds is NULL: fills in (everything above) and returns
+     * BF_REPORT_OK or a status (its messages are its own). */
+    int (*load)(void *ctx, bf_report_inputs *in);
+    void *load_ctx;
+};
+
+/* A message of the run (kind): the error that ends it, an option's error
+ * (BF_REPORT_CONFLICT, BF_REPORT_BADVALUE: the CLI adds its --help hint),
+ * or a note (a model left out for want of its inputs). */
+enum { BF_REPORT_MSG_ERROR = 0, BF_REPORT_MSG_USAGE, BF_REPORT_MSG_NOTE };
+typedef void (*bf_report_message_fn)(void *ctx, int kind, const char *text);
+/* Progress of the run: what (a phase: "analysing (sample, model) pairs",
+ * "drawing figures"), done of total; what NULL ends the phase. */
+typedef void (*bf_report_progress_fn)(void *ctx, const char *what,
+                                      size_t done, size_t total);
+
+/* The options of a report: those of `brdffit report` (README, brdffit.1).
+ * Initialise with BF_REPORT_OPTIONS_INIT and change what differs. */
+typedef struct {
+    /* the study */
+    const char *models;    /* "VH-G,FC-E", "all", NULL: default_models */
+    bf_model_set default_models;
+    const char *samples;   /* "all", "paper", "1,5-9"; NULL: paper on
+                              CURET data, all otherwise */
+    const char *channel;   /* a channel name, "mean" or "each"; NULL: mean */
+    const char *exclude;   /* configuration numbers "3,7-9", or NULL */
+    double cone;           /* specular exclusion, degrees; < 0: the data's */
+    double max_theta;      /* degrees */
+    double n;              /* refractive index when no file gives one */
+    int n_given;           /* n was given (kept by the exact fit) */
+    const char *n_file;    /* the files of inputs' n_file and on_params */
+    const char *on_file;   /*   (described and checksummed), or NULL */
+    int exact;             /* the exact fit (doc/methods.md §1) */
+    bf_objective objective;
+    bf_noise noise;
+    const char *range[BF_REPORT_MAX_RANGES]; /* "NAME=LO:HI" */
+    size_t n_range;
+    size_t n_boot;         /* bootstrap replicates (0: none) */
+    size_t folds;          /* cross-validation folds (0: none) */
+    unsigned long seed;
+    int stats;             /* the analysis with the paper's fit */
+    int threads;           /* 0: one per core; also drawing processes */
+    /* the figures */
+    unsigned formats;      /* bits 1 << BF_REPORT_PNG, _SVG, _PDF */
+    int single_column;     /* 3.5 in wide figures instead of 7 in */
+    int log_lse;           /* Figure 2(b) on a logarithmic LSE axis */
+    int per_sample;        /* one scatter figure per sample too */
+    double incidence[BF_REPORT_MAX_INCIDENCE]; /* plane-of-incidence */
+    size_t n_incidence;    /*   angles, radians; 0: chosen from the data */
+    /* what the page records and the caller sees */
+    int argc;              /* the command line (argv[0] the subcommand); */
+    char **argv;           /*   argc 0: the page names bf_report_write */
+    FILE *echo;            /* description and tables also printed here */
+    bf_report_message_fn message; /* notes and errors; NULL: none */
+    void *message_ctx;
+    bf_report_progress_fn progress; /* NULL: none */
+    void *progress_ctx;
+} bf_report_options;
+
+/* Figure formats (bits of bf_report_options.formats). */
+enum { BF_REPORT_PNG = 0, BF_REPORT_SVG, BF_REPORT_PDF };
+
+#define BF_REPORT_OPTIONS_INIT                                            \
+    {.cone = -1.0, .max_theta = 90.0, .n = BF_DEFAULT_N, .folds = 10,     \
+     .seed = 1, .formats = (1u << BF_REPORT_PNG) | (1u << BF_REPORT_PDF)}
+
+/* Runs the study of in's data with o and writes the report into out_dir
+ * (created, one level, if missing): fits.csv, table2.md, table3.md,
+ * report.html and figures/. *n_figures (may be NULL) gets the number of
+ * figures. Returns BF_REPORT_OK, or a status with err (may be NULL)
+ * holding the message (code BF_EINVAL for the option errors, BF_ENOMEM,
+ * BF_EIO, BF_EDOM for data that cannot be fitted). */
+int bf_report_write(bf_report_inputs *in, const bf_report_options *o,
+                    const char *out_dir, size_t *n_figures, bf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

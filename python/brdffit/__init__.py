@@ -11,6 +11,7 @@ every number comes from the library. See python/README.md section
     r = brdffit.fit(ds, "FC-E", material=5, fit="exact")
     fits = brdffit.compare(ds, stats=True)   # the rows of fits.csv
     ranking = brdffit.rank(ds)               # the rows of ranking.csv
+    brdffit.report(ds, out="out", stats=True)  # `brdffit report`'s files
 """
 
 from ._version import VERSION as __version__
@@ -24,12 +25,13 @@ from .dataset import Dataset, Material, load
 from .fit import FitResult, fit
 from .models import Model, Parameter, evaluate, model, models
 from .records import Records
+from ._report import report
 
 __all__ = [
     "BrdffitError", "ConvergenceError", "DomainError", "DomainWarning",
     "InvalidArgumentError", "LoadError", "NotFoundError", "OutOfMemoryError",
     "ParseError", "Dataset", "Material", "load", "FitResult", "fit",
-    "compare", "rank", "Records", "Model", "Parameter", "evaluate",
+    "compare", "rank", "report", "Records", "Model", "Parameter", "evaluate",
     "model", "models", "objectives", "library_candidates", "library_path",
     "library_version",
 ]

@@ -321,6 +321,71 @@ int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
 typedef void gsl_error_handler_t(const char *reason, const char *file,
                                  int line, int gsl_errno);
 gsl_error_handler_t *gsl_set_error_handler_off(void);
+
+/* --- report (types; bf_report_write is in libbrdffit_report, _report.py) --- */
+enum { BF_REPORT_OK = 0, BF_REPORT_CONFLICT = 62, BF_REPORT_BADVALUE = 63,
+       BF_REPORT_DATAERR = 65, BF_REPORT_NOINPUT = 66,
+       BF_REPORT_SOFTWARE = 70, BF_REPORT_CANTCREAT = 73,
+       BF_REPORT_IOERR = 74 };
+#define BF_REPORT_MAX_RANGES 8
+#define BF_REPORT_MAX_INCIDENCE 4
+#define BF_REPORT_MAX_FILES 64
+typedef struct bf_report_inputs bf_report_inputs;
+struct bf_report_inputs {
+    const bf_dataset *ds;
+    const bf_sample_table *n_file;
+    const bf_sample_table *on_params;
+    int curet;
+    const char *table_path;
+    const char *brdf_path;
+    const char *names_path;
+    const char *configs_path;
+    const char *files[64];
+    size_t n_files;
+    int (*load)(void *ctx, bf_report_inputs *in);
+    void *load_ctx;
+};
+enum { BF_REPORT_MSG_ERROR = 0, BF_REPORT_MSG_USAGE, BF_REPORT_MSG_NOTE };
+typedef void (*bf_report_message_fn)(void *ctx, int kind, const char *text);
+typedef void (*bf_report_progress_fn)(void *ctx, const char *what,
+                                      size_t done, size_t total);
+typedef struct {
+    const char *models;
+    bf_model_set default_models;
+    const char *samples;
+    const char *channel;
+    const char *exclude;
+    double cone;
+    double max_theta;
+    double n;
+    int n_given;
+    const char *n_file;
+    const char *on_file;
+    int exact;
+    bf_objective objective;
+    bf_noise noise;
+    const char *range[8];
+    size_t n_range;
+    size_t n_boot;
+    size_t folds;
+    unsigned long seed;
+    int stats;
+    int threads;
+    unsigned formats;
+    int single_column;
+    int log_lse;
+    int per_sample;
+    double incidence[4];
+    size_t n_incidence;
+    int argc;
+    char **argv;
+    FILE *echo;
+    bf_report_message_fn message;
+    void *message_ctx;
+    bf_report_progress_fn progress;
+    void *progress_ctx;
+} bf_report_options;
+enum { BF_REPORT_PNG = 0, BF_REPORT_SVG, BF_REPORT_PDF };
 """
 
 # libc: in-memory streams for the readers and writers that take a FILE *.

@@ -17,7 +17,7 @@ import subprocess
 import pycparser
 from pycparser import c_ast, c_generator
 
-from brdffit import _lib
+from brdffit import _lib, _report
 from brdffit._lib import ffi, lib
 
 # Constants the package defines in Python (not parsable by cffi), with the
@@ -34,7 +34,8 @@ PY_CONSTANTS = {
 
 def _declarations():
     """The function and variable declarations of the cdef, as C text."""
-    text = re.sub(r"/\*.*?\*/", "", _lib.CDEF + _lib.LIBC_CDEF, flags=re.S)
+    text = re.sub(r"/\*.*?\*/", "", _lib.CDEF + _lib.LIBC_CDEF +
+                  _report.REPORT_CDEF, flags=re.S)
     text = re.sub(r"^\s*#.*$", "", text, flags=re.M)
     # size_t is built into cffi's parser, not pycparser's.
     ast = pycparser.CParser().parse("typedef unsigned long size_t;\n" + text)
@@ -132,8 +133,9 @@ def test_the_check_covers_every_struct_and_function_the_package_uses():
     assert {"bf_error", "bf_geom", "bf_param", "bf_model_type",
             "bf_material_desc", "bf_select", "bf_load_opts",
             "bf_fit_result", "bf_target", "bf_study_spec", "bf_study_row",
-            "bf_analysis_opts", "bf_fit_stats"} <= structs
+            "bf_analysis_opts", "bf_fit_stats", "bf_report_options",
+            "bf_report_inputs"} <= structs
     names = " ".join(_declarations())
     for fn in ("bf_model_eval", "bf_dataset_load", "bf_study_run",
-               "bf_study_analyse", "bf_study_samples"):
+               "bf_study_analyse", "bf_study_samples", "bf_report_write"):
         assert fn in names

@@ -18,7 +18,7 @@
  * are resolved by resolve_samples once the data are read. */
 enum { SAMPLES_DEFAULT, SAMPLES_PAPER, SAMPLES_ALL, SAMPLES_LIST };
 
-static int parse_samples(const char *hint, const bf_cli_opts *o, int **out,
+static int parse_samples(const char *hint, const bf_report_options *o, int **out,
                          size_t *n, int *mode)
 {
     char msg[256];
@@ -26,33 +26,33 @@ static int parse_samples(const char *hint, const bf_cli_opts *o, int **out,
     *n = 0;
     *mode = SAMPLES_DEFAULT;
     if (o->samples == NULL) {
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     if (strcmp(o->samples, "all") == 0) {
         *mode = SAMPLES_ALL;
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     if (strcmp(o->samples, "paper") == 0) {
         *mode = SAMPLES_PAPER;
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     *mode = SAMPLES_LIST;
-    switch (bf_cli_parse_int_list(o->samples, out, n, msg, sizeof msg)) {
+    switch (bf_rep_parse_int_list(o->samples, out, n, msg, sizeof msg)) {
     case 0:
         break;
     case -2:
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     default:
-        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--samples: %s",
+        return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint, "--samples: %s",
                                  msg);
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* The materials (dataset indices) of --samples: the paper's 24 on CURET by
  * default, every material otherwise; a list names material numbers. */
-static int resolve_samples(const char *hint, const bf_cli_inputs *in,
+static int resolve_samples(const char *hint, const bf_report_inputs *in,
                            int mode, const int *list, size_t n_list,
                            size_t **out, size_t *n)
 {
@@ -64,7 +64,7 @@ static int resolve_samples(const char *hint, const bf_cli_inputs *in,
     }
     if (mode == SAMPLES_PAPER) {
         if (!in->curet) {
-            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+            return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                      "--samples paper: the paper's samples "
                                      "are CURET samples; give 'all' or a "
                                      "list of sample numbers");
@@ -75,13 +75,13 @@ static int resolve_samples(const char *hint, const bf_cli_inputs *in,
     *n = mode == SAMPLES_ALL ? count : n_list;
     *out = malloc((*n + 1) * sizeof **out);
     if (*out == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     for (i = 0; i < *n; i++) {
         long m = mode == SAMPLES_ALL ? (long)i : bf_dataset_find(ds, list[i]);
         if (m < 0) {
-            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+            return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                      "--samples: sample %d is not in the %s "
                                      "(it has samples 1-%zu)",
                                      list[i],
@@ -89,10 +89,10 @@ static int resolve_samples(const char *hint, const bf_cli_inputs *in,
         }
         (*out)[i] = (size_t)m;
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_type ***out,
+static int select_models(const char *hint, const bf_report_options *o, const bf_model_type ***out,
                          size_t *n)
 {
     const bf_model_type **list;
@@ -102,8 +102,8 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
     list = calloc(cap, sizeof *list);
     *out = list;
     if (list == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     if (o->models != NULL && strcmp(o->models, "all") == 0) {
         for (i = 0; i < bf_model_count(); i++) {
@@ -114,14 +114,14 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
     } else {
         const char *p = o->models != NULL
                             ? o->models
-                            : bf_model_set_names(o->defaults->models);
+                            : bf_model_set_names(o->default_models);
         while (*p != '\0') {
             char name[64];
             size_t len = strcspn(p, ",");
             const bf_model_type *t;
             size_t j;
             if (len == 0 || len >= sizeof name) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "--models: bad list "
                                           "'%s'", o->models);
             }
@@ -129,27 +129,27 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             name[len] = '\0';
             t = bf_model_find(name);
             if (t == NULL) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "--models: unknown "
                                           "model '%s' (see 'brdffit models')",
                                           name);
             }
             if (t->kind == BF_MODEL_SPECULAR) {
                 /* every objective of today max-normalises (SPEC §2) */
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "%s gives absolute BRDF values "
                                          "(SPEC §9); fit it with --objective "
                                          "ngan, cuberoot or log1p", t->name);
             }
             for (j = 0; j < *n; j++) {
                 if (list[j] == t) {
-                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                    return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                              "--models: '%s' "
                                               "listed twice", name);
                 }
             }
             if (*n + 1 >= cap) {
-                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "--models: too many");
             }
             list[(*n)++] = t;
@@ -157,49 +157,49 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             if (*p == ',') {
                 p++;
                 if (*p == '\0') {
-                    return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                    return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                              "--models: trailing "
                                               "comma");
                 }
             }
         }
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* The selection of spec (SPEC §1.4, §1.6, --max-theta, --exclude) for
  * every target: its K and how many the cone left out. An excluded number
  * beyond a material's configurations, or a target left with nothing, is a
  * usage error. */
-static int select_configs(const char *hint, bf_cli_study *st)
+static int select_configs(const char *hint, bf_rep_study *st)
 {
     const bf_dataset *ds = st->in.ds;
     size_t *sel = NULL;
     size_t cap = 0;
     size_t s;
     size_t j;
-    int rc = BF_EXIT_OK;
+    int rc = BF_REPORT_OK;
 
     st->k = calloc(st->n_samples + 1, sizeof *st->k);
     st->n_cone = calloc(st->n_samples + 1, sizeof *st->n_cone);
     if (st->k == NULL || st->n_cone == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
-    for (s = 0; s < st->n_samples && rc == BF_EXIT_OK; s++) {
+    for (s = 0; s < st->n_samples && rc == BF_REPORT_OK; s++) {
         size_t m = st->targets[s].material;
         size_t nconf = bf_dataset_nconf(ds, m);
         char who[256];
-        bf_cli_material_label(ds, m, who, sizeof who);
+        bf_rep_material_label(ds, m, who, sizeof who);
         for (j = 0; j < st->n_exclude; j++) {
             if (st->exclude[j] > nconf) {
-                rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                rc = bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                        "--exclude: configuration %zu does "
                                        "not exist (sample %s has %zu)",
                                        st->exclude[j], who, nconf);
             }
         }
-        if (rc != BF_EXIT_OK) {
+        if (rc != BF_REPORT_OK) {
             break;
         }
         if (nconf > cap) {
@@ -207,17 +207,17 @@ static int select_configs(const char *hint, bf_cli_study *st)
             cap = nconf;
             sel = malloc(cap * sizeof *sel);
             if (sel == NULL) {
-                bf_cli_err("out of memory");
-                return BF_EXIT_SOFTWARE;
+                bf_rep_err("out of memory");
+                return BF_REPORT_SOFTWARE;
             }
         }
         if (bf_dataset_select(ds, m, st->targets[s].channel,
                               &st->spec.select, sel, &st->k[s],
                               &st->n_cone[s]) != BF_OK) {
-            bf_cli_err("internal error: configuration selection failed");
-            rc = BF_EXIT_SOFTWARE;
+            bf_rep_err("internal error: configuration selection failed");
+            rc = BF_REPORT_SOFTWARE;
         } else if (st->k[s] == 0) {
-            rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+            rc = bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                    "--exclude/--exclude-specular/"
                                    "--max-theta: no configuration is left "
                                    "to fit for sample %s",
@@ -238,9 +238,9 @@ static int select_configs(const char *hint, bf_cli_study *st)
  * variants (its inputs with an exact-fit range freed, n kept when the user
  * gave it; doc/methods.md §6); every --range applied (bf_model_variant_range).
  * A --range that names no parameter of any model is a usage error. */
-static int make_variants(const char *hint, bf_cli_study *st)
+static int make_variants(const char *hint, bf_rep_study *st)
 {
-    const bf_cli_opts *o = &st->opts;
+    const bf_report_options *o = &st->opts;
     unsigned keep = (o->n_given || o->n_file != NULL)
                         ? 1u << BF_INPUT_INDEX
                         : 0u;
@@ -248,12 +248,12 @@ static int make_variants(const char *hint, bf_cli_study *st)
     size_t m;
     size_t r;
     if (!o->exact && o->n_range == 0) {
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     st->variants = calloc(st->n_models + 1, sizeof *st->variants);
     if (st->variants == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     for (m = 0; m < st->n_models; m++) {
         bf_model_variant *v = &st->variants[m];
@@ -267,7 +267,7 @@ static int make_variants(const char *hint, bf_cli_study *st)
             double lo;
             double hi;
             int rc;
-            bf_cli_parse_range(o->range[r], name, sizeof name, &lo, &hi, msg,
+            bf_rep_parse_range(o->range[r], name, sizeof name, &lo, &hi, msg,
                                sizeof msg);
             rc = bf_model_variant_range(v, name, lo, hi);
             if (rc == BF_ENOTFOUND) {
@@ -277,8 +277,8 @@ static int make_variants(const char *hint, bf_cli_study *st)
             if (rc != BF_OK) {
                 const bf_param *pj =
                     &v->param[bf_model_param_index(&v->type, name)];
-                return bf_cli_usage_fail(
-                    BF_EXIT_BADVALUE, hint,
+                return bf_rep_usage_fail(
+                    BF_REPORT_BADVALUE, hint,
                     "--range %s: %s's %s must stay in [%g, %g] with at most "
                     "%d grid points",
                     o->range[r], v->type.name, name, pj->min, pj->max,
@@ -289,20 +289,37 @@ static int make_variants(const char *hint, bf_cli_study *st)
     }
     for (r = 0; r < o->n_range; r++) {
         if (!((used >> r) & 1u)) {
-            return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+            return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                      "--range %s: no selected model has "
                                      "that parameter",
                                      o->range[r]);
         }
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* ==== the run ============================================================= */
 
-int bf_cli_study_prepare(bf_cli_study *st)
+/* The paths of in that are NULL made "" (the printers test their first
+ * character). */
+static void no_null_paths(bf_report_inputs *in)
 {
-    const bf_cli_opts *o = &st->opts;
+    const char **p[4];
+    size_t i;
+    p[0] = &in->table_path;
+    p[1] = &in->brdf_path;
+    p[2] = &in->names_path;
+    p[3] = &in->configs_path;
+    for (i = 0; i < 4; i++) {
+        if (*p[i] == NULL) {
+            *p[i] = "";
+        }
+    }
+}
+
+int bf_rep_study_prepare(bf_rep_study *st)
+{
+    const bf_report_options *o = &st->opts;
     int *list = NULL;
     size_t n_list = 0;
     size_t *materials = NULL;
@@ -315,23 +332,23 @@ int bf_cli_study_prepare(bf_cli_study *st)
 
     snprintf(hint, sizeof hint, "%s ", st->cmd);
     rc = select_models(hint, o, &st->models, &st->n_models);
-    if (rc == BF_EXIT_OK) {
+    if (rc == BF_REPORT_OK) {
         rc = make_variants(hint, st); /* --fit exact, --range */
     }
-    if (rc == BF_EXIT_OK) {
+    if (rc == BF_REPORT_OK) {
         rc = parse_samples(hint, o, &list, &n_list, &mode);
     }
-    if (rc == BF_EXIT_OK && o->exclude != NULL) {
+    if (rc == BF_REPORT_OK && o->exclude != NULL) {
         /* syntax now; range once the data are read */
         char msg[256];
         int *ex = NULL;
-        int e = bf_cli_parse_int_list(o->exclude, &ex, &st->n_exclude, msg,
+        int e = bf_rep_parse_int_list(o->exclude, &ex, &st->n_exclude, msg,
                                       sizeof msg);
         if (e == -2) {
-            bf_cli_err("out of memory");
-            rc = BF_EXIT_SOFTWARE;
+            bf_rep_err("out of memory");
+            rc = BF_REPORT_SOFTWARE;
         } else if (e != 0) {
-            rc = bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--exclude: %s",
+            rc = bf_rep_usage_fail(BF_REPORT_BADVALUE, hint, "--exclude: %s",
                                    msg);
         } else {
             st->exclude = malloc((st->n_exclude + 1) * sizeof *st->exclude);
@@ -339,40 +356,49 @@ int bf_cli_study_prepare(bf_cli_study *st)
                 st->exclude[i] = (size_t)ex[i];
             }
             if (st->exclude == NULL) {
-                bf_cli_err("out of memory");
-                rc = BF_EXIT_SOFTWARE;
+                bf_rep_err("out of memory");
+                rc = BF_REPORT_SOFTWARE;
             }
         }
         free(ex);
     }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_check_outdir(o->out_dir); /* fail before the work */
+    if (rc == BF_REPORT_OK) {
+        rc = bf_rep_check_outdir(st->out_dir); /* fail before the work */
     }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_load_data(&o->src, o->n_file, o->on_file, &st->in);
+    if (rc == BF_REPORT_OK) {
+        rc = st->in.ds == NULL && st->in.load != NULL
+                 ? st->in.load(st->in.load_ctx, &st->in)
+                 : BF_REPORT_OK;
     }
-    if (rc == BF_EXIT_OK) {
+    if (rc == BF_REPORT_OK && st->in.ds == NULL) {
+        bf_rep_err("internal error: no data to fit");
+        rc = BF_REPORT_SOFTWARE;
+    }
+    if (rc == BF_REPORT_OK) {
+        no_null_paths(&st->in);
+    }
+    if (rc == BF_REPORT_OK) {
         rc = resolve_samples(hint, &st->in, mode, list, n_list, &materials,
                              &n_materials);
     }
     free(list);
-    if (rc == BF_EXIT_OK &&
+    if (rc == BF_REPORT_OK &&
         bf_study_targets(st->in.ds, materials, n_materials, o->channel,
                          &st->targets, &st->n_samples, &err) != BF_OK) {
         rc = err.code == BF_ENOMEM
-                 ? bf_cli_load_error(&err)
-                 : bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--channel: %s",
+                 ? bf_rep_study_error(&err)
+                 : bf_rep_usage_fail(BF_REPORT_BADVALUE, hint, "--channel: %s",
                                      err.msg);
     }
     free(materials);
-    if (rc != BF_EXIT_OK) {
+    if (rc != BF_REPORT_OK) {
         return rc;
     }
     st->samples = malloc((st->n_samples + 1) * sizeof *st->samples);
     st->rows = calloc(st->n_samples * st->n_models + 1, sizeof *st->rows);
     if (st->samples == NULL || st->rows == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     for (i = 0; i < st->n_samples; i++) {
         st->samples[i] = bf_dataset_number(st->in.ds,
@@ -395,14 +421,14 @@ int bf_cli_study_prepare(bf_cli_study *st)
     st->spec.n_threads = o->threads;
     if (o->threads == 0) { /* one per core */
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
-        st->spec.n_threads = cores > 0 && cores <= BF_CLI_MAX_THREADS
+        st->spec.n_threads = cores > 0 && cores <= BF_REPORT_MAX_THREADS
                                  ? (int)cores
                                  : 1;
     }
     return select_configs(hint, st);
 }
 
-int bf_cli_target_data(const bf_cli_study *st, size_t s, size_t *sel,
+int bf_rep_target_data(const bf_rep_study *st, size_t s, size_t *sel,
                        size_t *k, double *data)
 {
     bf_error err;
@@ -413,7 +439,7 @@ int bf_cli_target_data(const bf_cli_study *st, size_t s, size_t *sel,
  * (BF_EDOM: undefined at one of them, e.g. BK at theta_i = 90 deg, SPEC
  * §3.3, or zero at all of them, SPEC §2) is an error, not a gap in the
  * tables; a missing per-sample input (BF_ENOTFOUND) is a noted gap. */
-static int check_rows(const bf_cli_study *st)
+static int check_rows(const bf_rep_study *st)
 {
     size_t i;
     for (i = 0; i < st->n_samples * st->n_models; i++) {
@@ -422,55 +448,62 @@ static int check_rows(const bf_cli_study *st)
             continue;
         }
         if (r->status == BF_ENOMEM) {
-            bf_cli_err("out of memory");
-            return BF_EXIT_SOFTWARE;
+            bf_rep_err("out of memory");
+            return BF_REPORT_SOFTWARE;
         }
-        bf_cli_err("%s cannot be fitted to sample %d: the model is "
+        bf_rep_err("%s cannot be fitted to sample %d: the model is "
                    "undefined at some of the K = %zu used configurations or "
                    "zero at all of them, so it cannot be normalised (SPEC "
                    "§2); leave configurations out with --exclude, "
                    "--exclude-specular or --max-theta",
                    r->type->name, r->sample, r->k);
-        return BF_EXIT_DATAERR;
+        return BF_REPORT_DATAERR;
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-int bf_cli_study_error(const bf_error *err)
+int bf_rep_study_error(const bf_error *err)
 {
     char buf[BF_ERROR_FILE_MAX + BF_ERROR_MSG_MAX + 64];
     if (strcmp(err->file, "study") == 0) { /* no file to name */
-        bf_cli_err("%s", err->msg);
+        bf_rep_err("%s", err->msg);
     } else {
-        bf_cli_err("%s", bf_error_format(err, buf, sizeof buf));
+        bf_rep_err("%s", bf_error_format(err, buf, sizeof buf));
     }
-    return err->code == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+    return err->code == BF_ENOMEM ? BF_REPORT_SOFTWARE : BF_REPORT_DATAERR;
 }
 
-int bf_cli_study_run_protocol(bf_cli_study *st)
+int bf_rep_study_run_protocol(bf_rep_study *st)
 {
     bf_error err;
     if (st->opts.exact) { /* the analysis is the study */
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     if (bf_study_run(&st->spec, st->rows, &err) != BF_OK) {
-        return bf_cli_study_error(&err);
+        return bf_rep_study_error(&err);
     }
     return check_rows(st);
 }
 
+/* The analysis's progress (a bf_progress_fn) as the options' callback. */
+static void analysis_tick(void *ctx, size_t done, size_t total)
+{
+    const bf_rep_study *st = ctx;
+    st->opts.progress(st->opts.progress_ctx,
+                      "analysing (sample, model) pairs", done, total);
+}
+
 /* The analysis beyond the paper (refinement, intervals, AIC, BIC, CV; with
  * --fit exact also the study itself), with a progress line. */
-static int run_analysis(bf_cli_study *st)
+static int run_analysis(bf_rep_study *st)
 {
-    const bf_cli_opts *o = &st->opts;
-    bf_cli_progress progress;
+    const bf_report_options *o = &st->opts;
     bf_error err;
     int rc;
     st->stats = calloc(st->n_samples * st->n_models + 1, sizeof *st->stats);
     if (st->stats == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     bf_analysis_opts_init(&st->analysis);
     st->analysis.objective = o->objective;
@@ -479,42 +512,42 @@ static int run_analysis(bf_cli_study *st)
     st->analysis.n_boot = o->n_boot;
     st->analysis.folds = o->folds;
     st->analysis.seed = o->seed;
-    bf_cli_progress_init(&progress, "analysing (sample, model) pairs",
-                         o->quiet);
-    st->analysis.progress = bf_cli_progress_cb;
-    st->analysis.progress_ctx = &progress;
+    st->analysis.progress = o->progress != NULL ? analysis_tick : NULL;
+    st->analysis.progress_ctx = st;
     rc = bf_study_analyse(&st->spec, &st->analysis, st->rows, st->stats,
                           &err);
-    bf_cli_progress_end(&progress);
+    if (o->progress != NULL) {
+        o->progress(o->progress_ctx, NULL, 0, 0);
+    }
     st->analysis.progress = NULL;
     st->analysis.progress_ctx = NULL;
     if (rc != BF_OK) {
-        return bf_cli_study_error(&err);
+        return bf_rep_study_error(&err);
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-int bf_cli_study_run_analysis(bf_cli_study *st)
+int bf_rep_study_run_analysis(bf_rep_study *st)
 {
     /* The analysis runs with --fit exact, --stats or --bootstrap: the
      * paper's protocol alone stays the fast default of compare and
      * report. */
     if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0) {
         int rc = run_analysis(st);
-        if (rc != BF_EXIT_OK) {
+        if (rc != BF_REPORT_OK) {
             return rc;
         }
     }
-    return st->opts.exact ? check_rows(st) : BF_EXIT_OK;
+    return st->opts.exact ? check_rows(st) : BF_REPORT_OK;
 }
 
-int bf_cli_study_run(bf_cli_study *st)
+int bf_rep_study_run(bf_rep_study *st)
 {
-    int rc = bf_cli_study_run_protocol(st);
-    return rc == BF_EXIT_OK ? bf_cli_study_run_analysis(st) : rc;
+    int rc = bf_rep_study_run_protocol(st);
+    return rc == BF_REPORT_OK ? bf_rep_study_run_analysis(st) : rc;
 }
 
-void bf_cli_study_free(bf_cli_study *st)
+void bf_rep_study_free(bf_rep_study *st)
 {
     free(st->rows);
     free(st->stats);
@@ -525,7 +558,6 @@ void bf_cli_study_free(bf_cli_study *st)
     free(st->models);
     free(st->samples);
     free(st->targets);
-    bf_cli_free_inputs(&st->in);
     st->rows = NULL;
     st->stats = NULL;
     st->variants = NULL;
@@ -541,7 +573,7 @@ void bf_cli_study_free(bf_cli_study *st)
 
 /* Table 2 shows fitted parameters, or the inputs of a model that fits
  * none (ON). */
-int bf_cli_shows_param(const bf_model_type *type, size_t j)
+int bf_rep_shows_param(const bf_model_type *type, size_t j)
 {
     size_t i;
     if (type->param[j].fitted) {
@@ -555,25 +587,25 @@ int bf_cli_shows_param(const bf_model_type *type, size_t j)
     return 1;
 }
 
-const char *bf_cli_sample_name(const bf_cli_study *st, size_t s)
+const char *bf_rep_sample_name(const bf_rep_study *st, size_t s)
 {
     const char *nm = bf_dataset_name(st->in.ds, st->targets[s].material);
     return nm != NULL ? nm : "";
 }
 
-const char *bf_cli_channel_name(const bf_cli_study *st, size_t s)
+const char *bf_rep_channel_name(const bf_rep_study *st, size_t s)
 {
     return bf_dataset_channel(st->in.ds, st->targets[s].material,
                               st->targets[s].channel);
 }
 
-void bf_cli_sample_title(const bf_cli_study *st, size_t s, char *buf,
+void bf_rep_sample_title(const bf_rep_study *st, size_t s, char *buf,
                          size_t len)
 {
     if (st->targets[s].channel == BF_CHANNEL_MEAN) {
-        snprintf(buf, len, "%s", bf_cli_sample_name(st, s));
+        snprintf(buf, len, "%s", bf_rep_sample_name(st, s));
     } else {
-        snprintf(buf, len, "%s [%s]", bf_cli_sample_name(st, s),
-                 bf_cli_channel_name(st, s));
+        snprintf(buf, len, "%s [%s]", bf_rep_sample_name(st, s),
+                 bf_rep_channel_name(st, s));
     }
 }

@@ -48,57 +48,57 @@ static int add_input(bf_report_meta *meta, const char *role, const char *path)
     bf_report_input *in;
     struct stat sb;
     if (meta->n_inputs >= BF_REPORT_MAX_INPUTS) {
-        return BF_EXIT_SOFTWARE;
+        return BF_REPORT_SOFTWARE;
     }
     in = &meta->inputs[meta->n_inputs];
     in->role = role;
     snprintf(in->path, sizeof in->path, "%s", path);
     if (stat(path, &sb) != 0) {
-        bf_cli_err("%s: cannot read to compute its checksum", path);
-        return BF_EXIT_NOINPUT;
+        bf_rep_err("%s: cannot read to compute its checksum", path);
+        return BF_REPORT_NOINPUT;
     }
     switch (bf_sha256_file(path, in->sha256)) {
     case BF_OK:
         break;
     case BF_ENOMEM:
-        bf_cli_err("%s: cannot compute its checksum: out of memory", path);
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("%s: cannot compute its checksum: out of memory", path);
+        return BF_REPORT_SOFTWARE;
     default:
-        bf_cli_err("%s: cannot read to compute its checksum", path);
-        return BF_EXIT_NOINPUT;
+        bf_rep_err("%s: cannot read to compute its checksum", path);
+        return BF_REPORT_NOINPUT;
     }
     in->size = (long long)sb.st_size;
     meta->n_inputs++;
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-int bf_report_checksums(const bf_cli_study *st, bf_report_meta *meta)
+int bf_report_checksums(const bf_rep_study *st, bf_report_meta *meta)
 {
-    int rc = BF_EXIT_OK;
+    int rc = BF_REPORT_OK;
     size_t i;
     meta->n_inputs = 0;
     if (st->in.curet) {
         rc = add_input(meta, "configuration table", st->in.table_path);
-        if (rc == BF_EXIT_OK) {
+        if (rc == BF_REPORT_OK) {
             rc = add_input(meta, "BRDF values", st->in.brdf_path);
         }
-        if (rc == BF_EXIT_OK && st->in.names_path[0] != '\0') {
+        if (rc == BF_REPORT_OK && st->in.names_path[0] != '\0') {
             rc = add_input(meta, "sample names", st->in.names_path);
         }
     } else {
-        for (i = 0; rc == BF_EXIT_OK && i < st->opts.src.n_inputs; i++) {
-            rc = add_input(meta, "measurements", st->opts.src.inputs[i]);
+        for (i = 0; rc == BF_REPORT_OK && i < st->in.n_files; i++) {
+            rc = add_input(meta, "measurements", st->in.files[i]);
         }
-        if (rc == BF_EXIT_OK && st->in.configs_path[0] != '\0' &&
+        if (rc == BF_REPORT_OK && st->in.configs_path[0] != '\0' &&
             strcmp(st->in.configs_path, "all") != 0) {
             rc = add_input(meta, "MERL sampling configurations",
                            st->in.configs_path);
         }
     }
-    if (rc == BF_EXIT_OK && st->opts.on_file != NULL) {
+    if (rc == BF_REPORT_OK && st->opts.on_file != NULL) {
         rc = add_input(meta, "Oren-Nayar parameters", st->opts.on_file);
     }
-    if (rc == BF_EXIT_OK && st->opts.n_file != NULL) {
+    if (rc == BF_REPORT_OK && st->opts.n_file != NULL) {
         rc = add_input(meta, "refractive indices", st->opts.n_file);
     }
     return rc;
@@ -109,13 +109,18 @@ static void provenance(FILE *fp, const bf_report_meta *meta)
     size_t i;
     int a;
     fputs("<h2 id=\"provenance\">Provenance</h2>\n<ul>\n", fp);
-    fprintf(fp, "<li>brdffit %s</li>\n<li>Command: <code>brdffit",
-            bf_version());
-    for (a = 0; a < meta->argc; a++) {
-        fputc(' ', fp);
-        put_shell_word(fp, meta->argv[a]);
+    fprintf(fp, "<li>brdffit %s</li>\n", bf_version());
+    if (meta->argc == 0) { /* not from the command line */
+        fputs("<li>Written by <code>bf_report_write</code></li>\n", fp);
+    } else {
+        fputs("<li>Command: <code>brdffit", fp);
+        for (a = 0; a < meta->argc; a++) {
+            fputc(' ', fp);
+            put_shell_word(fp, meta->argv[a]);
+        }
+        fputs("</code></li>\n", fp);
     }
-    fputs("</code></li>\n</ul>\n<table id=\"inputs\">\n<thead><tr>"
+    fputs("</ul>\n<table id=\"inputs\">\n<thead><tr>"
           "<th>Input</th><th>File</th><th>Bytes</th><th>SHA-256</th></tr>"
           "</thead>\n<tbody>\n",
           fp);
@@ -213,7 +218,7 @@ static void figures_of(FILE *fp, const bf_fig_set *figs, bf_fig_kind kind,
 
 /* The configurations target s does not use, as "54, 97, ...", or
  * "none". */
-static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
+static void left_out(FILE *fp, const bf_rep_study *st, size_t s)
 {
     size_t mat = st->targets[s].material;
     size_t nconf = bf_dataset_nconf(st->in.ds, mat);
@@ -227,7 +232,7 @@ static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
         page_oom = 1;
     }
     if (sel != NULL && data != NULL &&
-        bf_cli_target_data(st, s, sel, &K, data) == BF_OK) {
+        bf_rep_target_data(st, s, sel, &K, data) == BF_OK) {
         for (k = 0; k < nconf; k++) {
             if (j < K && sel[j] == k) {
                 j++;
@@ -245,7 +250,7 @@ static void left_out(FILE *fp, const bf_cli_study *st, size_t s)
 }
 
 /* Whether every target uses the same configurations of the same list. */
-static int one_selection(const bf_cli_study *st)
+static int one_selection(const bf_rep_study *st)
 {
     size_t s;
     for (s = 1; s < st->n_samples; s++) {
@@ -260,9 +265,9 @@ static int one_selection(const bf_cli_study *st)
 
 /* What the run was given: the data (format, files, names), the samples,
  * the models, the configurations used and left out. */
-static void data_section(FILE *fp, const bf_cli_study *st)
+static void data_section(FILE *fp, const bf_rep_study *st)
 {
-    const bf_cli_inputs *in = &st->in;
+    const bf_report_inputs *in = &st->in;
     const bf_dataset *ds = in->ds;
     char cone[512];
     size_t m;
@@ -286,11 +291,11 @@ static void data_section(FILE *fp, const bf_cli_study *st)
     } else {
         fprintf(fp, "<li>%zu material%s from %zu file%s:<ul>\n",
                 bf_dataset_count(ds), bf_dataset_count(ds) == 1 ? "" : "s",
-                st->opts.src.n_inputs, st->opts.src.n_inputs == 1 ? "" : "s");
+                st->in.n_files, st->in.n_files == 1 ? "" : "s");
         for (m = 0; m < bf_dataset_count(ds); m++) {
             size_t nc = bf_dataset_nchannels(ds, m);
             char who[256];
-            bf_cli_material_label(ds, m, who, sizeof who);
+            bf_rep_material_label(ds, m, who, sizeof who);
             fputs("<li>", fp);
             bf_tt_html_text(fp, who);
             fprintf(fp, ": format %s, <code>",
@@ -319,7 +324,7 @@ static void data_section(FILE *fp, const bf_cli_study *st)
         bf_tt_html_text(fp, st->models[m]->name);
     }
     fputs(").</li>\n", fp);
-    bf_cli_describe_cone(st, cone, sizeof cone);
+    bf_rep_describe_cone(st, cone, sizeof cone);
     fputs("<li>Specular exclusion: ", fp);
     bf_tt_html_text(fp, cone);
     fputs(".</li>\n", fp);
@@ -351,7 +356,7 @@ static void data_section(FILE *fp, const bf_cli_study *st)
     fputs("</ul>\n", fp);
 }
 
-static void conventions(FILE *fp, const bf_cli_study *st,
+static void conventions(FILE *fp, const bf_rep_study *st,
                         const bf_report_meta *meta)
 {
     char *text = NULL;
@@ -413,7 +418,7 @@ static void conventions(FILE *fp, const bf_cli_study *st,
             meta->fig->width, meta->fig->width / 72.0, BF_PLOT_FONT,
             BF_PLOT_PNG_DPI,
             (meta->fig->formats & (1u << BF_PLOT_SVG)) ? " and SVG" : "");
-    if (mem == NULL || bf_cli_study_describe(st, mem) != BF_EXIT_OK ||
+    if (mem == NULL || bf_rep_study_describe(st, mem) != BF_REPORT_OK ||
         ferror(mem)) {
         page_oom = 1;
     }
@@ -431,7 +436,7 @@ static void conventions(FILE *fp, const bf_cli_study *st,
 }
 
 /* The analysis beyond the paper: model selection and intervals. */
-static void analysis(FILE *fp, const bf_cli_study *st, const bf_fig_set *figs)
+static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
 {
     size_t m;
     fputs("<h2 id=\"analysis\">Analysis beyond the paper</h2>\n", fp);
@@ -459,7 +464,7 @@ static void analysis(FILE *fp, const bf_cli_study *st, const bf_fig_set *figs)
 }
 
 /* One collapsible section per sample with its figures. */
-static void per_sample(FILE *fp, const bf_cli_study *st,
+static void per_sample(FILE *fp, const bf_rep_study *st,
                        const bf_fig_set *figs)
 {
     size_t s;
@@ -484,7 +489,7 @@ static void per_sample(FILE *fp, const bf_cli_study *st,
     }
 }
 
-static void contents(FILE *fp, const bf_cli_study *st)
+static void contents(FILE *fp, const bf_rep_study *st)
 {
     fputs("<nav aria-label=\"Contents\">\n<h2>Contents</h2>\n<ol>\n"
           "<li><a href=\"#data\">Data</a></li>\n"
@@ -507,7 +512,7 @@ static void contents(FILE *fp, const bf_cli_study *st)
 
 /* ==== the page =========================================================== */
 
-int bf_report_html(const bf_cli_study *st, const bf_fig_set *figs,
+int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
                    const bf_report_meta *meta, FILE *fp)
 {
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8"

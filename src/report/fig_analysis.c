@@ -82,7 +82,7 @@ static void param_label(const bf_param *p, char *buf, size_t len)
 }
 
 /* Free parameters of model m analysed for some sample. */
-static unsigned free_params(const bf_cli_study *st, size_t m)
+static unsigned free_params(const bf_rep_study *st, size_t m)
 {
     unsigned mask = 0;
     size_t s;
@@ -105,7 +105,7 @@ static size_t popcount(unsigned v)
 }
 
 /* Sample names of the rows, top to bottom in study order, at y = N - s. */
-static const char **sample_names(const bf_cli_study *st, bf_fig_desc *d)
+static const char **sample_names(const bf_rep_study *st, bf_fig_desc *d)
 {
     size_t N = st->n_samples;
     char (*buf)[128] = bf_fig_alloc(d, N * sizeof *buf);
@@ -126,7 +126,7 @@ static const char **sample_names(const bf_cli_study *st, bf_fig_desc *d)
 int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                   int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t N = st->n_samples;
     size_t m = e->index;
     const bf_model_type *t = st->models[m];
@@ -277,7 +277,7 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     static const char *const classes[BF_PLOT_NCLASSES] = {
         "\xce\x94" "BIC = 0 (best)", "\xe2\x89\xa4 2", "2\xe2\x80\x93" "6",
         "6\xe2\x80\x93" "10", "> 10"};
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t N = st->n_samples;
     size_t M = st->n_models;
     const char **names = sample_names(st, d);
@@ -303,11 +303,11 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         double best = HUGE_VAL;
         size_t r = N - 1 - s; /* the first sample on top */
         for (m = 0; m < M; m++) {
-            double b = bf_cli_rank_value(st, s * M + m, BF_CLI_BIC);
+            double b = bf_rep_rank_value(st, s * M + m, BF_REP_BIC);
             best = isfinite(b) ? fmin(best, b) : best;
         }
         for (m = 0; m < M; m++) {
-            double b = bf_cli_rank_value(st, s * M + m, BF_CLI_BIC);
+            double b = bf_rep_rank_value(st, s * M + m, BF_REP_BIC);
             double delta = b - best;
             size_t c = r * M + m;
             cls[c] = bic_class(delta);
@@ -380,7 +380,7 @@ static void problem_of(const bf_fig_data *D, size_t s, size_t m,
 int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t s = e->index;
     size_t M = st->n_models;
     size_t np = 0;

@@ -40,7 +40,7 @@ typedef struct {
 static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
                             plane_data *pd, int *rc)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     const bf_fig_sample *r = &D->smp[s];
     bf_geom cg[CURVE_POINTS];
     double *work = malloc(r->K * sizeof *work + 1);
@@ -95,7 +95,7 @@ static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
 int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     int polar = e->kind == BF_FIG_POLAR;
     size_t s = e->index;
     size_t na = D->o->n_incidence;

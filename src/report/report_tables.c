@@ -11,16 +11,16 @@
 #include "texttable.h"
 
 /* The number and name (with its channel) of target s. */
-static void sample_cells(FILE *fp, const bf_cli_study *st, size_t s)
+static void sample_cells(FILE *fp, const bf_rep_study *st, size_t s)
 {
     char title[512];
-    bf_cli_sample_title(st, s, title, sizeof title);
+    bf_rep_sample_title(st, s, title, sizeof title);
     fprintf(fp, "<td class=\"n\">%d</td><td>", st->samples[s]);
     bf_tt_html_text(fp, title);
     fputs("</td>", fp);
 }
 
-void bf_report_table2(FILE *fp, const bf_cli_study *st)
+void bf_report_table2(FILE *fp, const bf_rep_study *st)
 {
     size_t s;
     size_t m;
@@ -30,7 +30,7 @@ void bf_report_table2(FILE *fp, const bf_cli_study *st)
     for (m = 0; m < st->n_models; m++) {
         const bf_model_type *t = st->models[m];
         for (j = 0; j < t->p; j++) {
-            if (bf_cli_shows_param(t, j)) {
+            if (bf_rep_shows_param(t, j)) {
                 fputs("<th>", fp);
                 bf_tt_html_text(fp, t->name);
                 fputs(" ", fp);
@@ -46,7 +46,7 @@ void bf_report_table2(FILE *fp, const bf_cli_study *st)
         for (m = 0; m < st->n_models; m++) {
             const bf_study_row *r = &st->rows[s * st->n_models + m];
             for (j = 0; j < r->type->p; j++) {
-                if (!bf_cli_shows_param(r->type, j)) {
+                if (!bf_rep_shows_param(r->type, j)) {
                     continue;
                 }
                 if (r->status != BF_OK) {
@@ -63,7 +63,7 @@ void bf_report_table2(FILE *fp, const bf_cli_study *st)
     fputs("</tbody>\n</table>\n", fp);
 }
 
-void bf_report_table3(FILE *fp, const bf_cli_study *st)
+void bf_report_table3(FILE *fp, const bf_rep_study *st)
 {
     size_t s;
     size_t m;
@@ -100,8 +100,8 @@ void bf_report_table3(FILE *fp, const bf_cli_study *st)
 }
 
 /* Samples won by each model under each criterion (the best of each
- * sample, bf_cli_rank_best), and the text summary beside it. */
-static void wins_table(FILE *fp, const bf_cli_study *st)
+ * sample, bf_rep_rank_best), and the text summary beside it. */
+static void wins_table(FILE *fp, const bf_rep_study *st)
 {
     size_t m;
     size_t s;
@@ -113,12 +113,12 @@ static void wins_table(FILE *fp, const bf_cli_study *st)
         fputs("</th>", fp);
     }
     fputs("</tr></thead>\n<tbody>\n", fp);
-    for (c = 0; c < BF_CLI_NCRIT; c++) {
-        fprintf(fp, "<tr><td>%s</td>", bf_cli_crit_names[c]);
+    for (c = 0; c < BF_REP_NCRIT; c++) {
+        fprintf(fp, "<tr><td>%s</td>", bf_rep_crit_names[c]);
         for (m = 0; m < st->n_models; m++) {
             size_t n = 0;
             for (s = 0; s < st->n_samples; s++) {
-                n += bf_cli_rank_best(st, s, c) == m;
+                n += bf_rep_rank_best(st, s, c) == m;
             }
             fprintf(fp, "<td class=\"n\">%zu</td>", n);
         }
@@ -127,7 +127,7 @@ static void wins_table(FILE *fp, const bf_cli_study *st)
     fputs("</tbody>\n</table>\n", fp);
 }
 
-void bf_report_selection(FILE *fp, const bf_cli_study *st)
+void bf_report_selection(FILE *fp, const bf_rep_study *st)
 {
     bf_tt *t;
     fputs("<p>Samples won by each model: the model with the lowest AIC, "
@@ -136,7 +136,7 @@ void bf_report_selection(FILE *fp, const bf_cli_study *st)
           "parameters).</p>\n",
           fp);
     wins_table(fp, st);
-    t = bf_cli_rank_table(st, BF_CLI_BIC);
+    t = bf_rep_rank_table(st, BF_REP_BIC);
     if (t != NULL) {
         fputs("<details>\n<summary id=\"bic\">BIC per sample (lower is "
               "better; * marks the best, the last columns the best by each "
@@ -159,7 +159,7 @@ static void interval(FILE *fp, double lo, double hi, unsigned open)
             (open & 1u) ? " (bound)" : "", hi, (open & 2u) ? " (bound)" : "");
 }
 
-void bf_report_intervals(FILE *fp, const bf_cli_study *st)
+void bf_report_intervals(FILE *fp, const bf_rep_study *st)
 {
     size_t s;
     size_t m;

@@ -2,8 +2,8 @@
  * run (data, configurations, conventions, fit), Tables 2 and 3 of the
  * paper, and the files fits.csv (the library's writer), table2.md and
  * table3.md. */
-#ifndef BF_CLI_TABLES_H
-#define BF_CLI_TABLES_H
+#ifndef BF_REPORT_TABLES_H
+#define BF_REPORT_TABLES_H
 
 #include <stdio.h>
 
@@ -11,19 +11,19 @@
 
 /* Prints the "Data:" lines: CURET's files, or each material's file,
  * format, configurations and channels. */
-void bf_cli_describe_data(const bf_cli_study *st, FILE *fp);
+void bf_rep_describe_data(const bf_rep_study *st, FILE *fp);
 
 /* The specular exclusion in words, into buf. */
-void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len);
+void bf_rep_describe_cone(const bf_rep_study *st, char *buf, size_t len);
 
 /* Prints what was run: data, configurations used, conventions, the fit,
- * its free parameters and the analysis. Returns BF_EXIT_OK, or
- * BF_EXIT_SOFTWARE after the message when out of memory. */
-int bf_cli_study_describe(const bf_cli_study *st, FILE *fp);
+ * its free parameters and the analysis. Returns BF_REPORT_OK, or
+ * BF_REPORT_SOFTWARE after the message when out of memory. */
+int bf_rep_study_describe(const bf_rep_study *st, FILE *fp);
 
 /* Writes fits.csv, table2.md and table3.md atomically into the output
- * folder and, unless quiet, prints the description and both tables. Returns
- * BF_EXIT_OK or an exit status after printing the error. */
-int bf_cli_study_write_tables(const bf_cli_study *st);
+ * folder and, when st->opts.echo is set, prints the description and both
+ * tables there. Returns BF_REPORT_OK or a status after the message. */
+int bf_rep_study_write_tables(const bf_rep_study *st);
 
 #endif

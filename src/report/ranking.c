@@ -12,9 +12,9 @@
 #include "ranking.h"
 #include "texttable.h"
 
-const char *const bf_cli_crit_names[BF_CLI_NCRIT] = {"AIC", "BIC", "CV"};
+const char *const bf_rep_crit_names[BF_REP_NCRIT] = {"AIC", "BIC", "CV"};
 
-double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c)
+double bf_rep_rank_value(const bf_rep_study *st, size_t i, int c)
 {
     if (st->rows[i].status != BF_OK) {
         return NAN;
@@ -24,7 +24,7 @@ double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c)
 
 /* bf_rank of sample s into rank (n_models entries; NULL: not wanted);
  * returns the best model or SIZE_MAX. */
-static size_t rank_sample(const bf_cli_study *st, size_t s, int c,
+static size_t rank_sample(const bf_rep_study *st, size_t s, int c,
                           size_t *rank)
 {
     size_t best = SIZE_MAX;
@@ -33,11 +33,11 @@ static size_t rank_sample(const bf_cli_study *st, size_t s, int c,
     return best;
 }
 
-size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
+size_t bf_rep_rank_of(const bf_rep_study *st, size_t s, size_t m, int c)
 {
     size_t *rank = malloc((st->n_models + 1) * sizeof *rank);
     size_t r = 0;
-    if (rank != NULL && isfinite(bf_cli_rank_value(st, s * st->n_models + m,
+    if (rank != NULL && isfinite(bf_rep_rank_value(st, s * st->n_models + m,
                                                    c))) {
         rank_sample(st, s, c, rank);
         r = rank[m];
@@ -46,7 +46,7 @@ size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c)
     return r;
 }
 
-size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c)
+size_t bf_rep_rank_best(const bf_rep_study *st, size_t s, int c)
 {
     return rank_sample(st, s, c, NULL);
 }
@@ -59,10 +59,10 @@ static void sample_headers(bf_tt *t)
     bf_tt_right(t, 0);
 }
 
-static void sample_cells(bf_tt *t, const bf_cli_study *st, size_t s)
+static void sample_cells(bf_tt *t, const bf_rep_study *st, size_t s)
 {
     char title[512];
-    bf_cli_sample_title(st, s, title, sizeof title);
+    bf_rep_sample_title(st, s, title, sizeof title);
     bf_tt_set(t, 0, "%d", st->samples[s]);
     bf_tt_set(t, 1, "%s", title);
 }
@@ -70,7 +70,7 @@ static void sample_cells(bf_tt *t, const bf_cli_study *st, size_t s)
 /* The best model b of sample s as the tables name it: "FC-E", or
  * "ON = LAMBERT" for a fit that reduces to another model (its win counts
  * for that one, bf_rank_winner). */
-static const char *best_name(const bf_cli_study *st, size_t s, size_t b,
+static const char *best_name(const bf_rep_study *st, size_t s, size_t b,
                              char *buf, size_t len)
 {
     const char *w;
@@ -95,9 +95,9 @@ static bf_tt *complete(bf_tt *t)
     return t;
 }
 
-bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
+bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit)
 {
-    bf_tt *t = bf_tt_alloc(2 + st->n_models + BF_CLI_NCRIT);
+    bf_tt *t = bf_tt_alloc(2 + st->n_models + BF_REP_NCRIT);
     size_t *rank = malloc((st->n_models + 1) * sizeof *rank);
     size_t s;
     size_t m;
@@ -112,9 +112,9 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
         bf_tt_header(t, 2 + m, st->models[m]->name);
         bf_tt_right(t, 2 + m);
     }
-    for (c = 0; c < BF_CLI_NCRIT; c++) {
+    for (c = 0; c < BF_REP_NCRIT; c++) {
         char head[32];
-        snprintf(head, sizeof head, "best %s", bf_cli_crit_names[c]);
+        snprintf(head, sizeof head, "best %s", bf_rep_crit_names[c]);
         bf_tt_header(t, 2 + st->n_models + (size_t)c, head);
     }
     for (s = 0; s < st->n_samples; s++) {
@@ -126,14 +126,14 @@ bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit)
         sample_cells(t, st, s);
         rank_sample(st, s, crit, rank);
         for (m = 0; m < st->n_models; m++) {
-            double v = bf_cli_rank_value(st, s * st->n_models + m, crit);
+            double v = bf_rep_rank_value(st, s * st->n_models + m, crit);
             if (isfinite(v)) {
                 bf_tt_set(t, 2 + m, "%.1f%s", v, rank[m] == 1 ? "*" : "");
             } else {
                 bf_tt_set(t, 2 + m, "-");
             }
         }
-        for (c = 0; c < BF_CLI_NCRIT; c++) {
+        for (c = 0; c < BF_REP_NCRIT; c++) {
             char name[128];
             bf_tt_set(t, 2 + st->n_models + (size_t)c, "%s",
                       best_name(st, s, rank_sample(st, s, c, NULL), name,
@@ -175,7 +175,7 @@ static size_t fitted_params(const bf_model_type *type, size_t *idx)
     return n;
 }
 
-int bf_cli_params_table(const bf_cli_study *st, size_t m, bf_tt **out)
+int bf_rep_params_table(const bf_rep_study *st, size_t m, bf_tt **out)
 {
     const bf_model_type *type = st->models[m];
     size_t idx[BF_MAX_PARAMS];
@@ -185,10 +185,10 @@ int bf_cli_params_table(const bf_cli_study *st, size_t m, bf_tt **out)
     size_t q;
     *out = NULL;
     if (np == 0) {
-        return BF_EXIT_OK;
+        return BF_REPORT_OK;
     }
     if ((t = bf_tt_alloc(3 + np)) == NULL) {
-        return BF_EXIT_SOFTWARE;
+        return BF_REPORT_SOFTWARE;
     }
     sample_headers(t);
     for (q = 0; q < np; q++) {
@@ -200,7 +200,7 @@ int bf_cli_params_table(const bf_cli_study *st, size_t m, bf_tt **out)
         char flags[512];
         if (bf_tt_add_row(t) != 0) {
             bf_tt_free(t);
-            return BF_EXIT_SOFTWARE;
+            return BF_REPORT_SOFTWARE;
         }
         sample_cells(t, st, s);
         for (q = 0; q < np; q++) {
@@ -210,10 +210,10 @@ int bf_cli_params_table(const bf_cli_study *st, size_t m, bf_tt **out)
         bf_tt_set(t, 2 + np, "%s", flags);
     }
     *out = complete(t);
-    return *out != NULL ? BF_EXIT_OK : BF_EXIT_SOFTWARE;
+    return *out != NULL ? BF_REPORT_OK : BF_REPORT_SOFTWARE;
 }
 
-bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
+bf_tt *bf_rep_best_table(const bf_rep_study *st, int crit)
 {
     bf_tt *t = bf_tt_alloc(4);
     size_t s;
@@ -261,7 +261,7 @@ bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit)
 /* "BIC: FC-E best for 34 of 61 samples, VH-E 12, ..." (most wins first;
  * bf_study_wins: a fit that reduces to another model counts for that
  * model, never for the larger one). */
-int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
+int bf_rep_rank_summary(const bf_rep_study *st, int c, FILE *fp)
 {
     const char **names = calloc(2 * st->n_models + 1, sizeof *names);
     size_t *wins = calloc(2 * st->n_models + 1, sizeof *wins);
@@ -274,13 +274,13 @@ int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
     if (e == BF_ENOMEM) {
         free(wins);
         free(names);
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     if (e != BF_OK) {
         n = 0;
     }
-    fprintf(fp, "%s:", bf_cli_crit_names[c]);
+    fprintf(fp, "%s:", bf_rep_crit_names[c]);
     for (i = 0; i < n; i++) {
         if (i == 0) {
             fprintf(fp, " %s best for %zu of %zu samples", names[i], wins[i],
@@ -292,5 +292,5 @@ int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp)
     fputs(n == 0 ? " no model could be ranked\n" : "\n", fp);
     free(wins);
     free(names);
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }

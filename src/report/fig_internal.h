@@ -4,9 +4,9 @@
  * points into, and one describe function per figure kind. figures.c
  * prepares the data and draws; fig_paper.c (Figures 2(b), 3-6, wins),
  * fig_plane.c (plane of incidence) and fig_analysis.c (intervals,
- * profiles, delta BIC) describe. Private to cli/. */
-#ifndef BF_CLI_FIG_INTERNAL_H
-#define BF_CLI_FIG_INTERNAL_H
+ * profiles, delta BIC) describe. Private to src/report. */
+#ifndef BF_REPORT_FIG_INTERNAL_H
+#define BF_REPORT_FIG_INTERNAL_H
 
 #include "figures.h"
 
@@ -33,7 +33,7 @@ typedef struct {
 
 /* Everything the figures draw from. */
 typedef struct {
-    const bf_cli_study *st;
+    const bf_rep_study *st;
     const bf_fig_opts *o;
     bf_fig_sample *smp;           /* one per sample */
     size_t idx[BF_FIG_MAX_MODELS]; /* models of the scatter and plane
@@ -55,12 +55,12 @@ void *bf_fig_alloc(bf_fig_desc *d, size_t size);
 void bf_fig_desc_free(bf_fig_desc *d);
 
 /* The study row of sample index s and model index m. */
-const bf_study_row *bf_fig_row(const bf_cli_study *st, size_t s, size_t m);
+const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m);
 /* 1 when model m was evaluated (status BF_OK) for at least one sample of
  * st: ON without tabulated parameters is evaluated for none. */
-int bf_fig_evaluated_anywhere(const bf_cli_study *st, size_t m);
+int bf_fig_evaluated_anywhere(const bf_rep_study *st, size_t m);
 /* The list "ON, LFTG, VH-E" of the models idx[0..n) into buf. */
-const char *bf_fig_model_list(const bf_cli_study *st, const size_t *idx,
+const char *bf_fig_model_list(const bf_rep_study *st, const size_t *idx,
                               size_t n, char *buf, size_t len);
 
 /* Describe functions: each fills e's base, title, caption and alt text
@@ -90,6 +90,6 @@ size_t bf_fig_scatter_group(const bf_fig_data *D, size_t s0);
 
 /* Whether model m has free parameters analysed for some sample (it gets
  * a forest plot). */
-int bf_fig_has_forest(const bf_cli_study *st, size_t m);
+int bf_fig_has_forest(const bf_rep_study *st, size_t m);
 
 #endif

@@ -2,8 +2,8 @@
  * `report --stats`): criterion values, ranks and best models from the
  * library (bf_study_rank, bf_study_wins; doc/methods.md §4-5), the
  * per-sample tables and the summary over samples. */
-#ifndef BF_CLI_RANKING_H
-#define BF_CLI_RANKING_H
+#ifndef BF_REPORT_RANKING_H
+#define BF_REPORT_RANKING_H
 
 #include <stdio.h>
 
@@ -12,30 +12,30 @@
 struct bf_tt;
 
 /* The criteria of the ranking (doc/methods.md §4-5), as bf_criterion. */
-enum { BF_CLI_AIC = BF_CRIT_AIC, BF_CLI_BIC = BF_CRIT_BIC,
-       BF_CLI_CV = BF_CRIT_CV, BF_CLI_NCRIT = BF_NCRIT };
-extern const char *const bf_cli_crit_names[BF_CLI_NCRIT];
+enum { BF_REP_AIC = BF_CRIT_AIC, BF_REP_BIC = BF_CRIT_BIC,
+       BF_REP_CV = BF_CRIT_CV, BF_REP_NCRIT = BF_NCRIT };
+extern const char *const bf_rep_crit_names[BF_REP_NCRIT];
 
 /* Value of criterion c for row i (NaN when not computed); needs st->stats. */
-double bf_cli_rank_value(const bf_cli_study *st, size_t i, int c);
+double bf_rep_rank_value(const bf_rep_study *st, size_t i, int c);
 /* Rank (1 = best) of model m for sample s by criterion c; 0 without one. */
-size_t bf_cli_rank_of(const bf_cli_study *st, size_t s, size_t m, int c);
+size_t bf_rep_rank_of(const bf_rep_study *st, size_t s, size_t m, int c);
 /* The best model of sample s by criterion c, (size_t)-1 when none. */
-size_t bf_cli_rank_best(const bf_cli_study *st, size_t s, int c);
+size_t bf_rep_rank_best(const bf_rep_study *st, size_t s, int c);
 /* The per-sample table of criterion crit (caller frees), NULL on ENOMEM. */
-struct bf_tt *bf_cli_rank_table(const bf_cli_study *st, int crit);
+struct bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit);
 /* The fitted parameters with their 95% profile intervals (and bootstrap
  * intervals when run) of model m for every sample into *out (caller
- * frees; NULL when m fits nothing). Returns BF_EXIT_OK, or
- * BF_EXIT_SOFTWARE (*out NULL) when out of memory. */
-int bf_cli_params_table(const bf_cli_study *st, size_t m,
+ * frees; NULL when m fits nothing). Returns BF_REPORT_OK, or
+ * BF_REPORT_SOFTWARE (*out NULL) when out of memory. */
+int bf_rep_params_table(const bf_rep_study *st, size_t m,
                         struct bf_tt **out);
 /* The best model of each sample by crit with its parameters and
  * intervals (caller frees), NULL on ENOMEM. */
-struct bf_tt *bf_cli_best_table(const bf_cli_study *st, int crit);
+struct bf_tt *bf_rep_best_table(const bf_rep_study *st, int crit);
 /* Prints "BIC: FC-E best for 32 of 61 samples, ON 13, ..." and a newline.
- * Returns BF_EXIT_OK, or BF_EXIT_SOFTWARE after the message when out of
+ * Returns BF_REPORT_OK, or BF_REPORT_SOFTWARE after the message when out of
  * memory (nothing printed). */
-int bf_cli_rank_summary(const bf_cli_study *st, int c, FILE *fp);
+int bf_rep_rank_summary(const bf_rep_study *st, int c, FILE *fp);
 
 #endif

@@ -8,14 +8,14 @@
  * temporary names, by several processes at once when asked (the same
  * bytes whatever their number), and renamed into place together by
  * bf_figures_commit, so a failed run leaves no figure behind. */
-#ifndef BF_CLI_FIGURES_H
-#define BF_CLI_FIGURES_H
+#ifndef BF_REPORT_FIGURES_H
+#define BF_REPORT_FIGURES_H
 
 #include "plot.h"
 #include "study.h"
 
 /* At most this many incidence angles in the plane-of-incidence figures. */
-#define BF_FIG_MAX_INCIDENCE 4
+#define BF_FIG_MAX_INCIDENCE BF_REPORT_MAX_INCIDENCE
 
 /* The folder, inside the output folder, that holds the figures. */
 #define BF_FIG_DIR "figures"
@@ -31,7 +31,8 @@ typedef struct {
     size_t n_incidence; /* 0 until given or chosen */
     int incidence_chosen; /* chosen from the data, not by --incidence */
     int jobs;          /* processes drawing at once (>= 1) */
-    int progress;      /* print a progress line on stderr */
+    bf_report_progress_fn progress; /* files drawn, or NULL */
+    void *progress_ctx;
 } bf_fig_opts;
 
 typedef enum {
@@ -75,28 +76,28 @@ typedef struct {
 
 /* Draws every figure of the study st into temporary files in
  * out_dir/BF_FIG_DIR (created if missing) and describes them in set:
- * bf_figures_start then bf_figures_finish. Returns BF_EXIT_OK or an exit
- * status after printing the error (the temporaries are then removed). */
-int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
+ * bf_figures_start then bf_figures_finish. Returns BF_REPORT_OK or an status
+ * after the message (the temporaries are then removed). */
+int bf_figures_render(const bf_rep_study *st, const bf_fig_opts *o,
                       const char *out_dir, bf_fig_set *set);
 
 /* Starts drawing the figures of the paper's protocol (and, with
  * with_analysis and st->stats, those of the analysis): with o->jobs > 1 in
  * drawing processes, and returns while they draw, so that the caller can
  * run the analysis meanwhile (st's rows must not change: the paper's
- * protocol, not --fit exact). Returns BF_EXIT_OK or an exit status after
- * printing the error (set is then freed). */
-int bf_figures_start(const bf_cli_study *st, const bf_fig_opts *o,
+ * protocol, not --fit exact). Returns BF_REPORT_OK or a status after
+ * the message (set is then freed). */
+int bf_figures_start(const bf_rep_study *st, const bf_fig_opts *o,
                      const char *out_dir, bf_fig_set *set,
                      int with_analysis);
 
 /* Draws the analysis figures if st->stats is now there and they were not
- * started, and waits for every drawing process. Returns BF_EXIT_OK or an
- * exit status after printing the error (set is then freed). */
-int bf_figures_finish(const bf_cli_study *st, bf_fig_set *set);
+ * started, and waits for every drawing process. Returns BF_REPORT_OK or an
+ * status after the message (set is then freed). */
+int bf_figures_finish(const bf_rep_study *st, bf_fig_set *set);
 
-/* Renames every temporary file into place. Returns BF_EXIT_OK or an exit
- * status after printing the error; the files not yet renamed are removed. */
+/* Renames every temporary file into place. Returns BF_REPORT_OK or an status
+ * after the message; the files not yet renamed are removed. */
 int bf_figures_commit(bf_fig_set *set);
 
 /* Stops any drawing process, removes any temporary file left and frees
@@ -105,14 +106,14 @@ void bf_figures_free(bf_fig_set *set);
 
 /* "Felt (1)", "Felt [R] (1)", or "sample 1" without a name, for target
  * s, into buf. */
-const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_sample_label(const bf_rep_study *st, size_t s, char *buf,
                                 size_t len);
 /* Chooses o's incidence angles from the configurations of st's
  * materials (bf_geom_plane_incidences: those with the most views in their
  * plane of incidence, within BF_FIG_PLANE_TOL, spread over their range);
- * none when no configuration lies in its plane. BF_EXIT_OK, or an exit
- * status after printing the error. */
-int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o);
+ * none when no configuration lies in its plane. BF_REPORT_OK, or an status
+ * after the message. */
+int bf_figures_choose_incidence(const bf_rep_study *st, bf_fig_opts *o);
 
 /* Longest name (characters) a figure shows on an axis or above a panel. */
 #define BF_FIG_TICK_CHARS 24
@@ -120,15 +121,15 @@ int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o);
  * columns): a name longer than BF_FIG_TICK_CHARS characters is cut at a
  * space and ends in an ellipsis ("Krylon spray enamel 7205... (4)"); the
  * page's captions and tables keep the whole name. */
-const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_sample_tick(const bf_rep_study *st, size_t s, char *buf,
                                size_t len);
 /* The key of target s in file names and page anchors: "sample16", or
  * "sample16_R" when the study fits single channels (characters other than
  * letters, digits, '.', '-' written as '_'). */
-const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_target_key(const bf_rep_study *st, size_t s, char *buf,
                               size_t len);
 /* "K = 198" when every sample has the same K, else "K (per sample)". */
-const char *bf_fig_k_text(const bf_cli_study *st, char *buf, size_t len);
+const char *bf_fig_k_text(const bf_rep_study *st, char *buf, size_t len);
 
 
 #endif

@@ -43,7 +43,7 @@ void bf_fig_desc_free(bf_fig_desc *d)
 }
 
 /* "TITLE (N)", or "sample N" when title is empty, into buf. */
-static const char *label_of(const bf_cli_study *st, size_t s,
+static const char *label_of(const bf_rep_study *st, size_t s,
                             const char *title, char *buf, size_t len)
 {
     if (title[0] != '\0') {
@@ -54,15 +54,15 @@ static const char *label_of(const bf_cli_study *st, size_t s,
     return buf;
 }
 
-const char *bf_fig_sample_label(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_sample_label(const bf_rep_study *st, size_t s, char *buf,
                                 size_t len)
 {
     char title[256];
-    bf_cli_sample_title(st, s, title, sizeof title);
+    bf_rep_sample_title(st, s, title, sizeof title);
     return label_of(st, s, title, buf, len);
 }
 
-int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o)
+int bf_figures_choose_incidence(const bf_rep_study *st, bf_fig_opts *o)
 {
     size_t total = 0;
     size_t s;
@@ -78,8 +78,8 @@ int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o)
     }
     g = malloc((total + 1) * sizeof *g);
     if (g == NULL) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     for (s = 0; s < st->n_samples; s++) {
         size_t mat = st->targets[s].material;
@@ -94,12 +94,12 @@ int bf_figures_choose_incidence(const bf_cli_study *st, bf_fig_opts *o)
                                   &o->n_incidence);
     free(g);
     if (rc != BF_OK) {
-        bf_cli_err("cannot choose the incidence angles of the figures: %s",
+        bf_rep_err("cannot choose the incidence angles of the figures: %s",
                    bf_strerror(rc));
-        return rc == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+        return rc == BF_ENOMEM ? BF_REPORT_SOFTWARE : BF_REPORT_DATAERR;
     }
     o->incidence_chosen = 1;
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* Byte length of the first n characters of UTF-8 text t (fewer if t is
@@ -117,12 +117,12 @@ static size_t utf8_prefix(const char *t, size_t n)
     return i;
 }
 
-const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_sample_tick(const bf_rep_study *st, size_t s, char *buf,
                                size_t len)
 {
     char title[256];
     size_t cut;
-    bf_cli_sample_title(st, s, title, sizeof title);
+    bf_rep_sample_title(st, s, title, sizeof title);
     cut = utf8_prefix(title, BF_FIG_TICK_CHARS);
     if (title[cut] != '\0') { /* longer: cut at a space, add an ellipsis */
         size_t sp = cut;
@@ -139,13 +139,13 @@ const char *bf_fig_sample_tick(const bf_cli_study *st, size_t s, char *buf,
     return label_of(st, s, title, buf, len);
 }
 
-const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
+const char *bf_fig_target_key(const bf_rep_study *st, size_t s, char *buf,
                               size_t len)
 {
     int n = snprintf(buf, len, "sample%d", st->samples[s]);
     if (st->targets[s].channel != BF_CHANNEL_MEAN && n > 0 &&
         (size_t)n + 2 < len) {
-        const char *c = bf_cli_channel_name(st, s);
+        const char *c = bf_rep_channel_name(st, s);
         size_t j = (size_t)n;
         buf[j++] = '_';
         for (; *c != '\0' && j + 1 < len; c++) {
@@ -158,7 +158,7 @@ const char *bf_fig_target_key(const bf_cli_study *st, size_t s, char *buf,
     return buf;
 }
 
-const char *bf_fig_k_text(const bf_cli_study *st, char *buf, size_t len)
+const char *bf_fig_k_text(const bf_rep_study *st, char *buf, size_t len)
 {
     if (st->n_sel > 0) {
         snprintf(buf, len, "K = %zu", st->n_sel);
@@ -168,12 +168,12 @@ const char *bf_fig_k_text(const bf_cli_study *st, char *buf, size_t len)
     return buf;
 }
 
-const bf_study_row *bf_fig_row(const bf_cli_study *st, size_t s, size_t m)
+const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m)
 {
     return &st->rows[s * st->n_models + m];
 }
 
-const char *bf_fig_model_list(const bf_cli_study *st, const size_t *idx,
+const char *bf_fig_model_list(const bf_rep_study *st, const size_t *idx,
                               size_t n, char *buf, size_t len)
 {
     size_t b;
@@ -186,7 +186,7 @@ const char *bf_fig_model_list(const bf_cli_study *st, const size_t *idx,
     return buf;
 }
 
-int bf_fig_has_forest(const bf_cli_study *st, size_t m)
+int bf_fig_has_forest(const bf_rep_study *st, size_t m)
 {
     size_t s;
     if (st->stats == NULL) {
@@ -213,10 +213,10 @@ static void sample_free(bf_fig_sample *r)
 }
 
 /* Fills r for target s of st: its used configurations and normalised
- * measured radiance as the study fitted them (bf_cli_target_data), and
+ * measured radiance as the study fitted them (bf_rep_target_data), and
  * each model's prediction normalised by its own maximum over the same
  * configurations (SPEC §2, bf_fit_curve). Returns BF_OK or a BF_E* code. */
-static int sample_compute(const bf_cli_study *st, size_t s, bf_fig_sample *r)
+static int sample_compute(const bf_rep_study *st, size_t s, bf_fig_sample *r)
 {
     size_t mat = st->targets[s].material;
     size_t nconf = bf_dataset_nconf(st->in.ds, mat);
@@ -239,7 +239,7 @@ static int sample_compute(const bf_cli_study *st, size_t s, bf_fig_sample *r)
         free(work);
         return BF_ENOMEM;
     }
-    rc = bf_cli_target_data(st, s, sel, &K, r->data);
+    rc = bf_rep_target_data(st, s, sel, &K, r->data);
     for (k = 0; rc == BF_OK && k < K; k++) {
         r->geom[k] = all[sel[k]];
     }
@@ -258,7 +258,7 @@ static int sample_compute(const bf_cli_study *st, size_t s, bf_fig_sample *r)
     return rc;
 }
 
-static long model_index(const bf_cli_study *st, const char *name)
+static long model_index(const bf_rep_study *st, const char *name)
 {
     size_t m;
     for (m = 0; m < st->n_models; m++) {
@@ -273,7 +273,7 @@ static long model_index(const bf_cli_study *st, const char *name)
  * was given, else the paper's ON, LFTG, VH-E, FC-E that the run has and
  * evaluated for some sample (ON needs tabulated parameters, which data
  * other than CURET lack), or all of the run's models when none is left. */
-int bf_fig_evaluated_anywhere(const bf_cli_study *st, size_t m)
+int bf_fig_evaluated_anywhere(const bf_rep_study *st, size_t m)
 {
     size_t s;
     for (s = 0; s < st->n_samples; s++) {
@@ -284,7 +284,7 @@ int bf_fig_evaluated_anywhere(const bf_cli_study *st, size_t m)
     return 0;
 }
 
-static size_t scatter_models(const bf_cli_study *st, size_t *idx)
+static size_t scatter_models(const bf_rep_study *st, size_t *idx)
 {
     size_t n = 0;
     size_t i;
@@ -338,7 +338,7 @@ static bf_fig_entry *add_entry(bf_fig_set *set, bf_fig_kind kind,
  * per sample the plane of incidence (and the scatter panels). */
 static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t N = st->n_samples;
     size_t first_group = set->n + 2;
     size_t g;
@@ -372,7 +372,7 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
  * model with fitted parameters, a profile per sample. */
 static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t m;
     size_t s;
     int ok = add_entry(set, BF_FIG_DELTA_BIC, 0, 0) != NULL;
@@ -415,20 +415,20 @@ static int make_tmp(const bf_fig_set *set, bf_fig_entry *e,
     int len = snprintf(e->tmp[fmt], sizeof e->tmp[fmt], "%s/.%s.%s.XXXXXX",
                        set->dir, e->base, bf_plot_format_ext(fmt));
     if (len < 0 || (size_t)len >= sizeof e->tmp[fmt]) {
-        bf_cli_err("%s: output path too long", set->dir);
+        bf_rep_err("%s: output path too long", set->dir);
         e->tmp[fmt][0] = '\0';
-        return BF_EXIT_CANTCREAT;
+        return BF_REPORT_CANTCREAT;
     }
     fd = mkstemp(e->tmp[fmt]);
     if (fd < 0) {
-        bf_cli_err("%s/%s.%s: cannot create: %s", set->dir, e->base,
+        bf_rep_err("%s/%s.%s: cannot create: %s", set->dir, e->base,
                    bf_plot_format_ext(fmt), strerror(errno));
         e->tmp[fmt][0] = '\0';
-        return BF_EXIT_CANTCREAT;
+        return BF_REPORT_CANTCREAT;
     }
     (void)fchmod(fd, 0644);
     close(fd);
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* ==== drawing ============================================================ */
@@ -444,7 +444,7 @@ static int n_formats(unsigned formats)
 }
 
 /* Draws entry e in every format of the set; calls tick after each file.
- * Returns BF_EXIT_OK or an exit status after printing the error. */
+ * Returns BF_REPORT_OK or a status after the message. */
 static int draw_entry(const bf_fig_data *D, const bf_fig_set *set,
                       bf_fig_entry *e, void (*tick)(void *), void *arg)
 {
@@ -452,10 +452,10 @@ static int draw_entry(const bf_fig_data *D, const bf_fig_set *set,
     int rc = describe(D, e, &d, 1);
     int f;
     if (rc != BF_OK) {
-        bf_cli_err("%s: cannot describe the figure: %s", e->base,
+        bf_rep_err("%s: cannot describe the figure: %s", e->base,
                    bf_strerror(rc));
         bf_fig_desc_free(&d);
-        return rc == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+        return rc == BF_ENOMEM ? BF_REPORT_SOFTWARE : BF_REPORT_DATAERR;
     }
     for (f = 0; f < BF_PLOT_NFORMATS; f++) {
         if (!((set->formats >> f) & 1u)) {
@@ -463,23 +463,24 @@ static int draw_entry(const bf_fig_data *D, const bf_fig_set *set,
         }
         rc = bf_plot_write(&d.fig, (bf_plot_format)f, e->tmp[f]);
         if (rc != BF_OK) {
-            bf_cli_err("%s/%s.%s: cannot draw the figure: %s", set->dir,
+            bf_rep_err("%s/%s.%s: cannot draw the figure: %s", set->dir,
                        e->base, bf_plot_format_ext((bf_plot_format)f),
                        bf_strerror(rc));
             bf_fig_desc_free(&d);
-            return rc == BF_EIO ? BF_EXIT_IOERR : BF_EXIT_SOFTWARE;
+            return rc == BF_EIO ? BF_REPORT_IOERR : BF_REPORT_SOFTWARE;
         }
         tick(arg);
     }
     bf_fig_desc_free(&d);
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-/* Progress on stderr: files drawn of the total. */
+/* Progress (the options' callback): files drawn of the total. */
 typedef struct {
     size_t done;
     size_t total;
-    int show;
+    bf_report_progress_fn show; /* NULL: none */
+    void *show_ctx;
     int fd; /* workers: the pipe to the parent, else -1 */
 } progress_t;
 
@@ -492,10 +493,8 @@ static void progress_tick(void *arg)
         return;
     }
     p->done++;
-    if (p->show) {
-        fprintf(stderr, "\rbrdffit report: drawing figures %zu/%zu",
-                p->done, p->total);
-        fflush(stderr);
+    if (p->show != NULL) {
+        p->show(p->show_ctx, "drawing figures", p->done, p->total);
     }
 }
 
@@ -542,7 +541,7 @@ struct bf_fig_run {
  * reads) before any worker starts reading, each worker draws the figures
  * it reads, reports each file drawn on the progress pipe and exits with
  * its status. With jobs = 1 the figures are drawn here. Returns
- * BF_EXIT_OK or an exit status (after printing the error). */
+ * BF_REPORT_OK or a status (after the message). */
 static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
                       int jobs, pool_t *p, progress_t *pr)
 {
@@ -553,15 +552,15 @@ static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
     p->n = 0;
     p->prog = -1;
     if (jobs <= 1 || set->n - from <= 1) {
-        int rc = BF_EXIT_OK;
-        for (i = from; i < set->n && rc == BF_EXIT_OK; i++) {
+        int rc = BF_REPORT_OK;
+        for (i = from; i < set->n && rc == BF_REPORT_OK; i++) {
             rc = draw_entry(D, set, &set->fig[i], progress_tick, pr);
         }
         return rc;
     }
     if (pipe(work) != 0) {
-        bf_cli_err("cannot start the drawing processes: %s", strerror(errno));
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("cannot start the drawing processes: %s", strerror(errno));
+        return BF_REPORT_SOFTWARE;
     }
     for (i = from; i < set->n; i++) { /* a few bytes a figure: fits */
         unsigned char b[4] = {(unsigned char)(i & 0xFF),
@@ -569,32 +568,32 @@ static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
                               (unsigned char)((i >> 16) & 0xFF),
                               (unsigned char)((i >> 24) & 0xFF)};
         if (write(work[1], b, sizeof b) != (ssize_t)sizeof b) {
-            bf_cli_err("cannot hand out the figures: %s", strerror(errno));
+            bf_rep_err("cannot hand out the figures: %s", strerror(errno));
             close(work[0]);
             close(work[1]);
-            return BF_EXIT_SOFTWARE;
+            return BF_REPORT_SOFTWARE;
         }
     }
     close(work[1]);
     if (pipe(prog) != 0) {
-        bf_cli_err("cannot start the drawing processes: %s", strerror(errno));
+        bf_rep_err("cannot start the drawing processes: %s", strerror(errno));
         close(work[0]);
-        return BF_EXIT_SOFTWARE;
+        return BF_REPORT_SOFTWARE;
     }
     fflush(stdout);
     fflush(stderr);
     for (w = 0; w < jobs && w < MAX_WORKERS; w++) {
         pid_t pid = fork();
         if (pid < 0) {
-            bf_cli_err("cannot start a drawing process: %s", strerror(errno));
+            bf_rep_err("cannot start a drawing process: %s", strerror(errno));
             break;
         }
         if (pid == 0) { /* a worker */
             progress_t mine = *pr;
-            int status = BF_EXIT_OK;
+            int status = BF_REPORT_OK;
             close(prog[0]);
             mine.fd = prog[1];
-            while (status == BF_EXIT_OK && next_index(work[0], &i) &&
+            while (status == BF_REPORT_OK && next_index(work[0], &i) &&
                    i < set->n) {
                 status = draw_entry(D, set, &set->fig[i], progress_tick,
                                     &mine);
@@ -606,17 +605,17 @@ static int pool_start(const bf_fig_data *D, bf_fig_set *set, size_t from,
     close(work[0]);
     close(prog[1]);
     p->prog = prog[0];
-    return p->n > 0 ? BF_EXIT_OK : BF_EXIT_SOFTWARE;
+    return p->n > 0 ? BF_REPORT_OK : BF_REPORT_SOFTWARE;
 }
 
 /* Waits for the processes of p, counting the files they report; returns
- * the first failing status (BF_EXIT_OK when all succeeded). With kill_them,
+ * the first failing status (BF_REPORT_OK when all succeeded). With kill_them,
  * stops them first (the run failed elsewhere). */
 static int pool_wait(pool_t *p, progress_t *pr, int kill_them)
 {
     char buf[256];
     ssize_t got;
-    int rc = BF_EXIT_OK;
+    int rc = BF_REPORT_OK;
     int w;
     for (w = 0; kill_them && w < p->n; w++) {
         kill(p->pid[w], SIGTERM);
@@ -636,8 +635,8 @@ static int pool_wait(pool_t *p, progress_t *pr, int kill_them)
         int status = 0;
         while (waitpid(p->pid[w], &status, 0) < 0 && errno == EINTR) {
         }
-        if (rc == BF_EXIT_OK) {
-            rc = WIFEXITED(status) ? WEXITSTATUS(status) : BF_EXIT_SOFTWARE;
+        if (rc == BF_REPORT_OK) {
+            rc = WIFEXITED(status) ? WEXITSTATUS(status) : BF_REPORT_SOFTWARE;
         }
     }
     p->n = 0;
@@ -661,22 +660,22 @@ static int prepare(const bf_fig_data *D, bf_fig_set *set, size_t from)
         }
         bf_fig_desc_free(&d);
         if (e != BF_OK) {
-            bf_cli_err("%s: cannot lay out the figure: %s",
+            bf_rep_err("%s: cannot lay out the figure: %s",
                        set->fig[i].base, bf_strerror(e));
-            return BF_EXIT_SOFTWARE;
+            return BF_REPORT_SOFTWARE;
         }
     }
     for (i = from; i < set->n; i++) {
         for (f = 0; f < BF_PLOT_NFORMATS; f++) {
             if ((set->formats >> f) & 1u) {
                 int rc = make_tmp(set, &set->fig[i], (bf_plot_format)f);
-                if (rc != BF_EXIT_OK) {
+                if (rc != BF_REPORT_OK) {
                     return rc;
                 }
             }
         }
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 /* Lists figures from `from` on with list, prepares and starts them. */
@@ -686,25 +685,25 @@ static int batch(struct bf_fig_run *run, bf_fig_set *set,
     size_t from = set->n;
     int rc;
     if (list(&run->D, set) != BF_OK) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     rc = prepare(&run->D, set, from);
     run->pr.total += (set->n - from) * (size_t)n_formats(set->formats);
-    if (rc == BF_EXIT_OK) {
+    if (rc == BF_REPORT_OK) {
         rc = pool_start(&run->D, set, from, run->o->jobs,
                         &run->pool[run->n_pools++], &run->pr);
     }
     return rc;
 }
 
-int bf_figures_start(const bf_cli_study *st, const bf_fig_opts *o,
+int bf_figures_start(const bf_rep_study *st, const bf_fig_opts *o,
                      const char *out_dir, bf_fig_set *set,
                      int with_analysis)
 {
     struct bf_fig_run *run = calloc(1, sizeof *run);
     size_t s;
-    int rc = BF_EXIT_OK;
+    int rc = BF_REPORT_OK;
 
     memset(set, 0, sizeof *set);
     set->formats = o->formats;
@@ -712,73 +711,74 @@ int bf_figures_start(const bf_cli_study *st, const bf_fig_opts *o,
     if (run == NULL || (run->D.smp = calloc(st->n_samples + 1,
                                             sizeof *run->D.smp)) == NULL) {
         free(run);
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     set->run = run;
     run->o = o;
     run->D.st = st;
     run->D.o = o;
     run->pr.show = o->progress;
+    run->pr.show_ctx = o->progress_ctx;
     run->pr.fd = -1;
-    for (s = 0; s < st->n_samples && rc == BF_EXIT_OK; s++) {
+    for (s = 0; s < st->n_samples && rc == BF_REPORT_OK; s++) {
         int e = sample_compute(st, s, &run->D.smp[s]);
         if (e != BF_OK) {
-            bf_cli_err("sample %d: cannot compute the radiances to plot: %s",
+            bf_rep_err("sample %d: cannot compute the radiances to plot: %s",
                        st->samples[s], bf_strerror(e));
-            rc = e == BF_ENOMEM ? BF_EXIT_SOFTWARE : BF_EXIT_DATAERR;
+            rc = e == BF_ENOMEM ? BF_REPORT_SOFTWARE : BF_REPORT_DATAERR;
         }
     }
     run->D.nm = scatter_models(st, run->D.idx);
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_make_outdir(out_dir);
+    if (rc == BF_REPORT_OK) {
+        rc = bf_rep_make_outdir(out_dir);
     }
-    if (rc == BF_EXIT_OK) {
-        rc = bf_cli_make_outdir(set->dir);
+    if (rc == BF_REPORT_OK) {
+        rc = bf_rep_make_outdir(set->dir);
     }
-    if (rc == BF_EXIT_OK) {
+    if (rc == BF_REPORT_OK) {
         rc = batch(run, set, list_paper);
     }
-    if (rc == BF_EXIT_OK && with_analysis && st->stats != NULL) {
+    if (rc == BF_REPORT_OK && with_analysis && st->stats != NULL) {
         run->analysis = 1;
         rc = batch(run, set, list_analysis);
     }
-    if (rc != BF_EXIT_OK) {
+    if (rc != BF_REPORT_OK) {
         bf_figures_free(set);
     }
     return rc;
 }
 
-int bf_figures_finish(const bf_cli_study *st, bf_fig_set *set)
+int bf_figures_finish(const bf_rep_study *st, bf_fig_set *set)
 {
     struct bf_fig_run *run = set->run;
-    int rc = BF_EXIT_OK;
+    int rc = BF_REPORT_OK;
     size_t p;
     if (run == NULL) {
-        return BF_EXIT_SOFTWARE;
+        return BF_REPORT_SOFTWARE;
     }
     if (!run->analysis && st->stats != NULL) {
         run->analysis = 1;
         rc = batch(run, set, list_analysis);
     }
     for (p = 0; p < run->n_pools; p++) {
-        int w = pool_wait(&run->pool[p], &run->pr, rc != BF_EXIT_OK);
-        rc = rc == BF_EXIT_OK ? w : rc;
+        int w = pool_wait(&run->pool[p], &run->pr, rc != BF_REPORT_OK);
+        rc = rc == BF_REPORT_OK ? w : rc;
     }
-    if (run->pr.show && run->pr.done > 0) {
-        fputc('\n', stderr);
+    if (run->pr.show != NULL && run->pr.done > 0) {
+        run->pr.show(run->pr.show_ctx, NULL, 0, 0);
     }
-    if (rc != BF_EXIT_OK) {
+    if (rc != BF_REPORT_OK) {
         bf_figures_free(set);
     }
     return rc;
 }
 
-int bf_figures_render(const bf_cli_study *st, const bf_fig_opts *o,
+int bf_figures_render(const bf_rep_study *st, const bf_fig_opts *o,
                       const char *out_dir, bf_fig_set *set)
 {
     int rc = bf_figures_start(st, o, out_dir, set, 1);
-    return rc == BF_EXIT_OK ? bf_figures_finish(st, set) : rc;
+    return rc == BF_REPORT_OK ? bf_figures_finish(st, set) : rc;
 }
 
 int bf_figures_commit(bf_fig_set *set)
@@ -795,14 +795,14 @@ int bf_figures_commit(bf_fig_set *set)
             snprintf(path, sizeof path, "%s/%s.%s", set->dir, e->base,
                      bf_plot_format_ext((bf_plot_format)f));
             if (rename(e->tmp[f], path) != 0) {
-                bf_cli_err("%s: cannot rename into place: %s", path,
+                bf_rep_err("%s: cannot rename into place: %s", path,
                            strerror(errno));
-                return BF_EXIT_IOERR; /* bf_figures_free removes the rest */
+                return BF_REPORT_IOERR; /* bf_figures_free removes the rest */
             }
             e->tmp[f][0] = '\0';
         }
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
 void bf_figures_free(bf_fig_set *set)

@@ -41,7 +41,7 @@ static int cmp_item(const void *a, const void *b)
 /* Sample indices sorted by increasing fitted FC-E slope; by sample number
  * when FC-E is not in the run (or not fitted for every sample). Returns
  * 1 when sorted by slope, 0 by number, -1 when out of memory. */
-static int order_by_slope(const bf_cli_study *st, size_t *order)
+static int order_by_slope(const bf_rep_study *st, size_t *order)
 {
     long fc = -1;
     int jm = -1;
@@ -87,7 +87,7 @@ static double axis_top(double hi, double frac)
 int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t N = st->n_samples;
     size_t M = st->n_models;
     size_t *order = bf_fig_alloc(d, N * sizeof *order);
@@ -205,7 +205,7 @@ static double count_step(double hi)
 int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                 int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t M = st->n_models;
     double *x = bf_fig_alloc(d, M * sizeof *x);
     double *y = bf_fig_alloc(d, M * sizeof *y);
@@ -323,7 +323,7 @@ static int scatter_alloc(const bf_fig_data *D, size_t ns, bf_fig_desc *d,
 static void scatter_fill(const bf_fig_data *D, size_t s0, size_t ns,
                          scatter_grid g, scatter_mem *w, bf_fig_desc *d)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     size_t nm = D->nm;
     size_t a;
     size_t b;
@@ -434,7 +434,7 @@ size_t bf_fig_scatter_group(const bf_fig_data *D, size_t s0)
 int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full)
 {
-    const bf_cli_study *st = D->st;
+    const bf_rep_study *st = D->st;
     int one = e->kind == BF_FIG_SAMPLE;
     size_t s0 = one ? e->index : e->first;
     size_t ns = one ? 1 : e->count;

@@ -14,9 +14,9 @@
 /* At most this many left-out configuration numbers are listed. */
 #define LIST_MAX 40
 
-void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
+void bf_rep_describe_data(const bf_rep_study *st, FILE *fp)
 {
-    const bf_cli_inputs *in = &st->in;
+    const bf_report_inputs *in = &st->in;
     const bf_dataset *ds = in->ds;
     size_t m;
     if (in->curet) {
@@ -26,11 +26,11 @@ void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
     }
     fprintf(fp, "Data: %zu material%s from %zu file%s\n",
             bf_dataset_count(ds), bf_dataset_count(ds) == 1 ? "" : "s",
-            st->opts.src.n_inputs, st->opts.src.n_inputs == 1 ? "" : "s");
+            st->in.n_files, st->in.n_files == 1 ? "" : "s");
     for (m = 0; m < bf_dataset_count(ds); m++) {
         size_t nc = bf_dataset_nchannels(ds, m);
         char who[256];
-        bf_cli_material_label(ds, m, who, sizeof who);
+        bf_rep_material_label(ds, m, who, sizeof who);
         fprintf(fp, "  %s: %s (%s), %zu configurations, %zu channel%s", who,
                 bf_dataset_source(ds, m),
                 bf_format_name(bf_dataset_format(ds, m)),
@@ -50,7 +50,7 @@ void bf_cli_describe_data(const bf_cli_study *st, FILE *fp)
 }
 
 /* The specular exclusion in words (SPEC §1.4, §1.6). */
-void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
+void bf_rep_describe_cone(const bf_rep_study *st, char *buf, size_t len)
 {
     double cone = st->opts.cone;
     if (cone < 0.0 && st->in.curet && st->n_samples > 0) {
@@ -89,7 +89,7 @@ void bf_cli_describe_cone(const bf_cli_study *st, char *buf, size_t len)
 
 /* One line per group of targets with the same material configuration
  * list and selection: K, how many the cone left out, and which ones. */
-static int describe_configs(const bf_cli_study *st, FILE *fp)
+static int describe_configs(const bf_rep_study *st, FILE *fp)
 {
     const bf_dataset *ds = st->in.ds;
     size_t s;
@@ -97,7 +97,7 @@ static int describe_configs(const bf_cli_study *st, FILE *fp)
     double *data = NULL;
     size_t cap = 0;
     char cone[256];
-    bf_cli_describe_cone(st, cone, sizeof cone);
+    bf_rep_describe_cone(st, cone, sizeof cone);
     fprintf(fp, "Specular exclusion: %s\n", cone);
     for (s = 0; s < st->n_samples; s++) {
         size_t m = st->targets[s].material;
@@ -123,12 +123,12 @@ static int describe_configs(const bf_cli_study *st, FILE *fp)
                 return -1;
             }
         }
-        if (bf_cli_target_data(st, s, sel, &k, data) != BF_OK) {
+        if (bf_rep_target_data(st, s, sel, &k, data) != BF_OK) {
             continue;
         }
         fprintf(fp, "Configurations");
         if (!st->in.curet || st->n_sel == 0) {
-            fprintf(fp, " (%s)", bf_cli_sample_name(st, s));
+            fprintf(fp, " (%s)", bf_rep_sample_name(st, s));
         }
         fprintf(fp, ": K = %zu of %zu used", k, nconf);
         if (st->opts.cone >= 0.0 || !st->in.curet) {
@@ -157,7 +157,7 @@ static int describe_configs(const bf_cli_study *st, FILE *fp)
 /* The "Free parameters" line of the exact fit: each model's parameters
  * the variant fits that the registry's model holds fixed, with their
  * ranges (bf_model_variant_exact). */
-static void describe_freed(const bf_cli_study *st, FILE *fp)
+static void describe_freed(const bf_rep_study *st, FILE *fp)
 {
     size_t n_freed = 0;
     size_t m;
@@ -198,9 +198,9 @@ static const char *table3_label(bf_objective obj)
 }
 
 /* The fit, objective, interval and selection lines of the description. */
-static void describe_fit(const bf_cli_study *st, FILE *fp)
+static void describe_fit(const bf_rep_study *st, FILE *fp)
 {
-    const bf_cli_opts *o = &st->opts;
+    const bf_report_options *o = &st->opts;
     size_t r;
     if (o->exact) {
         fprintf(fp, "Fit: exact -- grid optimum, then GSL Brent (1 "
@@ -244,13 +244,13 @@ static void describe_fit(const bf_cli_study *st, FILE *fp)
     fprintf(fp, " (doc/methods.md §4-5)\n");
 }
 
-int bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
+int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
 {
-    const bf_cli_opts *o = &st->opts;
-    bf_cli_describe_data(st, fp);
+    const bf_report_options *o = &st->opts;
+    bf_rep_describe_data(st, fp);
     if (describe_configs(st, fp) != 0) {
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
     }
     fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided by "
                 "its maximum over the K used configurations (SPEC §2)\n");
@@ -274,10 +274,10 @@ int bf_cli_study_describe(const bf_cli_study *st, FILE *fp)
                 o->on_file);
     }
     fputc('\n', fp);
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 }
 
-static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
+static int build_tables(const bf_rep_study *st, bf_tt **t2, bf_tt **t3)
 {
     const bf_study_spec *spec = &st->spec;
     const bf_study_row *rows = st->rows;
@@ -289,7 +289,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
 
     for (m = 0; m < spec->n_models; m++) {
         for (j = 0; j < spec->models[m]->p; j++) {
-            ncols2 += (size_t)bf_cli_shows_param(spec->models[m], j);
+            ncols2 += (size_t)bf_rep_shows_param(spec->models[m], j);
         }
     }
     *t2 = bf_tt_alloc(ncols2);
@@ -308,7 +308,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         const bf_model_type *type = spec->models[m];
         char head[128];
         for (j = 0; j < type->p; j++) {
-            if (bf_cli_shows_param(type, j)) {
+            if (bf_rep_shows_param(type, j)) {
                 snprintf(head, sizeof head, "%s %s", type->name,
                          type->param[j].label);
                 bf_tt_header(*t2, c, head);
@@ -324,7 +324,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         if (bf_tt_add_row(*t2) != 0 || bf_tt_add_row(*t3) != 0) {
             return -1;
         }
-        bf_cli_sample_title(st, s, title, sizeof title);
+        bf_rep_sample_title(st, s, title, sizeof title);
         bf_tt_set(*t2, 0, "%d", sample);
         bf_tt_set(*t2, 1, "%s", title);
         bf_tt_set(*t3, 0, "%d", sample);
@@ -333,7 +333,7 @@ static int build_tables(const bf_cli_study *st, bf_tt **t2, bf_tt **t3)
         for (m = 0; m < spec->n_models; m++) {
             const bf_study_row *r = &rows[s * spec->n_models + m];
             for (j = 0; j < r->type->p; j++) {
-                if (!bf_cli_shows_param(r->type, j)) {
+                if (!bf_rep_shows_param(r->type, j)) {
                     continue;
                 }
                 if (r->status != BF_OK) {
@@ -394,31 +394,31 @@ static void report_missing(const bf_study_spec *spec,
             missing += rows[s * spec->n_models + m].status != BF_OK;
         }
         if (missing > 0) {
-            bf_cli_err("note: %s not evaluated for %zu of %zu samples (%s)",
-                       spec->models[m]->name, missing, spec->n_targets,
-                       needs_input(spec->models[m], BF_INPUT_ON)
-                           ? "no rho, sigma given: use --on-params"
-                           : "missing per-sample input");
+            bf_rep_note("note: %s not evaluated for %zu of %zu samples (%s)",
+                        spec->models[m]->name, missing, spec->n_targets,
+                        needs_input(spec->models[m], BF_INPUT_ON)
+                            ? "no rho, sigma given: use --on-params"
+                            : "missing per-sample input");
         }
     }
 }
 
-static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
+static int write_outputs(const bf_rep_study *st, const bf_tt *t2,
                          const bf_tt *t3)
 {
-    const bf_cli_opts *o = &st->opts;
+    const bf_report_options *o = &st->opts;
     bf_out f[3];
     size_t i;
     size_t opened = 0;
-    int rc = bf_cli_make_outdir(o->out_dir);
+    int rc = bf_rep_make_outdir(st->out_dir);
     static const char *const names[3] = {"fits.csv", "table2.md",
                                          "table3.md"};
-    if (rc != BF_EXIT_OK) {
+    if (rc != BF_REPORT_OK) {
         return rc;
     }
     for (i = 0; i < 3; i++) {
-        rc = bf_out_open(&f[i], o->out_dir, names[i]);
-        if (rc != BF_EXIT_OK) {
+        rc = bf_out_open(&f[i], st->out_dir, names[i]);
+        if (rc != BF_REPORT_OK) {
             goto fail;
         }
         opened++;
@@ -426,7 +426,7 @@ static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
     rc = bf_fits_csv_write(f[0].fp, &st->spec, st->rows, st->stats,
                            st->stats != NULL ? &st->analysis : NULL);
     if (rc != BF_OK) {
-        rc = bf_cli_write_error("fits.csv", rc);
+        rc = bf_rep_write_error("fits.csv", rc);
         goto fail;
     }
     fputs(o->exact ? "Table 2: fitted parameters (exact optimum (grid "
@@ -439,7 +439,7 @@ static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
     bf_tt_print(t3, f[2].fp);
     for (i = 0; i < 3; i++) {
         rc = bf_out_commit(&f[i]);
-        if (rc != BF_EXIT_OK) {
+        if (rc != BF_REPORT_OK) {
             opened = 3; /* the committed ones stay; abort the rest */
             for (i = i + 1; i < 3; i++) {
                 bf_out_abort(&f[i]);
@@ -447,7 +447,7 @@ static int write_outputs(const bf_cli_study *st, const bf_tt *t2,
             return rc;
         }
     }
-    return BF_EXIT_OK;
+    return BF_REPORT_OK;
 fail:
     for (i = 0; i < opened; i++) {
         bf_out_abort(&f[i]);
@@ -458,7 +458,7 @@ fail:
 /* With --fit exact and --on-params: the fitted values of the model whose
  * inputs are the ON table (rho, sigma; its profile intervals) beside the
  * tabulated ones. */
-static void on_compare(const bf_cli_study *st, FILE *fp)
+static void on_compare(const bf_rep_study *st, FILE *fp)
 {
     bf_tt *t;
     size_t m;
@@ -498,7 +498,7 @@ static void on_compare(const bf_cli_study *st, FILE *fp)
             continue;
         }
         bf_tt_set(t, 0, "%d", st->samples[s]);
-        bf_tt_set(t, 1, "%s", bf_cli_sample_name(st, s));
+        bf_tt_set(t, 1, "%s", bf_rep_sample_name(st, s));
         bf_tt_set(t, 2, "%.3f [%.3f, %.3f]", f->refined.param[0],
                   f->ci_low[0], f->ci_high[0]);
         bf_tt_set(t, 3, "%.2f", rho);
@@ -512,51 +512,52 @@ static void on_compare(const bf_cli_study *st, FILE *fp)
     bf_tt_free(t);
 }
 
-int bf_cli_study_write_tables(const bf_cli_study *st)
+int bf_rep_study_write_tables(const bf_rep_study *st)
 {
     bf_tt *t2 = NULL;
     bf_tt *t3 = NULL;
+    FILE *fp = st->opts.echo;
     int rc;
 
     report_missing(&st->spec, st->rows);
     if (build_tables(st, &t2, &t3) != 0) {
-        bf_cli_err("out of memory");
-        rc = BF_EXIT_SOFTWARE;
+        bf_rep_err("out of memory");
+        rc = BF_REPORT_SOFTWARE;
         goto done;
     }
     rc = write_outputs(st, t2, t3);
-    if (rc != BF_EXIT_OK || st->opts.quiet) {
+    if (rc != BF_REPORT_OK || st->opts.echo == NULL) {
         goto done;
     }
-    rc = bf_cli_study_describe(st, stdout);
-    if (rc != BF_EXIT_OK) {
+    rc = bf_rep_study_describe(st, fp);
+    if (rc != BF_REPORT_OK) {
         goto done;
     }
-    printf("Table 2: fitted parameters (%s%s)\n\n",
+    fprintf(fp, "Table 2: fitted parameters (%s%s)\n\n",
            st->opts.exact ? "exact optimum (grid optimum)" : "grid optima",
            any_bound_hit(&st->spec, st->rows)
                ? (st->opts.exact ? "; * on a bound of the search range"
                                  : "; * on a grid bound")
                : "");
-    bf_tt_print(t2, stdout);
+    bf_tt_print(t2, fp);
     if (bf_objective_keeps_scale(st->opts.objective)) {
-        printf("\nTable 3: %s (over each sample's used configurations "
+        fprintf(fp, "\nTable 3: %s (over each sample's used configurations "
                "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
                "SPEC §10)\n\n",
                table3_label(st->opts.objective));
     } else if (st->n_sel > 0) {
-        printf("\nTable 3: %s (sum over the K = %zu used configurations)"
+        fprintf(fp, "\nTable 3: %s (sum over the K = %zu used configurations)"
                "\n\n",
                table3_label(st->opts.objective), st->n_sel);
     } else {
-        printf("\nTable 3: %s (sum over each sample's K used "
+        fprintf(fp, "\nTable 3: %s (sum over each sample's K used "
                "configurations)\n\n",
                table3_label(st->opts.objective));
     }
-    bf_tt_print(t3, stdout);
-    on_compare(st, stdout);
-    printf("\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
-           st->opts.out_dir, st->opts.out_dir, st->opts.out_dir);
+    bf_tt_print(t3, fp);
+    on_compare(st, fp);
+    fprintf(fp, "\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
+           st->out_dir, st->out_dir, st->out_dir);
 done:
     bf_tt_free(t2);
     bf_tt_free(t3);

@@ -1,0 +1,209 @@
+/* test_report_write.c: bf_report_write without the CLI -- on a dataset
+ * built in memory with a constant BRDF (a Lambertian surface), LAMBERT is
+ * recovered exactly (LSE 0 in fits.csv) and beats FC-E; every figure the
+ * call counts is a PNG in figures/, the page names bf_report_write, the
+ * description and tables go to the echo stream only; a bad option is an
+ * option error (status, bf_error, message kind) and leaves no output. */
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "support.h"
+
+#define DEG (M_PI / 180.0)
+#define NI 4  /* incidence angles */
+#define NO 8  /* viewing zeniths */
+#define NP 3  /* viewing azimuths */
+#define NCONF (NI * NO * NP)
+
+static bf_dataset *lambertian(void)
+{
+    static double angles[NCONF * 4];
+    static double values[NCONF];
+    bf_material_desc d;
+    bf_dataset *ds = bf_dataset_alloc();
+    size_t set;
+    size_t k = 0;
+    int i, o, p;
+    cr_assert_not_null(ds);
+    for (i = 0; i < NI; i++) {
+        for (o = 0; o < NO; o++) {
+            for (p = 0; p < NP; p++, k++) {
+                angles[4 * k] = (10.0 + 20.0 * i) * DEG;
+                angles[4 * k + 1] = 0.0;
+                angles[4 * k + 2] = 10.0 * o * DEG;
+                angles[4 * k + 3] = 90.0 * p * DEG;
+                values[k] = 0.3; /* constant BRDF */
+            }
+        }
+    }
+    cr_assert_eq(bf_dataset_add_configs(ds, NCONF, angles, &set, NULL),
+                 BF_OK);
+    memset(&d, 0, sizeof d);
+    d.name = "flat";
+    d.number = 1;
+    d.format = BF_FORMAT_MEMORY;
+    d.set = set;
+    d.n_channels = 1;
+    d.values = values;
+    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+    return ds;
+}
+
+typedef struct {
+    int kinds[8];
+    char text[8][1024];
+    size_t n;
+} messages;
+
+static void collect(void *ctx, int kind, const char *text)
+{
+    messages *m = ctx;
+    if (m->n < 8) {
+        m->kinds[m->n] = kind;
+        snprintf(m->text[m->n], sizeof m->text[m->n], "%s", text);
+        m->n++;
+    }
+}
+
+static char *slurp(const char *path)
+{
+    FILE *fp = fopen(path, "rb");
+    long n;
+    char *s;
+    cr_assert_not_null(fp, "%s missing", path);
+    fseek(fp, 0, SEEK_END);
+    n = ftell(fp);
+    rewind(fp);
+    s = calloc((size_t)n + 1, 1);
+    cr_assert_eq(fread(s, 1, (size_t)n, fp), (size_t)n);
+    fclose(fp);
+    return s;
+}
+
+/* The lse column (8th) of fits.csv's line of model. */
+static double lse_of(const char *csv, const char *model)
+{
+    char key[64];
+    const char *line;
+    const char *p;
+    int field;
+    snprintf(key, sizeof key, ",%s,", model);
+    line = strstr(csv, key);
+    cr_assert_not_null(line, "no %s line in fits.csv", model);
+    while (line > csv && line[-1] != '\n') {
+        line--;
+    }
+    for (p = line, field = 0; field < 7; p++) {
+        field += *p == ',';
+    }
+    return strtod(p, NULL);
+}
+
+static size_t count_png(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    size_t n = 0;
+    cr_assert_not_null(d, "%s missing", dir);
+    while ((e = readdir(d)) != NULL) {
+        size_t len = strlen(e->d_name);
+        n += len > 4 && strcmp(e->d_name + len - 4, ".png") == 0;
+    }
+    closedir(d);
+    return n;
+}
+
+static char *temp_dir(void)
+{
+    static char dir[64];
+    snprintf(dir, sizeof dir, "/tmp/bf_report_write.XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+    return dir;
+}
+
+Test(report_write, lambertian_data_recover_lambert_and_every_figure)
+{
+    bf_dataset *ds = lambertian();
+    bf_report_inputs in;
+    bf_report_options o = BF_REPORT_OPTIONS_INIT;
+    messages msg;
+    bf_error err;
+    char out[128];
+    char figs[160];
+    char path[200];
+    char *csv;
+    char *page;
+    char echo_text[4096] = "";
+    FILE *echo = fmemopen(echo_text, sizeof echo_text - 1, "w");
+    size_t n_fig = 0;
+
+    memset(&in, 0, sizeof in);
+    memset(&msg, 0, sizeof msg);
+    in.ds = ds;
+    o.models = "LAMBERT,FC-E";
+    o.threads = 1;
+    o.formats = 1u << BF_REPORT_PNG;
+    o.echo = echo;
+    o.message = collect;
+    o.message_ctx = &msg;
+    snprintf(out, sizeof out, "%s/out", temp_dir());
+    cr_assert_eq(bf_report_write(&in, &o, out, &n_fig, &err), BF_REPORT_OK,
+                 "%s", err.msg);
+    fclose(echo);
+    cr_expect_eq(msg.n, 0, "unexpected message: %s", msg.text[0]);
+    snprintf(figs, sizeof figs, "%s/figures", out);
+    cr_expect_gt(n_fig, 0);
+    cr_expect_eq(count_png(figs), n_fig);
+    snprintf(path, sizeof path, "%s/fits.csv", out);
+    csv = slurp(path);
+    cr_expect_leq(lse_of(csv, "LAMBERT"), 1e-20, "LAMBERT's LSE %g",
+                  lse_of(csv, "LAMBERT"));
+    cr_expect_gt(lse_of(csv, "FC-E"), 1e-6);
+    snprintf(path, sizeof path, "%s/report.html", out);
+    page = slurp(path);
+    cr_expect_not_null(strstr(page, "Written by <code>bf_report_write"
+                                    "</code>"));
+    cr_expect_null(strstr(page, "Command:"));
+    cr_expect_not_null(strstr(echo_text, "Table 2"));
+    cr_expect_not_null(strstr(echo_text, "Table 3"));
+    free(csv);
+    free(page);
+    bf_dataset_free(ds);
+}
+
+Test(report_write, a_bad_option_is_an_option_error_and_writes_nothing)
+{
+    bf_dataset *ds = lambertian();
+    bf_report_inputs in;
+    bf_report_options o = BF_REPORT_OPTIONS_INIT;
+    messages msg;
+    bf_error err;
+    char out[128];
+    struct stat sb;
+
+    memset(&in, 0, sizeof in);
+    memset(&msg, 0, sizeof msg);
+    in.ds = ds;
+    o.models = "LAMBERT,NOPE";
+    o.message = collect;
+    o.message_ctx = &msg;
+    snprintf(out, sizeof out, "%s/out", temp_dir());
+    cr_assert_eq(bf_report_write(&in, &o, out, NULL, &err),
+                 BF_REPORT_BADVALUE);
+    cr_expect_eq(err.code, BF_EINVAL);
+    cr_expect_not_null(strstr(err.msg, "NOPE"), "%s", err.msg);
+    cr_assert_eq(msg.n, 1);
+    cr_expect_eq(msg.kinds[0], BF_REPORT_MSG_USAGE);
+    cr_expect_str_eq(msg.text[0], err.msg);
+    cr_expect_neq(stat(out, &sb), 0, "%s was created", out);
+    o.models = NULL;
+    o.samples = "paper"; /* CURET's samples, on other data */
+    cr_expect_eq(bf_report_write(&in, &o, out, NULL, &err),
+                 BF_REPORT_BADVALUE);
+    cr_expect_neq(stat(out, &sb), 0, "%s was created", out);
+    bf_dataset_free(ds);
+}
