@@ -149,7 +149,11 @@ int bf__curve(const bf__prep *pm, const double *param, void *work,
         for (k = 0; k < pm->n; k++) {
             double si;
             double ci;
-            bf__zenith_sincos(pm->geom[k].theta_i, &si, &ci);
+            if (pm->cs != NULL) {
+                ci = pm->cs->cti[k]; /* bf__zenith_sincos's, once */
+            } else {
+                bf__zenith_sincos(pm->geom[k].theta_i, &si, &ci);
+            }
             curve[k] *= ci;
             if (!isfinite(curve[k])) {
                 return BF_EDOM;

@@ -43,8 +43,8 @@
 
 /* Grid points per parameter by the number of gridded parameters (log-
  * spaced, linear). */
-static const size_t grid_log[] = {0, 400, 90, 36, 14, 9, 7, 6, 5};
-static const size_t grid_lin[] = {0, 101, 26, 13, 7, 5, 4, 4, 3};
+static const size_t grid_log[] = {0, 256, 64, 28, 12, 8, 6, 5, 4};
+static const size_t grid_lin[] = {0, 101, 13, 9, 6, 5, 4, 4, 3};
 
 /* ==== the scales solved exactly ========================================== */
 

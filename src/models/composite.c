@@ -78,7 +78,10 @@ static int composite_eval(const bf_model_type *d, const bf_model_type *s,
             rc = BF_EDOM;
         }
         for (q = 0; q < m; q++) {
-            out[k + q] += scale * dv[q] / cos(dg[q].theta_i);
+            double si;
+            double ci;
+            bf__zenith_sincos(dg[q].theta_i, &si, &ci);
+            out[k + q] += scale * dv[q] / ci;
         }
     }
     return (rc == BF_OK) && (rs == BF_OK) ? BF_OK : BF_EDOM;
@@ -93,6 +96,168 @@ static int composite_eval(const bf_model_type *d, const bf_model_type *s,
     }
 #define ROW_EVAL(unused, d) BF_REGISTRY_SPECULAR(PAIR_EVAL, d)
 BF_REGISTRY_DIFFUSE(ROW_EVAL, 0)
+
+/* ==== the engine's kernel ================================================ */
+
+/* A composite's kernel: its parts' kernels on the same configurations
+ * (their terms one after the other, then D's terms at the normal
+ * configuration), so the geometry is taken once per configuration set. */
+typedef struct {
+    bf_kernel k; /* first: the engine's view */
+    const bf_model_type *d;
+    const bf_model_type *s;
+} comp_kernel;
+
+static const comp_kernel *comp_of(const bf_kernel *kr)
+{
+    return (const comp_kernel *)(const void *)kr;
+}
+
+static size_t terms_len(const bf_kernel *kr, size_t n)
+{
+    return kr->n_terms * n + kr->n_extra;
+}
+
+/* The normal configuration as a one-configuration set. */
+static void normal_set(bf__cset *cs, bf__trig_t *trig, double *cti)
+{
+    static const bf_geom normal = {0.0, BF__PI, 0.0, 0.0};
+    bf__geom_trig(&normal, trig);
+    *cti = trig->ci;
+    cs->n = 1;
+    cs->geom = &normal;
+    cs->trig = trig;
+    cs->cti = cti;
+}
+
+/* The part which (0 D, 1 S, 2 D at the normal configuration) of pm as a
+ * prepared model of its own: the composite's terms are D's on the n
+ * configurations, S's on them, then D's on the normal configuration
+ * (ncs, trig, cti: its one-configuration set, for which 2). */
+static void part_prep(const bf__prep *pm, int which, bf__prep *out,
+                      bf__cset *ncs, bf__trig_t *trig, double *cti)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    const bf_model_type *t = which == 1 ? ck->s : ck->d;
+    memset(out, 0, sizeof *out);
+    out->type = t;
+    out->kr = t->kernel;
+    out->cs = pm->cs;
+    out->n = pm->n;
+    out->geom = pm->geom;
+    out->terms = pm->terms;
+    if (which == 1) {
+        out->terms = pm->terms + terms_len(ck->d->kernel, pm->n);
+    } else if (which == 2) { /* D at the normal configuration */
+        normal_set(ncs, trig, cti);
+        out->cs = ncs;
+        out->n = 1;
+        out->geom = ncs->geom;
+        out->terms = pm->terms + terms_len(ck->d->kernel, pm->n)
+                     + terms_len(ck->s->kernel, pm->n);
+    }
+}
+
+static void comp_terms(const bf_kernel *kr, const bf__cset *cs,
+                       double *terms)
+{
+    const comp_kernel *ck = comp_of(kr);
+    bf__cset ncs;
+    bf__trig_t trig;
+    double cti;
+    if (ck->d->kernel->terms != NULL) {
+        ck->d->kernel->terms(ck->d->kernel, cs, terms);
+    }
+    if (ck->s->kernel->terms != NULL) {
+        ck->s->kernel->terms(ck->s->kernel, cs,
+                             terms + terms_len(ck->d->kernel, cs->n));
+    }
+    normal_set(&ncs, &trig, &cti);
+    if (ck->d->kernel->terms != NULL) {
+        ck->d->kernel->terms(ck->d->kernel, &ncs,
+                             terms + terms_len(ck->d->kernel, cs->n)
+                                 + terms_len(ck->s->kernel, cs->n));
+    }
+}
+
+static size_t part_work(const bf_kernel *kr, size_t n)
+{
+    return kr->work_bytes != NULL ? (kr->work_bytes(kr, n) + 63) / 64 * 64
+                                  : 0;
+}
+
+static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
+{
+    const comp_kernel *ck = comp_of(kr);
+    size_t a = part_work(ck->d->kernel, n);
+    size_t b = part_work(ck->s->kernel, n);
+    size_t c = part_work(ck->d->kernel, 1);
+    a = a > b ? a : b;
+    return (n * sizeof(double) + 63) / 64 * 64 + (a > c ? a : c);
+}
+
+/* Values of the composite from its parts' kernels (the reference path's
+ * formula, SPEC §9.4). The workspace: n doubles, then the parts'. */
+static int comp_values(const bf__prep *pm, const double *param, void *work,
+                       double *out)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    const bf_model_type *d = ck->d;
+    double *dv = work;
+    void *pw = (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+    bf__prep pd;
+    bf__prep ps;
+    bf__prep pn;
+    bf__cset ncs;
+    bf__trig_t trig;
+    double cti;
+    double d0;
+    double scale;
+    size_t k;
+    int rc;
+    part_prep(pm, 2, &pn, &ncs, &trig, &cti);
+    rc = d->kernel->values(&pn, param + 1, pw, &d0);
+    if ((rc != BF_OK) || !(d0 > 0.0) || !isfinite(d0)) {
+        for (k = 0; k < pm->n; k++) {
+            out[k] = NAN;
+        }
+        return BF_EDOM;
+    }
+    scale = param[0] / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    part_prep(pm, 0, &pd, NULL, NULL, NULL);
+    part_prep(pm, 1, &ps, NULL, NULL, NULL);
+    rc = d->kernel->values(&pd, param + 1, pw, dv);
+    if (ck->s->kernel->values(&ps, param + 1 + d->p, pw, out) != BF_OK) {
+        rc = BF_EDOM;
+    }
+    for (k = 0; k < pm->n; k++) {
+        double ci = pm->cs->cti[k];
+        if (ci == 0.0) { /* grazing: the limit, as the reference path */
+            bf_geom g = pm->geom[k];
+            double v;
+            double si;
+            g.theta_i = BF__PI_2 - GRAZING_EPS;
+            bf__zenith_sincos(g.theta_i, &si, &ci);
+            if (d->eval(param + 1, 1, &g, &v, NULL) != BF_OK) {
+                rc = BF_EDOM;
+            }
+            dv[k] = v;
+        }
+        out[k] += scale * dv[k] / ci;
+    }
+    return rc == BF_OK ? BF_OK : BF_EDOM;
+}
+
+/* 1 when a part's kernel can serve inside the composite's: it has terms
+ * and values, no tables of its own (prepare) and no eval workspace (the
+ * grazing fallback calls its eval without one). */
+static int kernel_usable(const bf_model_type *t)
+{
+    const bf_kernel *kr = t->kernel;
+    return (kr != NULL) && (kr->values != NULL) && (kr->prepare == NULL)
+           && (t->work_size == 0)
+           && ((kr->terms != NULL) || (kr->n_terms + kr->n_extra == 0));
+}
 
 typedef struct {
     const bf_model_type *const *d;
@@ -111,6 +276,7 @@ static bf_model_type types[N_PAIRS];
 static bf_param params[N_PAIRS][BF_MAX_PARAMS];
 static char names[N_PAIRS][NAME_MAX_LEN];
 static char titles[N_PAIRS][2 * NAME_MAX_LEN];
+static comp_kernel kernels[N_PAIRS];
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 
 static const bf_param rho_d_param = {
@@ -143,6 +309,19 @@ static void make_types(void)
                        + (d->work_size > s->work_size ? d->work_size
                                                       : s->work_size);
         t->style = s->style;
+        if (kernel_usable(d) && kernel_usable(s)) {
+            comp_kernel *ck = &kernels[i];
+            ck->d = d;
+            ck->s = s;
+            ck->k.n_terms = d->kernel->n_terms + s->kernel->n_terms;
+            ck->k.n_extra = d->kernel->n_extra + s->kernel->n_extra
+                            + terms_len(d->kernel, 1);
+            ck->k.terms = comp_terms;
+            ck->k.work_bytes = comp_work_bytes;
+            ck->k.values = comp_values;
+            ck->k.cheap = -1;
+            t->kernel = &ck->k;
+        }
         t->kind = BF_MODEL_SPECULAR;
         t->ndf = s->ndf;
         t->masking = s->masking;

@@ -70,8 +70,11 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
         if (r->status != BF_OK) {
             continue;
         }
-        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)) {
-            any = 1; /* SPEC §9.4: rho_d, a parameter of the fit */
+        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)
+            && r->type->kind != BF_MODEL_SPECULAR) {
+            /* SPEC §9.4: rho_d, a parameter of the fit (a specular
+             * model's scales are its own parameters) */
+            any = 1;
             bf__csv_target(fp, spec, r->target);
             fputc(',', fp);
             bf__csv_field(fp, r->type->name);
