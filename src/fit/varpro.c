@@ -28,6 +28,7 @@
  * every free parameter, scales included.
  */
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
 #include <gsl/gsl_multimin.h>
 #include <math.h>
 #include <stdlib.h>
@@ -36,15 +37,15 @@
 #include "fit/engine.h"
 
 #define MAX_LIN 2
-#define STARTS 4
+#define STARTS 6
 #define NM_ITER 3000
 #define NM_SIZE 1e-10
 #define UNDEFINED 1e300
 
 /* Grid points per parameter by the number of gridded parameters (log-
  * spaced, linear). */
-static const size_t grid_log[] = {0, 256, 64, 28, 12, 8, 6, 5, 4};
-static const size_t grid_lin[] = {0, 101, 13, 9, 6, 5, 4, 4, 3};
+static const size_t grid_log[] = {0, 256, 64, 28, 16, 8, 6, 5, 4};
+static const size_t grid_lin[] = {0, 101, 13, 9, 8, 5, 4, 4, 3};
 
 /* ==== the scales solved exactly ========================================== */
 
@@ -349,6 +350,84 @@ static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
     return BF_OK;
 }
 
+/* ==== Levenberg-Marquardt on the projected residuals ===================== */
+
+/* r_k = sqrt(w_k) (rho_hat_k - rho_k) at u, the scales solved (ngan). */
+static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
+{
+    const space_t *sp = arg;
+    const bf_problem *pb = sp->fc->pb;
+    double x[BF_MAX_PARAMS];
+    double v;
+    size_t a;
+    size_t k;
+    memcpy(x, sp->base, sizeof x);
+    for (a = 0; a < sp->m; a++) {
+        x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
+    }
+    if (bf__fit_value(sp->fc, x, &v) != BF_OK || !isfinite(v)) {
+        return GSL_EDOM;
+    }
+    for (k = 0; k < pb->n; k++) {
+        double w = pb->weight != NULL ? sqrt(pb->weight[k]) : 1.0;
+        gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
+    }
+    return GSL_SUCCESS;
+}
+
+/* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
+ * from x in the search coordinates; x is replaced when it ends lower. */
+static int levenberg(space_t *sp, double *x, double *f)
+{
+    gsl_multifit_nlinear_parameters prm =
+        gsl_multifit_nlinear_default_parameters();
+    gsl_multifit_nlinear_workspace *w;
+    gsl_multifit_nlinear_fdf fdf;
+    gsl_vector *u;
+    double y[BF_MAX_PARAMS];
+    double fy;
+    int info;
+    size_t a;
+    if (sp->m == 0 || sp->fc->pb->n <= sp->m) {
+        return BF_OK;
+    }
+    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm,
+                                   sp->fc->pb->n, sp->m);
+    u = gsl_vector_alloc(sp->m);
+    if (w == NULL || u == NULL) {
+        gsl_multifit_nlinear_free(w);
+        gsl_vector_free(u);
+        return BF_ENOMEM;
+    }
+    memcpy(sp->base, x, sizeof sp->base);
+    for (a = 0; a < sp->m; a++) {
+        gsl_vector_set(u, a, to_u(sp, a, x[sp->idx[a]]));
+    }
+    memset(&fdf, 0, sizeof fdf);
+    fdf.f = f_lm;
+    fdf.n = sp->fc->pb->n;
+    fdf.p = sp->m;
+    fdf.params = sp;
+    if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
+        (void)gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14, NULL,
+                                          NULL, &info, w);
+        memcpy(y, x, sizeof y);
+        for (a = 0; a < sp->m; a++) {
+            y[sp->idx[a]] =
+                from_u(sp, a, gsl_vector_get(gsl_multifit_nlinear_position(w),
+                                             a));
+        }
+        fy = value_at(sp->fc, y);
+        if (fy < *f) {
+            memcpy(x, y, sizeof y);
+            *f = fy;
+        }
+    }
+    gsl_multifit_nlinear_free(w);
+    gsl_vector_free(u);
+    return BF_OK;
+}
+
 /* Nelder-Mead twice (the second restarted at a tenth of the steps, so a
  * collapsed simplex does not stop it early), keeping x when no better. */
 static int polish(space_t *sp, double *x, const double *step, double *f)
@@ -536,7 +615,13 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
         double x[BF_MAX_PARAMS];
         double f;
         point_of(&sp, best[g].idx, x);
-        rc = polish(&sp, x, step, &f);
+        f = value_at(fc, x);
+        rc = levenberg(&sp, x, &f);
+        if (rc == BF_OK) {
+            double fl = f;
+            rc = polish(&sp, x, step, &f);
+            f = f < fl ? f : fl;
+        }
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);

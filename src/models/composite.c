@@ -189,22 +189,23 @@ static size_t part_work(const bf_kernel *kr, size_t n)
 static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
 {
     const comp_kernel *ck = comp_of(kr);
-    size_t a = part_work(ck->d->kernel, n);
-    size_t b = part_work(ck->s->kernel, n);
-    size_t c = part_work(ck->d->kernel, 1);
-    a = a > b ? a : b;
-    return (n * sizeof(double) + 63) / 64 * 64 + (a > c ? a : c);
+    return (n * sizeof(double) + 63) / 64 * 64 + part_work(ck->d->kernel, n)
+           + part_work(ck->s->kernel, n) + part_work(ck->d->kernel, 1);
 }
 
 /* Values of the composite from its parts' kernels (the reference path's
- * formula, SPEC §9.4). The workspace: n doubles, then the parts'. */
+ * formula, SPEC §9.4). The workspace: n doubles, then D's, S's and the
+ * normal configuration's D's, apart (a part may keep a cache of its
+ * configurations' terms in its workspace: FC's Fresnel factor). */
 static int comp_values(const bf__prep *pm, const double *param, void *work,
                        double *out)
 {
     const comp_kernel *ck = comp_of(pm->kr);
     const bf_model_type *d = ck->d;
     double *dv = work;
-    void *pw = (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+    char *dw = (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+    char *sw = dw + part_work(d->kernel, pm->n);
+    char *nw = sw + part_work(ck->s->kernel, pm->n);
     bf__prep pd;
     bf__prep ps;
     bf__prep pn;
@@ -216,7 +217,7 @@ static int comp_values(const bf__prep *pm, const double *param, void *work,
     size_t k;
     int rc;
     part_prep(pm, 2, &pn, &ncs, &trig, &cti);
-    rc = d->kernel->values(&pn, param + 1, pw, &d0);
+    rc = d->kernel->values(&pn, param + 1, nw, &d0);
     if ((rc != BF_OK) || !(d0 > 0.0) || !isfinite(d0)) {
         for (k = 0; k < pm->n; k++) {
             out[k] = NAN;
@@ -226,8 +227,8 @@ static int comp_values(const bf__prep *pm, const double *param, void *work,
     scale = param[0] / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
     part_prep(pm, 0, &pd, NULL, NULL, NULL);
     part_prep(pm, 1, &ps, NULL, NULL, NULL);
-    rc = d->kernel->values(&pd, param + 1, pw, dv);
-    if (ck->s->kernel->values(&ps, param + 1 + d->p, pw, out) != BF_OK) {
+    rc = d->kernel->values(&pd, param + 1, dw, dv);
+    if (ck->s->kernel->values(&ps, param + 1 + d->p, sw, out) != BF_OK) {
         rc = BF_EDOM;
     }
     for (k = 0; k < pm->n; k++) {
