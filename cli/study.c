@@ -129,9 +129,15 @@ static int select_models(const char *hint, const bf_cli_opts *o, const bf_model_
             memcpy(name, p, len);
             name[len] = '\0';
             t = bf_model_find_why(name, &why);
-            if (t == NULL) {
+            if (t == NULL && strchr(name, '+') != NULL) { /* SPEC §9.4 */
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                          "--models: '%s': %s", name, why);
+            }
+            if (t == NULL) {
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--models: unknown "
+                                          "model '%s' (see 'brdffit models')",
+                                          name);
             }
             if (t->kind == BF_MODEL_SPECULAR &&
                 !bf_objective_keeps_scale(o->objective)) {

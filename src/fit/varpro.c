@@ -38,8 +38,8 @@
 
 #define MAX_LIN 2
 #define STARTS 6
-#define NM_ITER 3000
-#define NM_SIZE 1e-10
+#define NM_ITER 300
+#define NM_SIZE 1e-7
 #define UNDEFINED 1e300
 
 /* Grid points per parameter by the number of gridded parameters (log-
@@ -401,7 +401,14 @@ static int levenberg(space_t *sp, double *x, double *f)
     }
     memcpy(sp->base, x, sizeof sp->base);
     for (a = 0; a < sp->m; a++) {
-        gsl_vector_set(u, a, to_u(sp, a, x[sp->idx[a]]));
+        /* a start on a bound moves a hundredth of the domain inside: the
+         * clamp's derivative is 0 there */
+        double ua = to_u(sp, a, x[sp->idx[a]]);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double in = 0.01 * (hi - lo);
+        ua = ua < lo + in ? lo + in : (ua > hi - in ? hi - in : ua);
+        gsl_vector_set(u, a, ua);
     }
     memset(&fdf, 0, sizeof fdf);
     fdf.f = f_lm;
@@ -614,13 +621,19 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
+        double fl;
         point_of(&sp, best[g].idx, x);
         f = value_at(fc, x);
+        /* Levenberg-Marquardt to the basin's minimum; Nelder-Mead (no
+         * derivatives) takes it off a bound or a flat stretch, where the
+         * clamped coordinates' Jacobian vanishes, and LM finishes */
         rc = levenberg(&sp, x, &f);
+        fl = f;
         if (rc == BF_OK) {
-            double fl = f;
             rc = polish(&sp, x, step, &f);
-            f = f < fl ? f : fl;
+        }
+        if (rc == BF_OK && f < fl) {
+            rc = levenberg(&sp, x, &f);
         }
         if (rc == BF_OK && f < fbest) {
             fbest = f;
