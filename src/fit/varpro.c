@@ -44,8 +44,8 @@
 
 /* Grid points per parameter by the number of gridded parameters (log-
  * spaced, linear). */
-static const size_t grid_log[] = {0, 256, 64, 28, 16, 8, 6, 5, 4};
-static const size_t grid_lin[] = {0, 101, 13, 9, 8, 5, 4, 4, 3};
+static const size_t grid_log[] = {0, 200, 48, 24, 14, 8, 6, 5, 4};
+static const size_t grid_lin[] = {0, 101, 7, 7, 6, 5, 4, 4, 3};
 
 /* ==== the scales solved exactly ========================================== */
 
@@ -572,6 +572,24 @@ static void grid_steps(const space_t *sp, double *step)
     }
 }
 
+/* 1 when a moving parameter of x lies on a bound of its domain (within
+ * 1e-6 of the search coordinate's span). */
+static int on_bound(const space_t *sp, const double *x)
+{
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        double u = to_u(sp, a, x[sp->idx[a]]);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double tol = 1e-6 * (hi - lo);
+        if (u <= lo + tol || u >= hi - tol ||
+            x[sp->idx[a]] <= sp->lo[a]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The separable ngan fit on fc (fc->pb's objective ngan). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
                        bf_fit_result *result)
@@ -624,12 +642,13 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
         double fl;
         point_of(&sp, best[g].idx, x);
         f = value_at(fc, x);
-        /* Levenberg-Marquardt to the basin's minimum; Nelder-Mead (no
-         * derivatives) takes it off a bound or a flat stretch, where the
-         * clamped coordinates' Jacobian vanishes, and LM finishes */
+        /* Levenberg-Marquardt to the basin's minimum; where it ends on a
+         * bound (the clamped coordinates' Jacobian vanishes there)
+         * Nelder-Mead, without derivatives, takes it off, and LM
+         * finishes */
         rc = levenberg(&sp, x, &f);
         fl = f;
-        if (rc == BF_OK) {
+        if (rc == BF_OK && on_bound(&sp, x)) {
             rc = polish(&sp, x, step, &f);
         }
         if (rc == BF_OK && f < fl) {
