@@ -274,6 +274,13 @@ const bf_model_type *bf_model_get(size_t i);
  * counted by bf_model_count. */
 const bf_model_type *bf_model_find(const char *name);
 
+/* The specular part of type: S of a composite D+S (its parameters start
+ * at index *first = 1 + D's count), type itself for a specular model of
+ * SPEC §9.3 (*first = 0; AS with its diffuse term), NULL for a diffuse
+ * model. first may be NULL. */
+const bf_model_type *bf_model_specular_part(const bf_model_type *type,
+                                            size_t *first);
+
 /* The same, with *why (when why is not NULL) a sentence saying why name
  * names no model (static storage): unknown, an unknown part of a
  * composite, S+D order, two specular or two diffuse parts; NULL when it

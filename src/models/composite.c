@@ -385,3 +385,25 @@ const bf_model_type *bf__composite_find(const char *name, const char **why)
     *why = "the composite has more parameters than BF_MAX_PARAMS";
     return NULL;
 }
+
+const bf_model_type *bf_model_specular_part(const bf_model_type *type,
+                                            size_t *first)
+{
+    size_t i;
+    size_t ignored;
+    if (first == NULL) {
+        first = &ignored;
+    }
+    *first = 0;
+    if ((type == NULL) || (type->kind != BF_MODEL_SPECULAR)) {
+        return NULL;
+    }
+    for (i = 0; i < N_PAIRS; i++) {
+        /* a composite, or a copy of one (bf_model_variant): by its eval */
+        if ((types[i].name != NULL) && (type->eval == types[i].eval)) {
+            *first = 1 + (*pairs[i].d)->p;
+            return *pairs[i].s;
+        }
+    }
+    return type;
+}

@@ -361,3 +361,56 @@ Test(composite, cli_refuses_bad_composites_and_the_max_objective)
                   bad[i].models, err);
     }
 }
+
+/* ==== fits.csv's specular columns (issue 17 item 8) ====================== */
+
+Test(composite, fits_csv_names_the_lobe_and_its_albedo, .timeout = 120)
+{
+    static const double deg[4] = {0.0, 30.0, 60.0, 80.0};
+    static const char *const col[4] = {"albedo_0", "albedo_30", "albedo_60",
+                                       "albedo_80"};
+    const bf_model_type *ggx = bf_model_find("GGX");
+    const char *dir = bf_test_tmpdir();
+    char out[512];
+    const char *err = NULL;
+    double p[3];
+    size_t r;
+    size_t a;
+    int over = 0;
+    int rc;
+    snprintf(out, sizeof out, "%s/out", dir);
+    {
+        const char *argv[] = {"compare", "--models", "LAMBERT,LAMBERT+GGX",
+                              "--fit", "exact", "--objective", "ngan",
+                              "--quiet", "--out", out,
+                              bf_test_cornell_path("krylon_blue.brdf"),
+                              NULL};
+        rc = bf_test_run_cli(argv, NULL, &err);
+    }
+    cr_assert_eq(rc, 0, "brdffit compare: %s", err);
+    bf_test_csv_load(out, "fits.csv");
+    r = bf_test_csv_find("1", "LAMBERT", "rho_d");
+    cr_assert_str_eq(bf_test_csv_cell(r, "ndf"), "");
+    cr_assert(isnan(bf_test_csv_num(r, "albedo_0")));
+    r = bf_test_csv_find("1", "LAMBERT+GGX", "alpha");
+    cr_assert_str_eq(bf_test_csv_cell(r, "ndf"), ggx->ndf);
+    cr_assert_str_eq(bf_test_csv_cell(r, "masking"), ggx->masking);
+    cr_assert_str_eq(bf_test_csv_cell(r, "fresnel"), ggx->fresnel_term);
+    p[0] = bf_test_csv_num(bf_test_csv_find("1", "LAMBERT+GGX", "rho_s"),
+                           "value");
+    p[1] = bf_test_csv_num(r, "value");
+    p[2] = bf_test_csv_num(bf_test_csv_find("1", "LAMBERT+GGX", "F0"),
+                           "value");
+    for (a = 0; a < 4; a++) {
+        double want;
+        double got = bf_test_csv_num(r, col[a]);
+        /* the specular part alone at its fitted parameters */
+        cr_assert_eq(bf_model_albedo(ggx, p, deg[a] * DEG, &want), BF_OK);
+        bf_assert_rel(got, want, 1e-7);
+        /* F <= 1 and masking: no more than rho_s is reflected */
+        cr_assert(got > 0.0 && got <= p[0], "%s %g rho_s %g", col[a], got,
+                  p[0]);
+        over |= got > 1.0;
+    }
+    cr_assert_eq((int)bf_test_csv_num(r, "albedo_over_1"), over);
+}
