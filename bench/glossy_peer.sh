@@ -13,7 +13,7 @@ DATA=../shared/data/cornell-pbrt-v2
 PEER=../shared/peers/glossy_peer.py
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-MODELS=LAMBERT
+MODELS=LAMBERT,LAMBERT+GGX,LAMBERT+BECKMANN,LAMBERT+WARD,LAMBERT+WARD-DUER
 printf 'file\tmodel\tE_brdffit\tE_peer\tt_brdffit_s\tt_peer_s\n'
 for f in "$DATA"/*.brdf; do
     b=$(basename "$f" .brdf)
@@ -24,7 +24,8 @@ for f in "$DATA"/*.brdf; do
         --folds 0 --quiet --out "$OUT/$b" "$f"
     t2=$(date +%s.%N)
     for m in $(echo "$MODELS" | tr ',' ' '); do
-        # fits.csv: the model's rho_d row holds E in column lse
+        # fits.csv: the model's rho_d row (LAMBERT's free scale, a
+        # composite's first parameter) holds E in column lse
         e=$(awk -F, -v m="$m" 'NR > 1 && /rho_d/ {
                 for (i = 1; i <= NF; i++) if ($i == m) print $(i + 4) }' \
             "$OUT/$b/fits.csv" | head -1)

@@ -79,8 +79,9 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    DEG degrees (default 90: none)\n"
 "\n"
 "Models and fitting:\n"
-"  --models LIST     comma-separated model names, or 'all'; see 'brdffit\n"
-"                    models' (default ", fp);
+"  --models LIST     comma-separated model names, or 'all'; composites D+S\n"
+"                    such as LAMBERT+GGX (with --objective ngan); see\n"
+"                    'brdffit models' (default ", fp);
     wrapped(fp, bf_model_set_names(d->models), 38);
     fprintf(fp, ")\n"
 "  --n VALUE         refractive index of the FC models (default %.1f)\n"

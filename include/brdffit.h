@@ -145,7 +145,7 @@ double bf_fresnel_fc2(double theta_i, double theta_s, double n);
  * --- models (SPEC §3-6) ---
  * ====================================================================== */
 
-#define BF_MAX_PARAMS 4
+#define BF_MAX_PARAMS 8
 
 /* Where a parameter that a fit holds fixed takes its value for one
  * material of a study (bf_study_spec): the model type says it, so the
@@ -264,8 +264,28 @@ extern const bf_model_type *const bf_model_wno_r;  /* WNO-R rough dielectric:
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);
 
-/* Finds a model by name (case-insensitive); NULL if unknown. */
+/* Finds a model by name (case-insensitive); NULL if unknown. A name "D+S"
+ * is the composite of SPEC §9.4: a diffuse model D and a specular model S
+ * of the registry ("LAMBERT+GGX", "ON+GGX", "FC-E+CT"), value rho_d d(i,
+ * o) + S(i, o) in sr^-1 with d D's shape scaled to 1/pi at normal
+ * incidence and view (LAMBERT: d = 1/pi), parameters rho_d (linear), D's,
+ * S's; kind BF_MODEL_SPECULAR, ndf/masking/fresnel_term S's; a type
+ * object of static storage (the same pointer for the same pair), not
+ * counted by bf_model_count. */
 const bf_model_type *bf_model_find(const char *name);
+
+/* The specular part of type: S of a composite D+S (its parameters start
+ * at index *first = 1 + D's count), type itself for a specular model of
+ * SPEC §9.3 (*first = 0; AS with its diffuse term), NULL for a diffuse
+ * model. first may be NULL. */
+const bf_model_type *bf_model_specular_part(const bf_model_type *type,
+                                            size_t *first);
+
+/* The same, with *why (when why is not NULL) a sentence saying why name
+ * names no model (static storage): unknown, an unknown part of a
+ * composite, S+D order, two specular or two diffuse parts; NULL when it
+ * names one. */
+const bf_model_type *bf_model_find_why(const char *name, const char **why);
 
 /* The default models of a study, as a comma-separated list of registry
  * names (static storage): for BF_MODELS_PAPER the paper's six,

@@ -49,6 +49,10 @@
 # model through the CLI under the scale-keeping objectives (about 5 s of
 # CPU plain); the objectives' code runs under valgrind in keep_scale's
 # library tests.
+# composite's recovery and Cornell tests fit composites through the CLI
+# (the Cornell one 20 fits on 1439 configurations, about 25 s of CPU
+# plain); the composites' values and the CLI's checks of their names run
+# under valgrind in composite's other tests.
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
@@ -118,6 +122,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     keep_scale/recovery_ngan_through_csv_and_cli
     keep_scale/recovery_cuberoot_and_log1p
     keep_scale/cornell_lambert_at_most_the_peers_e
+    composite/recovery_ngan_through_csv_and_cli
+    composite/cornell_every_fit_at_most_the_peers_e
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     intervals/cover_*

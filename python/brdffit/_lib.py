@@ -51,7 +51,7 @@ typedef struct {
 } bf_geom;
 
 /* --- models --- */
-#define BF_MAX_PARAMS 4
+#define BF_MAX_PARAMS 8
 typedef enum { BF_INPUT_DEFAULT = 0, BF_INPUT_INDEX, BF_INPUT_ON } bf_input;
 typedef struct {
     const char *name;
@@ -96,6 +96,7 @@ typedef struct {
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);
 const bf_model_type *bf_model_find(const char *name);
+const bf_model_type *bf_model_find_why(const char *name, const char **why);
 typedef enum { BF_MODELS_PAPER = 0, BF_MODELS_RANKING } bf_model_set;
 const char *bf_model_set_names(bf_model_set set);
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
@@ -182,7 +183,7 @@ int bf_csv_write(const bf_dataset *ds, FILE *fp);
 /* --- fitting --- */
 int bf_normalise(size_t n, const double *in, double *out);
 typedef struct {
-    double param[4];
+    double param[8];
     double lse;
     unsigned bound_hit;
     size_t n_eval;
@@ -258,11 +259,11 @@ typedef struct {
     unsigned free_mask;
     bf_fit_result grid;
     bf_fit_result refined;
-    double ci_low[4];
-    double ci_high[4];
+    double ci_low[8];
+    double ci_high[8];
     unsigned ci_open;
-    double boot_low[4];
-    double boot_high[4];
+    double boot_low[8];
+    double boot_high[8];
     size_t n;
     size_t k;
     double aic, bic;
@@ -275,7 +276,7 @@ typedef struct {
     bf_ci_method ci_method;
     double noise_power;
     double noise_sigma;
-    double ml_param[4];
+    double ml_param[8];
     unsigned not_identified;
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
@@ -284,7 +285,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
 /* --- the exact fit's policy, ranking, output files --- */
 typedef struct {
     bf_model_type type;
-    bf_param param[4];
+    bf_param param[8];
 } bf_model_variant;
 #define BF_VARIANT_MAX_GRID 100001
 void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);

@@ -164,8 +164,10 @@ def models():
 
 
 def model(name):
-    """The model called name (case-insensitive, bf_model_find); a Model is
-    returned as it is. Raises NotFoundError naming the known models."""
+    """The model called name (case-insensitive, bf_model_find; "D+S" is the
+    composite of SPEC §9.4, e.g. "LAMBERT+GGX"); a Model is returned as it
+    is. Raises NotFoundError naming the known models (for a composite, why
+    the name is refused)."""
     return _find(name)
 
 
@@ -175,11 +177,16 @@ def _find(name):
         return name
     if not isinstance(name, str):
         raise TypeError("model: expected a model name, got %r" % (name,))
-    ctype = lib.bf_model_find(name.encode())
+    why = ffi.new("const char **")
+    ctype = lib.bf_model_find_why(name.encode(), why)
+    if ctype == ffi.NULL and "+" in name:  # a composite D+S (SPEC §9.4)
+        raise NotFoundError("model %r: %s" % (name, text(why[0])), 7)
     if ctype == ffi.NULL:
         raise NotFoundError("unknown model %r (known: %s)" % (
             name, ", ".join(m.name for m in models())), 7)
-    return next(m for m in models() if m.name == text(ctype.name))
+    # a composite D+S is not listed by the registry: its own Model
+    return next((m for m in models() if m.name == text(ctype.name)),
+                None) or Model(ctype)
 
 
 def _beckmann_geometry(angles, frame, keep):

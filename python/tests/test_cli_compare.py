@@ -45,6 +45,10 @@ def expected_row(r, param):
            "boot_low": "", "boot_high": "", "n_params": str(r.n_params),
            "aic": g(r.aic), "bic": g(r.bic), "cv": g(r.cv),
            "flags": r.flags}
+    # the specular part's columns: empty for the diffuse models fitted here
+    row.update({c: "" for c in ("ndf", "masking", "fresnel", "albedo_0",
+                                "albedo_30", "albedo_60", "albedo_80",
+                                "albedo_over_1")})
     if param is None:
         row.update(parameter="", unit="", value="", bound_hit="0",
                    grid_value="", refined_value="", ci_low="", ci_high="",

@@ -213,3 +213,20 @@ def test_a_specular_model_evaluates_in_sr_per_steradian():
     v = brdffit.evaluate("GGX", {"alpha": 0.1, "F0": 1.0}, 0.0, 0.0, 0.0,
                          0.0)
     assert abs(float(v) - 1.0 / (4 * np.pi * 0.01)) < 1e-12 * float(v)
+
+
+def test_a_composite_is_a_model_by_name():
+    # SPEC §9.4: rho_d, then D's, then S's; LAMBERT's d is 1/pi
+    m = brdffit.model("lambert+ggx")
+    assert m.name == "LAMBERT+GGX" and m.kind == "specular"
+    assert [p.name for p in m.parameters] == ["rho_d", "rho_s", "alpha",
+                                              "F0"]
+    assert m.ndf == brdffit.model("GGX").ndf
+    v = brdffit.evaluate(m, [0.3, 0.5, 0.2, 0.04], 0.5, 0.0, 0.4, 2.0)
+    s = brdffit.evaluate("GGX", [0.5, 0.2, 0.04], 0.5, 0.0, 0.4, 2.0)
+    assert abs(v - (0.3 / np.pi + s)) <= 1e-14 * abs(v)
+    assert m not in brdffit.models()  # found by name, not listed
+    with pytest.raises(brdffit.NotFoundError, match="diffuse model first"):
+        brdffit.model("GGX+LAMBERT")
+    with pytest.raises(brdffit.NotFoundError, match="one specular part"):
+        brdffit.model("GGX+CT")

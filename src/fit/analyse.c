@@ -47,6 +47,20 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
         STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
         return BF_EINVAL;
     }
+    for (m = 0; m < spec->n_models; m++) {
+        if (spec->models[m] != NULL &&
+            spec->models[m]->kind == BF_MODEL_SPECULAR &&
+            !bf_objective_keeps_scale(opts->objective)) {
+            /* SPEC §9, §10: its scale is physical */
+            STUDY_ERR(err, BF_EINVAL,
+                      "%s gives absolute BRDF values (SPEC §9); the %s "
+                      "objective max-normalises them: use --objective "
+                      "ngan, cuberoot or log1p",
+                      spec->models[m]->name,
+                      bf_objective_name(opts->objective));
+            return BF_EINVAL;
+        }
+    }
     {
         /* SPEC §10: the objectives that keep the scale compare rho as
          * measured on the configurations with theta_i, theta_o <= 80 deg */

@@ -127,6 +127,10 @@ static void build_grid(run_t *r, size_t g, size_t u_example)
     bf__grid_layout_t lay;
     bf_problem pb;
     unit_problem(r, u_example, &pb);
+    if (pb.type->kind == BF_MODEL_SPECULAR) {
+        gp->status = BF_OK; /* its own search (varpro.c), no stored grid */
+        return;
+    }
     gp->status = bf__grid_layout_range(pb.type, pb.fixed, pb.free_mask,
                                        pb.lo, pb.hi, &lay);
     if (gp->status == BF_OK) {
@@ -175,6 +179,23 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
     }
 }
 
+/* A specular model (SPEC §9.3, §9.4) under an objective that keeps the
+ * scale: the separable fit (varpro.c) and its AIC and BIC. Its intervals,
+ * bootstrap and cross-validation are not computed (NaN). */
+static int analyse_separable(bf__fitctx *fc, bf_fit_stats *st)
+{
+    int rc = bf__varpro_fit(fc, &st->grid, &st->refined);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    if (st->refined.lse > 0.0) {
+        st->aic = bf_aic(st->refined.lse, fc->pb->n, st->k);
+        st->bic = bf_bic(st->refined.lse, fc->pb->n, st->k);
+    }
+    st->done = 1;
+    return BF_OK;
+}
+
 /* Analyses unit u with the thread's context fc (pointed at the unit's
  * problem here). Returns BF_OK, a code for the row (BF_EDOM: the model
  * cannot fit these data), or BF_ENOMEM. */
@@ -196,6 +217,9 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     st->free_mask = pb.free_mask;
     st->n = pb.n;
     st->k = bf_problem_nparams(&pb);
+    if (pb.type->kind == BF_MODEL_SPECULAR) {
+        return analyse_separable(fc, st);
+    }
     if (gp->gr == NULL) {
         return gp->status;
     }

@@ -143,6 +143,24 @@ int bf__curve(const bf__prep *pm, const double *param, void *work,
     if (rc != BF_OK) {
         return BF_EDOM;
     }
+    if (pm->type->kind == BF_MODEL_SPECULAR) {
+        /* SPEC §10: rho = BRDF cos ti as it is, never normalised */
+        size_t k;
+        for (k = 0; k < pm->n; k++) {
+            double si;
+            double ci;
+            if (pm->cs != NULL) {
+                ci = pm->cs->cti[k]; /* bf__zenith_sincos's, once */
+            } else {
+                bf__zenith_sincos(pm->geom[k].theta_i, &si, &ci);
+            }
+            curve[k] *= ci;
+            if (!isfinite(curve[k])) {
+                return BF_EDOM;
+            }
+        }
+        return BF_OK;
+    }
     /* SPEC §2. Models with block kernels normalise as those do (their
      * kr->normalise), so a point's curve has the bits of the same grid
      * point's; the others as bf_normalise, the bits the paper's protocol
@@ -160,13 +178,17 @@ int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm)
     memset(fc, 0, sizeof *fc);
     fc->pm = pm;
     fc->work = bf__work_alloc(pm);
-    fc->curve = malloc(3 * pm->n * sizeof *fc->curve);
+    /* a specular model's separable fit needs its columns (varpro.c) */
+    fc->curve = malloc((pm->type->kind == BF_MODEL_SPECULAR ? 6 : 3) *
+                       pm->n * sizeof *fc->curve);
     if (fc->work == NULL || fc->curve == NULL) {
         bf__fitctx_free(fc);
         return BF_ENOMEM;
     }
     fc->scratch = fc->curve + pm->n;
     fc->log_d = fc->scratch + pm->n;
+    fc->cols = pm->type->kind == BF_MODEL_SPECULAR ? fc->log_d + pm->n
+                                                    : NULL;
     return BF_OK;
 }
 
@@ -199,6 +221,9 @@ static const double *log_data(const bf__fitctx *fc)
 int bf__fit_value(bf__fitctx *fc, const double *param, double *value)
 {
     int rc;
+    if (fc->lin_mask != 0) { /* the scales solved exactly (varpro.c) */
+        return bf__varpro_value(fc, param, value);
+    }
     fc->n_eval++;
     rc = bf__curve(fc->pm, param, fc->work, fc->curve);
     if (rc != BF_OK) {

@@ -173,7 +173,14 @@ typedef struct {
     double *curve;   /* n */
     double *scratch; /* n */
     double *log_d;   /* n: bf__data_transform of pb->data */
+    double *cols;    /* 3 n: a specular model's columns (varpro.c), or
+                        NULL */
     size_t n_eval;   /* evaluations since init */
+    /* The separable fit (varpro.c): bit j when parameter j is a scale
+     * (bf_param.linear) that bf__fit_value solves exactly instead of
+     * taking it from param (0: none is), and the values it solved. */
+    unsigned lin_mask;
+    double lin[BF_MAX_PARAMS];
 } bf__fitctx;
 
 /* Scratch memory for pm. BF_OK or BF_ENOMEM. */
@@ -258,6 +265,28 @@ typedef struct {
  * BF_EINVAL, BF_ENOMEM (s then needs no free). */
 int bf__solo_init(bf__solo *s, const bf_problem *pb);
 void bf__solo_free(bf__solo *s);
+
+/* ======================================================================
+ * --- separable least squares for the specular models (varpro.c) ---
+ * ====================================================================== */
+
+/* S of fc->pb (objective BF_OBJ_NGAN) at param with the scales of
+ * fc->lin_mask solved exactly, non-negative, into fc->lin (param's values
+ * of them are not read). At most two scales. BF_OK, BF_EDOM. */
+int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
+
+/* The fit of a specular model (BF_MODEL_SPECULAR: SPEC §9.3 and the
+ * composites of §9.4) under an objective that keeps the scale (SPEC §10):
+ * the scales (bf_param.linear) solved exactly for every value of the
+ * other free parameters, those searched on a product grid (log-spaced
+ * over a wide positive domain) and refined from the grid's best local
+ * minima with the scales re-solved (variable projection); under cuberoot
+ * and log1p that solution starts a refinement of every free parameter.
+ * grid (may be NULL) gets the grid optimum, result the fit (lse: S of the
+ * objective, not its report). BF_OK, BF_EDOM (no point defined),
+ * BF_EINVAL (more than two free scales, or not such a model). */
+int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
+                   bf_fit_result *result);
 
 /* ======================================================================
  * --- exact refinement, minimisation (refine.c) ---

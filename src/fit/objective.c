@@ -114,6 +114,8 @@ int bf_problem_init(bf_problem *pb, const bf_model_type *type,
             pb->free_mask |= 1u << j;
             pb->lo[j] = pj->grid_lo;
             pb->hi[j] = pj->grid_lo + pj->grid_step * (double)(pj->grid_n - 1);
+        } else if (pj->fitted && type->kind == BF_MODEL_SPECULAR) {
+            pb->free_mask |= 1u << j; /* SPEC §9.3: its whole domain */
         }
     }
     return BF_OK;
@@ -131,6 +133,9 @@ size_t bf_problem_nfree(const bf_problem *pb)
 
 size_t bf_problem_nparams(const bf_problem *pb)
 {
+    if (pb->type->kind == BF_MODEL_SPECULAR) {
+        return bf_problem_nfree(pb); /* SPEC §9: no scale beside them */
+    }
     return bf_problem_nfree(pb) + (pb->objective == BF_OBJ_SCALE ||
                                            bf_objective_keeps_scale(
                                                pb->objective)
@@ -266,6 +271,9 @@ static double log1p_scale(const bf_problem *pb, const double *tdata,
 double bf__fit_scale_of(const bf_problem *pb, const double *tdata,
                         const double *curve)
 {
+    if (pb->type->kind == BF_MODEL_SPECULAR) {
+        return 1.0; /* SPEC §9: its scales are parameters */
+    }
     switch (pb->objective) {
     case BF_OBJ_SCALE:
         return optimal_scale(pb, curve);
@@ -298,7 +306,9 @@ void bf__residuals(const bf_problem *pb, const double *cti,
         for (k = 0; k < pb->n; k++) {
             resid[k] = cbrt(curve[k]);
         }
-        t = cuberoot_scale(pb, log_d, resid, 1);
+        t = pb->type->kind == BF_MODEL_SPECULAR
+                ? 1.0 /* SPEC §9: its scales are parameters */
+                : cuberoot_scale(pb, log_d, resid, 1);
         for (k = 0; k < pb->n; k++) {
             resid[k] = t * resid[k] - log_d[k];
         }
@@ -421,6 +431,7 @@ int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d)
     int rc;
     if (pb == NULL || rho_d == NULL || pb->data == NULL ||
         !bf_objective_keeps_scale(pb->objective) ||
+        (pb->type != NULL && pb->type->kind == BF_MODEL_SPECULAR) ||
         (pb->type != NULL && pb->type->p > 0 && param == NULL)) {
         return BF_EINVAL;
     }

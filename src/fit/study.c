@@ -290,8 +290,8 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
              * absolute and need the objectives of SPEC §10 */
             return bf__error_set(err, BF_EINVAL, 0,
                                  "%s gives absolute BRDF values (SPEC §9); "
-                                 "fit it with --objective ngan, cuberoot or "
-                                 "log1p",
+                                 "fit it with --fit exact --objective ngan, "
+                                 "cuberoot or log1p",
                                  spec->models[i]->name);
         }
     }

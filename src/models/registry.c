@@ -9,45 +9,17 @@
  */
 #include <ctype.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
+#include "models/registry.h"
 
-/* The registry, one line per model: the pointer variable its file
- * defines (`const bf_model_type *const bf_model_x = &x_type;`). Order is
- * part of the API (bf_model_get): the paper's six Beckmann variants, then
- * ON, LFTG, the Lambert baseline, WNO and WNO-R, then the specular models
- * of SPEC §9.3 in its table's order (each added after the others so
- * earlier indices keep their meaning; their option variants are reached
- * through bf_model_specular_variant, not listed). Adding a model means one new file in
- * src/models/ (the build takes every file there) and one line here; the
+/* The registry: the lists of models/registry.h (one line per model;
+ * their composites D+S, SPEC §9.4, are found by name, not listed). The
  * public header's declarations of the first models are for callers who
  * name them, a new model needs none (bf_model_find). */
-#define BF_REGISTRY(X)                                                      \
-    X(bf_model_bk_g)                                                        \
-    X(bf_model_bk_e)                                                        \
-    X(bf_model_vh_g)                                                        \
-    X(bf_model_vh_e)                                                        \
-    X(bf_model_fc_g)                                                        \
-    X(bf_model_fc_e)                                                        \
-    X(bf_model_on)                                                          \
-    X(bf_model_lftg)                                                        \
-    X(bf_model_lambert)                                                     \
-    X(bf_model_wno)                                                         \
-    X(bf_model_wno_r)                                                       \
-    X(bf_model_ggx)                                                         \
-    X(bf_model_beckmann)                                                    \
-    X(bf_model_ct)                                                          \
-    X(bf_model_blinn_phong)                                                 \
-    X(bf_model_ward)                                                        \
-    X(bf_model_ward_duer)                                                   \
-    X(bf_model_ward_gmd)                                                    \
-    X(bf_model_as)                                                          \
-    X(bf_model_lafortune)                                                   \
-    X(bf_model_abc)
-
-#define BF_REGISTRY_DECLARE(v) extern const bf_model_type *const v;
 #define BF_REGISTRY_ADDRESS(v) &v,
 BF_REGISTRY(BF_REGISTRY_DECLARE)
 
@@ -78,32 +50,40 @@ const bf_model_type *bf_model_get(size_t i)
     return (i < REGISTRY_N) ? *registry[i] : NULL;
 }
 
-/* ASCII case-insensitive equality (strcasecmp is POSIX, not C11, and is
- * locale-dependent). */
-static int name_equal(const char *a, const char *b)
+int bf__name_equal(const char *a, const char *b, size_t len)
 {
-    while ((*a != '\0') && (*b != '\0')) {
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) {
+    size_t k;
+    for (k = 0; (k < len) && (*a != '\0') && (b[k] != '\0'); k++, a++) {
+        if (tolower((unsigned char)*a) != tolower((unsigned char)b[k])) {
             return 0;
         }
-        a++;
-        b++;
     }
-    return (*a == '\0') && (*b == '\0');
+    return (*a == '\0') && ((k == len) || (b[k] == '\0'));
 }
 
-const bf_model_type *bf_model_find(const char *name)
+const bf_model_type *bf_model_find_why(const char *name, const char **why)
 {
+    const char *ignored;
     size_t i;
+    if (why == NULL) {
+        why = &ignored;
+    }
+    *why = "unknown model (see 'brdffit models')";
     if (name == NULL) {
         return NULL;
     }
     for (i = 0; i < REGISTRY_N; i++) {
-        if (name_equal((*registry[i])->name, name)) {
+        if (bf__name_equal((*registry[i])->name, name, SIZE_MAX)) {
+            *why = NULL;
             return *registry[i];
         }
     }
-    return NULL;
+    return strchr(name, '+') != NULL ? bf__composite_find(name, why) : NULL;
+}
+
+const bf_model_type *bf_model_find(const char *name)
+{
+    return bf_model_find_why(name, NULL);
 }
 
 int bf_model_param_index(const bf_model_type *type, const char *name)

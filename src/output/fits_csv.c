@@ -48,6 +48,56 @@ static void analysis_cols(FILE *fp, const bf_study_row *r,
     bf__csv_field(fp, flags);
 }
 
+/* The incidences of the energy columns (issue 17 item 8), degrees. */
+static const double albedo_deg[4] = {0.0, 30.0, 60.0, 80.0};
+
+/* The specular columns of row r (empty for a diffuse model): the NDF,
+ * masking and Fresnel term of its specular part (SPEC §9.2: every output
+ * names them), and that part's directional albedo at the fitted
+ * parameters (bf_model_albedo) at the incidences above, with 1 where one
+ * exceeds 1 (the white-furnace check). */
+static void specular_cols(FILE *fp, const bf_study_row *r,
+                          const double *albedo)
+{
+    size_t first;
+    const bf_model_type *sp = bf_model_specular_part(r->type, &first);
+    size_t a;
+    int over = 0;
+    if (sp == NULL) {
+        fputs(",,,,,,,,", fp);
+        return;
+    }
+    fputc(',', fp);
+    bf__csv_field(fp, sp->ndf != NULL ? sp->ndf : "");
+    fputc(',', fp);
+    bf__csv_field(fp, sp->masking != NULL ? sp->masking : "");
+    fputc(',', fp);
+    bf__csv_field(fp, sp->fresnel_term != NULL ? sp->fresnel_term : "");
+    for (a = 0; a < 4; a++) {
+        bf__csv_num(fp, albedo[a]);
+        over |= albedo[a] > 1.0;
+    }
+    fprintf(fp, ",%d", over);
+}
+
+/* The albedos of specular_cols for row r (NaN where the quadrature fails
+ * or the model is diffuse). */
+static void row_albedo(const bf_study_row *r, double *albedo)
+{
+    size_t first;
+    const bf_model_type *sp = bf_model_specular_part(r->type, &first);
+    size_t a;
+    for (a = 0; a < 4; a++) {
+        albedo[a] = NAN;
+        if (sp != NULL &&
+            bf_model_albedo(sp, r->fit.param + first,
+                            albedo_deg[a] * 3.14159265358979323846 / 180.0,
+                            &albedo[a]) != BF_OK) {
+            albedo[a] = NAN;
+        }
+    }
+}
+
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts)
@@ -60,18 +110,24 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
     fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
           "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
           "ci_low,ci_high,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
-          "bic,cv,flags\n",
+          "bic,cv,flags,ndf,masking,fresnel,albedo_0,albedo_30,albedo_60,"
+          "albedo_80,albedo_over_1\n",
           fp);
     for (i = 0; i < spec->n_targets * spec->n_models; i++) {
         const bf_study_row *r = &rows[i];
         const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
         size_t j;
         int any = 0;
+        double albedo[4];
         if (r->status != BF_OK) {
             continue;
         }
-        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)) {
-            any = 1; /* SPEC §9.4: rho_d, a parameter of the fit */
+        row_albedo(r, albedo);
+        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)
+            && r->type->kind != BF_MODEL_SPECULAR) {
+            /* SPEC §9.4: rho_d, a parameter of the fit (a specular
+             * model's scales are its own parameters) */
+            any = 1;
             bf__csv_target(fp, spec, r->target);
             fputc(',', fp);
             bf__csv_field(fp, r->type->name);
@@ -80,6 +136,7 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
             fprintf(fp, ",%.10g,%d,%zu", r->fit.lse, s->scale == 0.0,
                     r->k);
             analysis_cols(fp, r, s, opts, SCALE_ROW);
+            specular_cols(fp, r, albedo);
             fputc('\n', fp);
         }
         for (j = 0; j < r->type->p; j++) {
@@ -94,6 +151,7 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                     r->type->param[j].unit, r->fit.param[j], r->fit.lse,
                     (r->fit.bound_hit & (1u << j)) ? 1 : 0, r->k);
             analysis_cols(fp, r, s, opts, j);
+            specular_cols(fp, r, albedo);
             fputc('\n', fp);
         }
         if (!any) {
@@ -102,6 +160,7 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
             bf__csv_field(fp, r->type->name);
             fprintf(fp, ",,,,%.10g,0,%zu", r->fit.lse, r->k);
             analysis_cols(fp, r, s, opts, SIZE_MAX);
+            specular_cols(fp, r, albedo);
             fputc('\n', fp);
         }
     }

@@ -119,6 +119,7 @@ static int select_models(const char *hint, const bf_report_options *o, const bf_
             char name[64];
             size_t len = strcspn(p, ",");
             const bf_model_type *t;
+            const char *why;
             size_t j;
             if (len == 0 || len >= sizeof name) {
                 return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
@@ -127,19 +128,25 @@ static int select_models(const char *hint, const bf_report_options *o, const bf_
             }
             memcpy(name, p, len);
             name[len] = '\0';
-            t = bf_model_find(name);
+            t = bf_model_find_why(name, &why);
+            if (t == NULL && strchr(name, '+') != NULL) { /* SPEC §9.4 */
+                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
+                                         "--models: '%s': %s", name, why);
+            }
             if (t == NULL) {
                 return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "--models: unknown "
                                           "model '%s' (see 'brdffit models')",
                                           name);
             }
-            if (t->kind == BF_MODEL_SPECULAR) {
-                /* every objective of today max-normalises (SPEC §2) */
+            if (t->kind == BF_MODEL_SPECULAR &&
+                !bf_objective_keeps_scale(o->objective)) {
+                /* SPEC §9, §10: the other objectives max-normalise */
                 return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                          "%s gives absolute BRDF values "
-                                         "(SPEC §9); fit it with --objective "
-                                         "ngan, cuberoot or log1p", t->name);
+                                         "(SPEC §9); fit it with --fit exact "
+                                         "--objective ngan, cuberoot or "
+                                         "log1p", t->name);
             }
             for (j = 0; j < *n; j++) {
                 if (list[j] == t) {

@@ -74,8 +74,8 @@ Test(cli_specular, models_rejects_unknown_option_values)
     cr_assert_not_null(strstr(err, "--smith needs a value"), "%s", err);
 }
 
-/* Today's objectives max-normalise (SPEC §2): a specular model by name is
- * refused before any data is read, with what to use instead. */
+/* The paper's objective max-normalises (SPEC §2): a specular model by
+ * name is refused before any data is read, with what to use instead. */
 Test(cli_specular, the_paper_study_refuses_a_specular_model)
 {
     const char *argv[] = {"compare", "--data", "DATA", "--models",
@@ -84,7 +84,7 @@ Test(cli_specular, the_paper_study_refuses_a_specular_model)
     cr_assert_eq(bf_test_run_curet(argv), EXIT_BADVALUE);
     (void)bf_test_run_cli(argv, NULL, &err);
     cr_assert_not_null(strstr(err, "GGX gives absolute BRDF values (SPEC §9); "
-                                   "fit it with --objective ngan, cuberoot or "
-                                   "log1p"),
+                                   "fit it with --fit exact --objective ngan, "
+                                   "cuberoot or log1p"),
                        "%s", err);
 }

@@ -1,0 +1,735 @@
+/* varpro.c: the fit of the specular models (SPEC §9.3) and the composites
+ * D+S (SPEC §9.4) under the objectives that keep the scale (SPEC §10), as
+ * separable least squares: the scales enter linearly, so for every value
+ * of the other parameters they are solved exactly (variable projection).
+ *
+ * [1] G. H. Golub, V. Pereyra, "The differentiation of pseudo-inverses and
+ *     nonlinear least squares problems whose variables separate", SIAM J.
+ *     Numer. Anal. 10(2), 1973 (variable projection).
+ * [2] C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems", 1974,
+ *     ch. 23 (non-negative least squares: the optimum is the
+ *     unconstrained one on its active set).
+ * [3] GSL manual, "Multidimensional Minimization" (nmsimplex2).
+ *
+ * Equations (rho = BRDF cos ti measured, w weights, theta the scales):
+ *   rho_hat = c_0 + sum_j theta_j c_j,   c_0 = rho_hat at theta = 0,
+ *             c_j = rho_hat at theta = e_j minus c_0      (affine in theta)
+ *   theta = argmin_{theta >= 0} sum_k w_k (rho_hat_k - rho_k)^2
+ *     (NNLS, two columns at most: the unconstrained solution of the
+ *      normal equations when it is >= 0, else the better of the two
+ *      one-column solutions clamped at 0 -- the four active sets)
+ *   ngan: S = sum w (rho_hat - rho)^2, reported E = sqrt(S / K) (SPEC §10)
+ * The other free parameters: a product grid over their domains (log-spaced
+ * where the domain is positive and spans a factor 50 or more: alpha in
+ * [1e-3, 2], the exponents), then Nelder-Mead from the grid's best local
+ * minima in the same coordinates (ln x where the grid is log-spaced), the
+ * scales re-solved at every trial point; every trial point clamped into
+ * the domain. cuberoot, log1p: the ngan solution starts Nelder-Mead over
+ * every free parameter, scales included.
+ */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+#include <gsl/gsl_multimin.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+#define MAX_LIN 2
+#define STARTS 6
+#define NM_ITER 300
+#define NM_SIZE 1e-7
+#define UNDEFINED 1e300
+
+/* Grid points per parameter by the number of gridded parameters (log-
+ * spaced, linear). */
+static const size_t grid_log[] = {0, 200, 48, 24, 14, 8, 6, 5, 4};
+static const size_t grid_lin[] = {0, 101, 7, 7, 6, 5, 4, 4, 3};
+
+/* ==== the scales solved exactly ========================================== */
+
+static double weight_of(const bf_problem *pb, size_t k)
+{
+    return pb->weight != NULL ? pb->weight[k] : 1.0;
+}
+
+/* sum w (c0 + t1 c1 + t2 c2 - R)^2 (c2 NULL: one column). */
+static double sse(const bf_problem *pb, const double *c0, const double *c1,
+                  const double *c2, double t1, double t2)
+{
+    double sum = 0.0;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double r = c0[k] + t1 * c1[k] - pb->data[k];
+        if (c2 != NULL) {
+            r += t2 * c2[k];
+        }
+        sum += weight_of(pb, k) * r * r;
+    }
+    return sum;
+}
+
+/* The NNLS scales of one or two columns c1, c2 for the target R - c0,
+ * each clamped into [0, hi]. */
+static void nnls(const bf_problem *pb, const double *c0, const double *c1,
+                 const double *c2, const double *hi, double *t)
+{
+    double g11 = 0.0;
+    double g12 = 0.0;
+    double g22 = 0.0;
+    double b1 = 0.0;
+    double b2 = 0.0;
+    double a1;
+    double a2;
+    size_t k;
+    for (k = 0; k < pb->n; k++) {
+        double w = weight_of(pb, k);
+        double r = pb->data[k] - c0[k];
+        g11 += w * c1[k] * c1[k];
+        b1 += w * c1[k] * r;
+        if (c2 != NULL) {
+            g12 += w * c1[k] * c2[k];
+            g22 += w * c2[k] * c2[k];
+            b2 += w * c2[k] * r;
+        }
+    }
+    a1 = g11 > 0.0 && b1 > 0.0 ? fmin(b1 / g11, hi[0]) : 0.0;
+    if (c2 == NULL) {
+        t[0] = a1;
+        return;
+    }
+    a2 = g22 > 0.0 && b2 > 0.0 ? fmin(b2 / g22, hi[1]) : 0.0;
+    {
+        double det = g11 * g22 - g12 * g12;
+        if (det > 1e-14 * g11 * g22 && det > 0.0) {
+            double u1 = (b1 * g22 - b2 * g12) / det;
+            double u2 = (b2 * g11 - b1 * g12) / det;
+            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
+                t[0] = u1; /* both active: the unconstrained optimum */
+                t[1] = u2;
+                return;
+            }
+        }
+    }
+    /* one scale at 0: the better of the two one-column optima */
+    if (sse(pb, c0, c1, c2, a1, 0.0) <= sse(pb, c0, c1, c2, 0.0, a2)) {
+        t[0] = a1;
+        t[1] = 0.0;
+    } else {
+        t[0] = 0.0;
+        t[1] = a2;
+    }
+}
+
+int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
+{
+    const bf_problem *pb = fc->pb;
+    const size_t n = fc->pm->n;
+    double p[BF_MAX_PARAMS];
+    double *col[MAX_LIN + 1];
+    double hi[MAX_LIN];
+    size_t lj[MAX_LIN];
+    size_t n_l = 0;
+    size_t j;
+    size_t q;
+    double t[MAX_LIN] = {0.0, 0.0};
+    int rc;
+    memcpy(p, param, sizeof p);
+    for (j = 0; j < pb->type->p; j++) {
+        if ((fc->lin_mask >> j) & 1u) {
+            if (n_l == MAX_LIN || fc->cols == NULL) {
+                return BF_EINVAL;
+            }
+            hi[n_l] = pb->hi[j];
+            lj[n_l++] = j;
+            p[j] = 0.0;
+        }
+    }
+    for (q = 0; q <= n_l; q++) {
+        col[q] = fc->cols + q * n;
+    }
+    /* c_0, then c_j = rho_hat(e_j) - c_0: n_l + 1 evaluations */
+    for (q = 0; q <= n_l; q++) {
+        if (q > 0) {
+            p[lj[q - 1]] = 1.0;
+        }
+        fc->n_eval++;
+        rc = bf__curve(fc->pm, p, fc->work, col[q]);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        if (q > 0) {
+            size_t k;
+            for (k = 0; k < n; k++) {
+                col[q][k] -= col[0][k];
+            }
+            p[lj[q - 1]] = 0.0;
+        }
+    }
+    nnls(pb, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
+    {
+        size_t k;
+        for (k = 0; k < n; k++) { /* the curve at the solved scales */
+            double v = col[0][k];
+            for (q = 0; q < n_l; q++) {
+                v += t[q] * col[q + 1][k];
+            }
+            fc->curve[k] = v;
+        }
+    }
+    for (q = 0; q < n_l; q++) {
+        fc->lin[lj[q]] = t[q];
+    }
+    *value = bf__objective(pb, fc->pm->cs->cti, NULL, fc->curve,
+                           fc->scratch);
+    return isfinite(*value) ? BF_OK : BF_EDOM;
+}
+
+/* ==== coordinates, the grid ============================================== */
+
+/* What moves in a search: parameter idx[i] over [lo_i, hi_i], in ln x when
+ * lg[i] (lo > 0). */
+typedef struct {
+    bf__fitctx *fc;
+    double base[BF_MAX_PARAMS];
+    size_t m;
+    size_t idx[BF_MAX_PARAMS];
+    int lg[BF_MAX_PARAMS];
+    double lo[BF_MAX_PARAMS];
+    double hi[BF_MAX_PARAMS];
+    size_t count[BF_MAX_PARAMS]; /* grid points */
+    double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+} space_t;
+
+/* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
+static int log_scaled(double lo, double hi)
+{
+    return (lo > 0.0 && hi / lo >= 50.0) || (lo == 0.0 && hi >= 50.0);
+}
+
+static void space_init(space_t *sp, bf__fitctx *fc, unsigned mask)
+{
+    const bf_problem *pb = fc->pb;
+    size_t j;
+    memset(sp, 0, sizeof *sp);
+    sp->fc = fc;
+    memcpy(sp->base, pb->fixed, sizeof sp->base);
+    for (j = 0; j < pb->type->p; j++) {
+        if ((mask >> j) & 1u) {
+            size_t i = sp->m++;
+            sp->idx[i] = j;
+            sp->lo[i] = pb->lo[j];
+            sp->hi[i] = pb->hi[j];
+            sp->lg[i] = log_scaled(pb->lo[j], pb->hi[j]);
+            if (sp->lg[i] && !(sp->lo[i] > 0.0)) {
+                /* [0, hi]: 0 and a log grid from hi 1e-6 */
+                sp->zero_first[i] = 1.0;
+                sp->lo[i] = pb->hi[j] * 1e-6;
+            }
+        }
+    }
+    for (j = 0; j < sp->m; j++) {
+        size_t d = sp->m < 8 ? sp->m : 8;
+        sp->count[j] = sp->lg[j] ? grid_log[d] : grid_lin[d];
+    }
+}
+
+/* Grid coordinate i of axis a. */
+static double grid_x(const space_t *sp, size_t a, size_t i)
+{
+    size_t c = sp->count[a];
+    double f;
+    if (sp->zero_first[a] != 0.0) {
+        if (i == 0) {
+            return 0.0;
+        }
+        i--;
+        c--;
+    }
+    f = c > 1 ? (double)i / (double)(c - 1) : 0.0;
+    if (sp->lg[a]) {
+        return exp(log(sp->lo[a]) + f * (log(sp->hi[a]) - log(sp->lo[a])));
+    }
+    return sp->lo[a] + f * (sp->hi[a] - sp->lo[a]);
+}
+
+/* x from the search coordinate u (clamped into the domain). */
+static double from_u(const space_t *sp, size_t a, double u)
+{
+    double x = sp->lg[a] ? exp(u) : u;
+    double lo = sp->zero_first[a] != 0.0 ? 0.0 : sp->lo[a];
+    if (sp->lg[a] && sp->zero_first[a] != 0.0 && x <= sp->lo[a]) {
+        x = 0.0; /* below the log grid's first point: the bound 0 */
+    }
+    return x < lo ? lo : (x > sp->hi[a] ? sp->hi[a] : x);
+}
+
+static double to_u(const space_t *sp, size_t a, double x)
+{
+    if (!sp->lg[a]) {
+        return x;
+    }
+    return log(x > sp->lo[a] ? x : sp->lo[a]);
+}
+
+/* The objective at x (full vector; the scales solved when the context
+ * says so), UNDEFINED where not defined. */
+static double value_at(bf__fitctx *fc, const double *x)
+{
+    double v;
+    if (bf__fit_value(fc, x, &v) != BF_OK || !isfinite(v)) {
+        return UNDEFINED;
+    }
+    return v;
+}
+
+/* ==== Nelder-Mead in the search coordinates ============================== */
+
+static double f_nm(const gsl_vector *u, void *arg)
+{
+    const space_t *sp = arg;
+    double x[BF_MAX_PARAMS];
+    size_t a;
+    memcpy(x, sp->base, sizeof x);
+    for (a = 0; a < sp->m; a++) {
+        x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
+    }
+    return value_at(sp->fc, x);
+}
+
+/* Minimises from x (in place; *f its value on return) with initial steps
+ * step (search coordinates). */
+static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
+{
+    gsl_multimin_fminimizer *mn;
+    gsl_multimin_function fn;
+    gsl_vector *u;
+    gsl_vector *ss;
+    size_t a;
+    size_t it;
+    int status = GSL_CONTINUE;
+    if (sp->m == 0) {
+        *f = value_at(sp->fc, x);
+        return BF_OK;
+    }
+    mn = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2,
+                                       sp->m);
+    u = gsl_vector_alloc(sp->m);
+    ss = gsl_vector_alloc(sp->m);
+    if (mn == NULL || u == NULL || ss == NULL) {
+        gsl_multimin_fminimizer_free(mn);
+        gsl_vector_free(u);
+        gsl_vector_free(ss);
+        return BF_ENOMEM;
+    }
+    memcpy(sp->base, x, sizeof sp->base);
+    for (a = 0; a < sp->m; a++) {
+        gsl_vector_set(u, a, to_u(sp, a, x[sp->idx[a]]));
+        gsl_vector_set(ss, a, step[a]);
+    }
+    fn.n = sp->m;
+    fn.f = f_nm;
+    fn.params = sp;
+    gsl_multimin_fminimizer_set(mn, &fn, u, ss);
+    for (it = 0; it < NM_ITER && status == GSL_CONTINUE; it++) {
+        if (gsl_multimin_fminimizer_iterate(mn) != GSL_SUCCESS) {
+            break;
+        }
+        status = gsl_multimin_test_size(gsl_multimin_fminimizer_size(mn),
+                                        NM_SIZE);
+    }
+    for (a = 0; a < sp->m; a++) {
+        x[sp->idx[a]] =
+            from_u(sp, a, gsl_vector_get(gsl_multimin_fminimizer_x(mn), a));
+    }
+    *f = gsl_multimin_fminimizer_minimum(mn);
+    gsl_multimin_fminimizer_free(mn);
+    gsl_vector_free(u);
+    gsl_vector_free(ss);
+    return BF_OK;
+}
+
+/* ==== Levenberg-Marquardt on the projected residuals ===================== */
+
+/* r_k = sqrt(w_k) (rho_hat_k - rho_k) at u, the scales solved (ngan). */
+static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
+{
+    const space_t *sp = arg;
+    const bf_problem *pb = sp->fc->pb;
+    double x[BF_MAX_PARAMS];
+    double v;
+    size_t a;
+    size_t k;
+    memcpy(x, sp->base, sizeof x);
+    for (a = 0; a < sp->m; a++) {
+        x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
+    }
+    if (bf__fit_value(sp->fc, x, &v) != BF_OK || !isfinite(v)) {
+        return GSL_EDOM;
+    }
+    for (k = 0; k < pb->n; k++) {
+        double w = pb->weight != NULL ? sqrt(pb->weight[k]) : 1.0;
+        gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
+    }
+    return GSL_SUCCESS;
+}
+
+/* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
+ * from x in the search coordinates; x is replaced when it ends lower. */
+static int levenberg(space_t *sp, double *x, double *f)
+{
+    gsl_multifit_nlinear_parameters prm =
+        gsl_multifit_nlinear_default_parameters();
+    gsl_multifit_nlinear_workspace *w;
+    gsl_multifit_nlinear_fdf fdf;
+    gsl_vector *u;
+    double y[BF_MAX_PARAMS];
+    double fy;
+    int info;
+    size_t a;
+    if (sp->m == 0 || sp->fc->pb->n <= sp->m) {
+        return BF_OK;
+    }
+    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm,
+                                   sp->fc->pb->n, sp->m);
+    u = gsl_vector_alloc(sp->m);
+    if (w == NULL || u == NULL) {
+        gsl_multifit_nlinear_free(w);
+        gsl_vector_free(u);
+        return BF_ENOMEM;
+    }
+    memcpy(sp->base, x, sizeof sp->base);
+    for (a = 0; a < sp->m; a++) {
+        /* a start on a bound moves a hundredth of the domain inside: the
+         * clamp's derivative is 0 there */
+        double ua = to_u(sp, a, x[sp->idx[a]]);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double in = 0.01 * (hi - lo);
+        ua = ua < lo + in ? lo + in : (ua > hi - in ? hi - in : ua);
+        gsl_vector_set(u, a, ua);
+    }
+    memset(&fdf, 0, sizeof fdf);
+    fdf.f = f_lm;
+    fdf.n = sp->fc->pb->n;
+    fdf.p = sp->m;
+    fdf.params = sp;
+    if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
+        (void)gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14, NULL,
+                                          NULL, &info, w);
+        memcpy(y, x, sizeof y);
+        for (a = 0; a < sp->m; a++) {
+            y[sp->idx[a]] =
+                from_u(sp, a, gsl_vector_get(gsl_multifit_nlinear_position(w),
+                                             a));
+        }
+        fy = value_at(sp->fc, y);
+        if (fy < *f) {
+            memcpy(x, y, sizeof y);
+            *f = fy;
+        }
+    }
+    gsl_multifit_nlinear_free(w);
+    gsl_vector_free(u);
+    return BF_OK;
+}
+
+/* Nelder-Mead twice (the second restarted at a tenth of the steps, so a
+ * collapsed simplex does not stop it early), keeping x when no better. */
+static int polish(space_t *sp, double *x, const double *step, double *f)
+{
+    double s2[BF_MAX_PARAMS];
+    double y[BF_MAX_PARAMS];
+    double fy;
+    size_t a;
+    int pass;
+    int rc = BF_OK;
+    *f = value_at(sp->fc, x);
+    for (pass = 0; pass < 2 && rc == BF_OK; pass++) {
+        for (a = 0; a < sp->m; a++) {
+            s2[a] = pass == 0 ? step[a] : 0.1 * step[a];
+        }
+        memcpy(y, x, sizeof y);
+        rc = nelder_mead(sp, y, s2, &fy);
+        fy = value_at(sp->fc, y); /* the clamped point's own value */
+        if (rc == BF_OK && fy < *f) {
+            memcpy(x, y, sizeof y);
+            *f = fy;
+        }
+    }
+    return rc;
+}
+
+/* ==== the grid search ===================================================== */
+
+typedef struct {
+    double f;
+    size_t idx;
+} cand_t;
+
+/* The grid point's multi-index digits (the first axis slowest). */
+static void digits(const space_t *sp, size_t idx, size_t *d)
+{
+    size_t a = sp->m;
+    while (a-- > 0) {
+        d[a] = idx % sp->count[a];
+        idx /= sp->count[a];
+    }
+}
+
+static size_t index_of(const space_t *sp, const size_t *d)
+{
+    size_t idx = 0;
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        idx = idx * sp->count[a] + d[a];
+    }
+    return idx;
+}
+
+static void point_of(const space_t *sp, size_t idx, double *x)
+{
+    size_t d[BF_MAX_PARAMS];
+    size_t a;
+    digits(sp, idx, d);
+    memcpy(x, sp->base, sizeof sp->base);
+    for (a = 0; a < sp->m; a++) {
+        x[sp->idx[a]] = grid_x(sp, a, d[a]);
+    }
+}
+
+/* 1 when no lattice neighbour of point idx has a lower value. */
+static int local_min(const space_t *sp, const double *vals, size_t idx)
+{
+    size_t d[BF_MAX_PARAMS];
+    size_t a;
+    digits(sp, idx, d);
+    for (a = 0; a < sp->m; a++) {
+        int s;
+        for (s = -1; s <= 1; s += 2) {
+            size_t e[BF_MAX_PARAMS];
+            if ((s < 0 && d[a] == 0) || (s > 0 && d[a] + 1 == sp->count[a])) {
+                continue;
+            }
+            memcpy(e, d, sizeof e);
+            e[a] = (size_t)((long)d[a] + s);
+            if (vals[index_of(sp, e)] < vals[idx]) {
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* The STARTS lowest local minima of the grid into best (n of them). */
+static void pick_starts(const space_t *sp, const double *vals, size_t points,
+                        cand_t *best, size_t *n)
+{
+    size_t g;
+    *n = 0;
+    for (g = 0; g < points; g++) {
+        size_t q;
+        if (!(vals[g] < UNDEFINED) || !local_min(sp, vals, g)) {
+            continue;
+        }
+        if (*n == STARTS && !(vals[g] < best[STARTS - 1].f)) {
+            continue;
+        }
+        q = *n < STARTS ? (*n)++ : STARTS - 1;
+        while (q > 0 && best[q - 1].f > vals[g]) {
+            best[q] = best[q - 1];
+            q--;
+        }
+        best[q].f = vals[g];
+        best[q].idx = g;
+    }
+}
+
+/* The scales of x solved at x's other values (fc->lin_mask). */
+static void fill_scales(bf__fitctx *fc, double *x)
+{
+    size_t j;
+    (void)value_at(fc, x);
+    for (j = 0; j < fc->pb->type->p; j++) {
+        if ((fc->lin_mask >> j) & 1u) {
+            x[j] = fc->lin[j];
+        }
+    }
+}
+
+/* The steps of Nelder-Mead: one grid step (search coordinates). */
+static void grid_steps(const space_t *sp, double *step)
+{
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        double c = (double)(sp->count[a] > 1 ? sp->count[a] - 1 : 1);
+        step[a] = sp->lg[a] ? (log(sp->hi[a]) - log(sp->lo[a])) / c
+                            : (sp->hi[a] - sp->lo[a]) / c;
+        if (!(step[a] > 0.0)) {
+            step[a] = 1e-3;
+        }
+    }
+}
+
+/* 1 when a moving parameter of x lies on a bound of its domain (within
+ * 1e-6 of the search coordinate's span). */
+static int on_bound(const space_t *sp, const double *x)
+{
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        double u = to_u(sp, a, x[sp->idx[a]]);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double tol = 1e-6 * (hi - lo);
+        if (u <= lo + tol || u >= hi - tol ||
+            x[sp->idx[a]] <= sp->lo[a]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The separable ngan fit on fc (fc->pb's objective ngan). */
+static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
+                       bf_fit_result *result)
+{
+    const bf_problem *pb = fc->pb;
+    space_t sp;
+    double *vals;
+    size_t points = 1;
+    cand_t best[STARTS];
+    size_t n_best;
+    size_t g;
+    size_t a;
+    double step[BF_MAX_PARAMS];
+    double xbest[BF_MAX_PARAMS];
+    double fbest = UNDEFINED;
+    int rc = BF_OK;
+    fc->lin_mask = lin;
+    space_init(&sp, fc, pb->free_mask & ~lin);
+    for (a = 0; a < sp.m; a++) {
+        points *= sp.count[a];
+    }
+    vals = malloc(points * sizeof *vals);
+    if (vals == NULL) {
+        fc->lin_mask = 0;
+        return BF_ENOMEM;
+    }
+    for (g = 0; g < points; g++) {
+        double x[BF_MAX_PARAMS];
+        point_of(&sp, g, x);
+        vals[g] = value_at(fc, x);
+    }
+    pick_starts(&sp, vals, points, best, &n_best);
+    free(vals);
+    if (n_best == 0) {
+        fc->lin_mask = 0;
+        return BF_EDOM;
+    }
+    point_of(&sp, best[0].idx, xbest);
+    fill_scales(fc, xbest);
+    if (grid != NULL) {
+        memset(grid, 0, sizeof *grid);
+        memcpy(grid->param, xbest, sizeof xbest);
+        grid->lse = best[0].f;
+        grid->n_eval = points;
+    }
+    grid_steps(&sp, step);
+    for (g = 0; g < n_best && rc == BF_OK; g++) {
+        double x[BF_MAX_PARAMS];
+        double f;
+        double fl;
+        point_of(&sp, best[g].idx, x);
+        f = value_at(fc, x);
+        /* Levenberg-Marquardt to the basin's minimum; where it ends on a
+         * bound (the clamped coordinates' Jacobian vanishes there)
+         * Nelder-Mead, without derivatives, takes it off, and LM
+         * finishes */
+        rc = levenberg(&sp, x, &f);
+        fl = f;
+        if (rc == BF_OK && on_bound(&sp, x)) {
+            rc = polish(&sp, x, step, &f);
+        }
+        if (rc == BF_OK && f < fl) {
+            rc = levenberg(&sp, x, &f);
+        }
+        if (rc == BF_OK && f < fbest) {
+            fbest = f;
+            memcpy(xbest, x, sizeof x);
+        }
+    }
+    fill_scales(fc, xbest);
+    memcpy(result->param, xbest, sizeof xbest);
+    result->lse = fbest;
+    fc->lin_mask = 0;
+    return rc;
+}
+
+int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
+                   bf_fit_result *result)
+{
+    const bf_problem *pb = fc->pb;
+    bf_problem ngan;
+    unsigned lin = 0;
+    size_t n_lin = 0;
+    size_t eval0 = fc->n_eval;
+    size_t j;
+    int rc;
+    memset(result, 0, sizeof *result);
+    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
+        !bf_objective_keeps_scale(pb->objective)) {
+        return BF_EINVAL;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        if (((pb->free_mask >> j) & 1u) && pb->type->param[j].linear) {
+            lin |= 1u << j;
+            n_lin++;
+        }
+    }
+    if (n_lin > MAX_LIN) {
+        return BF_EINVAL;
+    }
+    ngan = *pb;
+    ngan.objective = BF_OBJ_NGAN;
+    bf__fitctx_use(fc, &ngan);
+    rc = varpro_ngan(fc, lin, grid, result);
+    bf__fitctx_use(fc, pb);
+    if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
+        /* SPEC §10's other objectives: every free parameter from there */
+        space_t sp;
+        double step[BF_MAX_PARAMS];
+        double f;
+        size_t a;
+        space_init(&sp, fc, pb->free_mask);
+        for (a = 0; a < sp.m; a++) {
+            double x = result->param[sp.idx[a]];
+            sp.lg[a] = sp.lg[a] && !pb->type->param[sp.idx[a]].linear;
+            step[a] = sp.lg[a] ? 0.1 : 0.1 * (fabs(x) > 1e-3 ? fabs(x)
+                                                              : 1e-3);
+        }
+        for (a = 0; a < sp.m; a++) { /* linear coordinates for the scales */
+            if (!sp.lg[a]) {
+                sp.zero_first[a] = 0.0;
+                sp.lo[a] = pb->lo[sp.idx[a]];
+            }
+        }
+        if (grid != NULL) {
+            grid->lse = value_at(fc, grid->param);
+        }
+        rc = polish(&sp, result->param, step, &f);
+        result->lse = f;
+    }
+    for (j = 0; j < pb->type->p; j++) {
+        if (((pb->free_mask >> j) & 1u) &&
+            (result->param[j] <= pb->lo[j] + BF_REFINE_TOL ||
+             result->param[j] >= pb->hi[j] - BF_REFINE_TOL)) {
+            result->bound_hit |= 1u << j;
+        }
+    }
+    result->n_eval = fc->n_eval - eval0;
+    if (rc == BF_OK && !(result->lse < UNDEFINED)) {
+        rc = BF_EDOM;
+    }
+    return rc;
+}

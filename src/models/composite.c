@@ -1,0 +1,409 @@
+/* composite.c: the composites D+S of SPEC §9.4 -- a diffuse model D and a
+ * specular model S of the registry -- for every pair of its two lists
+ * (models/registry.h), so a new model's composites come with its registry
+ * line.
+ *
+ * References:
+ *   [1] SPEC §9.4; A. Ngan, F. Durand, W. Matusik, "Experimental analysis
+ *       of BRDF models", EGSR 2005 (Lambert + one lobe).
+ *
+ * Equations (v_D a diffuse model's value: radiance up to scale, SPEC §2,
+ * so v_D / cos ti is its BRDF up to scale):
+ *   value = rho_d d(i, o) + S(i, o)                             SPEC §9.4
+ *   d(i, o) = v_D(i, o) / (pi cos ti v_D(n, n))   (d(n, n) = 1/pi;
+ *                                                  LAMBERT: d = 1/pi)
+ *   parameters: rho_d (linear), then D's, then S's.
+ * At grazing incidence (cos ti = 0) d is its limit, v_D / cos ti taken at
+ * theta_i = pi/2 - 1e-7 (relative error ~1e-7 for a smooth D; the
+ * objectives of SPEC §10 leave those configurations out).
+ */
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fit/engine.h"
+#include "models/registry.h"
+
+BF_REGISTRY(BF_REGISTRY_DECLARE)
+
+/* Configurations of D evaluated at a time (the fixed workspace). */
+#define CHUNK 64
+#define GRAZING_EPS 1e-7
+#define NAME_MAX_LEN 48
+
+/* Workspace: CHUNK values and geometries of D, then D's and S's own. */
+static size_t chunk_bytes(void)
+{
+    size_t b = CHUNK * (sizeof(double) + sizeof(bf_geom));
+    return (b + 63) / 64 * 64;
+}
+
+static int composite_eval(const bf_model_type *d, const bf_model_type *s,
+                          const double *param, size_t n, const bf_geom *geom,
+                          double *out, void *work)
+{
+    static const bf_geom normal = {0.0, BF__PI, 0.0, 0.0};
+    double *dv = work;
+    bf_geom *dg = (bf_geom *)(dv + CHUNK);
+    void *dwork = d->work_size > 0 ? (char *)work + chunk_bytes() : NULL;
+    void *swork = s->work_size > 0 ? (char *)work + chunk_bytes() : NULL;
+    const double *pd = param + 1;
+    const double *ps = param + 1 + d->p;
+    double d0;
+    double scale;
+    size_t k;
+    int rc;
+    int rs;
+    rc = d->eval(pd, 1, &normal, &d0, dwork);
+    if ((rc != BF_OK) || !(d0 > 0.0) || !isfinite(d0)) {
+        for (k = 0; k < n; k++) {
+            out[k] = NAN;
+        }
+        return BF_EDOM;
+    }
+    scale = param[0] / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    rs = s->eval(ps, n, geom, out, swork);
+    for (k = 0; k < n; k += CHUNK) {
+        size_t m = (n - k) < CHUNK ? (n - k) : CHUNK;
+        size_t q;
+        memcpy(dg, geom + k, m * sizeof *dg);
+        for (q = 0; q < m; q++) {
+            if (dg[q].theta_i >= BF__PI_2 - GRAZING_EPS) {
+                dg[q].theta_i = BF__PI_2 - GRAZING_EPS; /* the limit */
+            }
+        }
+        if (d->eval(pd, m, dg, dv, dwork) != BF_OK) {
+            rc = BF_EDOM;
+        }
+        for (q = 0; q < m; q++) {
+            double si;
+            double ci;
+            bf__zenith_sincos(dg[q].theta_i, &si, &ci);
+            out[k + q] += scale * dv[q] / ci;
+        }
+    }
+    return (rc == BF_OK) && (rs == BF_OK) ? BF_OK : BF_EDOM;
+}
+
+/* One eval function per pair (the eval has no context, bf_eval_fn). */
+#define PAIR_EVAL(d, s)                                                     \
+    static int eval_##d##_##s(const double *param, size_t n,               \
+                              const bf_geom *geom, double *out, void *work) \
+    {                                                                      \
+        return composite_eval(d, s, param, n, geom, out, work);            \
+    }
+#define ROW_EVAL(unused, d) BF_REGISTRY_SPECULAR(PAIR_EVAL, d)
+BF_REGISTRY_DIFFUSE(ROW_EVAL, 0)
+
+/* ==== the engine's kernel ================================================ */
+
+/* A composite's kernel: its parts' kernels on the same configurations
+ * (their terms one after the other, then D's terms at the normal
+ * configuration), so the geometry is taken once per configuration set. */
+typedef struct {
+    bf_kernel k; /* first: the engine's view */
+    const bf_model_type *d;
+    const bf_model_type *s;
+} comp_kernel;
+
+static const comp_kernel *comp_of(const bf_kernel *kr)
+{
+    return (const comp_kernel *)(const void *)kr;
+}
+
+static size_t terms_len(const bf_kernel *kr, size_t n)
+{
+    return kr->n_terms * n + kr->n_extra;
+}
+
+/* The normal configuration as a one-configuration set. */
+static void normal_set(bf__cset *cs, bf__trig_t *trig, double *cti)
+{
+    static const bf_geom normal = {0.0, BF__PI, 0.0, 0.0};
+    bf__geom_trig(&normal, trig);
+    *cti = trig->ci;
+    cs->n = 1;
+    cs->geom = &normal;
+    cs->trig = trig;
+    cs->cti = cti;
+}
+
+/* The part which (0 D, 1 S, 2 D at the normal configuration) of pm as a
+ * prepared model of its own: the composite's terms are D's on the n
+ * configurations, S's on them, then D's on the normal configuration
+ * (ncs, trig, cti: its one-configuration set, for which 2). */
+static void part_prep(const bf__prep *pm, int which, bf__prep *out,
+                      bf__cset *ncs, bf__trig_t *trig, double *cti)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    const bf_model_type *t = which == 1 ? ck->s : ck->d;
+    memset(out, 0, sizeof *out);
+    out->type = t;
+    out->kr = t->kernel;
+    out->cs = pm->cs;
+    out->n = pm->n;
+    out->geom = pm->geom;
+    out->terms = pm->terms;
+    if (which == 1) {
+        out->terms = pm->terms + terms_len(ck->d->kernel, pm->n);
+    } else if (which == 2) { /* D at the normal configuration */
+        normal_set(ncs, trig, cti);
+        out->cs = ncs;
+        out->n = 1;
+        out->geom = ncs->geom;
+        out->terms = pm->terms + terms_len(ck->d->kernel, pm->n)
+                     + terms_len(ck->s->kernel, pm->n);
+    }
+}
+
+static void comp_terms(const bf_kernel *kr, const bf__cset *cs,
+                       double *terms)
+{
+    const comp_kernel *ck = comp_of(kr);
+    bf__cset ncs;
+    bf__trig_t trig;
+    double cti;
+    if (ck->d->kernel->terms != NULL) {
+        ck->d->kernel->terms(ck->d->kernel, cs, terms);
+    }
+    if (ck->s->kernel->terms != NULL) {
+        ck->s->kernel->terms(ck->s->kernel, cs,
+                             terms + terms_len(ck->d->kernel, cs->n));
+    }
+    normal_set(&ncs, &trig, &cti);
+    if (ck->d->kernel->terms != NULL) {
+        ck->d->kernel->terms(ck->d->kernel, &ncs,
+                             terms + terms_len(ck->d->kernel, cs->n)
+                                 + terms_len(ck->s->kernel, cs->n));
+    }
+}
+
+static size_t part_work(const bf_kernel *kr, size_t n)
+{
+    return kr->work_bytes != NULL ? (kr->work_bytes(kr, n) + 63) / 64 * 64
+                                  : 0;
+}
+
+static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
+{
+    const comp_kernel *ck = comp_of(kr);
+    return (n * sizeof(double) + 63) / 64 * 64 + part_work(ck->d->kernel, n)
+           + part_work(ck->s->kernel, n) + part_work(ck->d->kernel, 1);
+}
+
+/* Values of the composite from its parts' kernels (the reference path's
+ * formula, SPEC §9.4). The workspace: n doubles, then D's, S's and the
+ * normal configuration's D's, apart (a part may keep a cache of its
+ * configurations' terms in its workspace: FC's Fresnel factor). */
+static int comp_values(const bf__prep *pm, const double *param, void *work,
+                       double *out)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    const bf_model_type *d = ck->d;
+    double *dv = work;
+    char *dw = (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+    char *sw = dw + part_work(d->kernel, pm->n);
+    char *nw = sw + part_work(ck->s->kernel, pm->n);
+    bf__prep pd;
+    bf__prep ps;
+    bf__prep pn;
+    bf__cset ncs;
+    bf__trig_t trig;
+    double cti;
+    double d0;
+    double scale;
+    size_t k;
+    int rc;
+    part_prep(pm, 2, &pn, &ncs, &trig, &cti);
+    rc = d->kernel->values(&pn, param + 1, nw, &d0);
+    if ((rc != BF_OK) || !(d0 > 0.0) || !isfinite(d0)) {
+        for (k = 0; k < pm->n; k++) {
+            out[k] = NAN;
+        }
+        return BF_EDOM;
+    }
+    scale = param[0] / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    part_prep(pm, 0, &pd, NULL, NULL, NULL);
+    part_prep(pm, 1, &ps, NULL, NULL, NULL);
+    rc = d->kernel->values(&pd, param + 1, dw, dv);
+    if (ck->s->kernel->values(&ps, param + 1 + d->p, sw, out) != BF_OK) {
+        rc = BF_EDOM;
+    }
+    for (k = 0; k < pm->n; k++) {
+        double ci = pm->cs->cti[k];
+        if (ci == 0.0) { /* grazing: the limit, as the reference path */
+            bf_geom g = pm->geom[k];
+            double v;
+            double si;
+            g.theta_i = BF__PI_2 - GRAZING_EPS;
+            bf__zenith_sincos(g.theta_i, &si, &ci);
+            if (d->eval(param + 1, 1, &g, &v, NULL) != BF_OK) {
+                rc = BF_EDOM;
+            }
+            dv[k] = v;
+        }
+        out[k] += scale * dv[k] / ci;
+    }
+    return rc == BF_OK ? BF_OK : BF_EDOM;
+}
+
+/* 1 when a part's kernel can serve inside the composite's: it has terms
+ * and values, no tables of its own (prepare) and no eval workspace (the
+ * grazing fallback calls its eval without one). */
+static int kernel_usable(const bf_model_type *t)
+{
+    const bf_kernel *kr = t->kernel;
+    return (kr != NULL) && (kr->values != NULL) && (kr->prepare == NULL)
+           && (t->work_size == 0)
+           && ((kr->terms != NULL) || (kr->n_terms + kr->n_extra == 0));
+}
+
+typedef struct {
+    const bf_model_type *const *d;
+    const bf_model_type *const *s;
+    bf_eval_fn eval;
+} pair_t;
+
+#define PAIR_ENTRY(d, s) {&d, &s, eval_##d##_##s},
+#define ROW_ENTRY(unused, d) BF_REGISTRY_SPECULAR(PAIR_ENTRY, d)
+static const pair_t pairs[] = {BF_REGISTRY_DIFFUSE(ROW_ENTRY, 0)};
+#define N_PAIRS (sizeof pairs / sizeof pairs[0])
+
+/* The type objects, made once (their parts' fields are not constant
+ * expressions). */
+static bf_model_type types[N_PAIRS];
+static bf_param params[N_PAIRS][BF_MAX_PARAMS];
+static char names[N_PAIRS][NAME_MAX_LEN];
+static char titles[N_PAIRS][2 * NAME_MAX_LEN];
+static comp_kernel kernels[N_PAIRS];
+static pthread_once_t once = PTHREAD_ONCE_INIT;
+
+static const bf_param rho_d_param = {
+    .name = "rho_d", .label = "diffuse albedo rho_d", .unit = "1",
+    .min = 0.0, .max = 1e6, .value = 0.5, .fitted = 1, .linear = 1};
+
+static void make_types(void)
+{
+    size_t i;
+    for (i = 0; i < N_PAIRS; i++) {
+        const bf_model_type *d = *pairs[i].d;
+        const bf_model_type *s = *pairs[i].s;
+        bf_model_type *t = &types[i];
+        if (1 + d->p + s->p > BF_MAX_PARAMS) {
+            continue; /* t->name NULL: too many parameters */
+        }
+        snprintf(names[i], sizeof names[i], "%s+%s", d->name, s->name);
+        snprintf(titles[i], sizeof titles[i], "%s diffuse + %s specular",
+                 d->name, s->name);
+        params[i][0] = rho_d_param;
+        memcpy(&params[i][1], d->param, d->p * sizeof *d->param);
+        memcpy(&params[i][1 + d->p], s->param, s->p * sizeof *s->param);
+        t->name = names[i];
+        t->title = titles[i];
+        t->reference = "SPEC §9.4";
+        t->p = 1 + d->p + s->p;
+        t->param = params[i];
+        t->eval = pairs[i].eval;
+        t->work_size = chunk_bytes()
+                       + (d->work_size > s->work_size ? d->work_size
+                                                      : s->work_size);
+        t->style = s->style;
+        if (kernel_usable(d) && kernel_usable(s)) {
+            comp_kernel *ck = &kernels[i];
+            ck->d = d;
+            ck->s = s;
+            ck->k.n_terms = d->kernel->n_terms + s->kernel->n_terms;
+            ck->k.n_extra = d->kernel->n_extra + s->kernel->n_extra
+                            + terms_len(d->kernel, 1);
+            ck->k.terms = comp_terms;
+            ck->k.work_bytes = comp_work_bytes;
+            ck->k.values = comp_values;
+            ck->k.cheap = -1;
+            t->kernel = &ck->k;
+        }
+        t->kind = BF_MODEL_SPECULAR;
+        t->ndf = s->ndf;
+        t->masking = s->masking;
+        t->fresnel_term = s->fresnel_term;
+    }
+}
+
+/* The registry model named by the len bytes at name, or NULL. */
+static const bf_model_type *part(const char *name, size_t len)
+{
+    size_t i;
+    for (i = 0; i < bf_model_count(); i++) {
+        if (bf__name_equal(bf_model_get(i)->name, name, len)) {
+            return bf_model_get(i);
+        }
+    }
+    return NULL;
+}
+
+const bf_model_type *bf__composite_find(const char *name, const char **why)
+{
+    const char *plus = strchr(name, '+');
+    const bf_model_type *d;
+    const bf_model_type *s;
+    size_t i;
+    if ((plus == NULL) || (strchr(plus + 1, '+') != NULL)) {
+        *why = "a composite is D+S: one diffuse and one specular model "
+               "(SPEC §9.4)";
+        return NULL;
+    }
+    d = part(name, (size_t)(plus - name));
+    s = part(plus + 1, SIZE_MAX);
+    if ((d == NULL) || (s == NULL)) {
+        *why = "unknown model in the composite D+S (see 'brdffit models')";
+        return NULL;
+    }
+    if ((d->kind == BF_MODEL_SPECULAR) && (s->kind != BF_MODEL_SPECULAR)) {
+        *why = "a composite is D+S, the diffuse model first (SPEC §9.4)";
+        return NULL;
+    }
+    if (d->kind == BF_MODEL_SPECULAR) {
+        *why = "a composite D+S has one specular part, not two (SPEC §9.4)";
+        return NULL;
+    }
+    if (s->kind != BF_MODEL_SPECULAR) {
+        *why = "a composite D+S needs a specular model of SPEC §9.3 after "
+               "the '+', not a second diffuse one";
+        return NULL;
+    }
+    pthread_once(&once, make_types);
+    for (i = 0; i < N_PAIRS; i++) {
+        if ((*pairs[i].d == d) && (*pairs[i].s == s)) {
+            if (types[i].name == NULL) {
+                break;
+            }
+            *why = NULL;
+            return &types[i];
+        }
+    }
+    *why = "the composite has more parameters than BF_MAX_PARAMS";
+    return NULL;
+}
+
+const bf_model_type *bf_model_specular_part(const bf_model_type *type,
+                                            size_t *first)
+{
+    size_t i;
+    size_t ignored;
+    if (first == NULL) {
+        first = &ignored;
+    }
+    *first = 0;
+    if ((type == NULL) || (type->kind != BF_MODEL_SPECULAR)) {
+        return NULL;
+    }
+    for (i = 0; i < N_PAIRS; i++) {
+        /* a composite, or a copy of one (bf_model_variant): by its eval */
+        if ((types[i].name != NULL) && (type->eval == types[i].eval)) {
+            *first = 1 + (*pairs[i].d)->p;
+            return *pairs[i].s;
+        }
+    }
+    return type;
+}
