@@ -1,10 +1,10 @@
-/* cmd_report.c: `brdffit report` -- runs the study of SPEC §7 like
- * `compare` and writes, into the output folder, its tables (fits.csv,
- * table2.md, table3.md), every figure (figures/: Figure 2(b), Figures 3-6,
- * the model-wins chart, per-sample plane-of-incidence views and, with the
- * analysis, forest plots, profiles and the delta-BIC overview) in PNG and
- * PDF (SVG on request), and report.html, one page that gathers them with
- * the conventions and provenance of the run. */
+/* cmd_report.c: `brdffit report` -- parses the options of the study of
+ * SPEC §7 (as `compare`) and of the figures, and calls the report
+ * library's bf_report_write, which writes into the output folder the
+ * tables (fits.csv, table2.md, table3.md), every figure (figures/: Figure
+ * 2(b), Figures 3-6, the model-wins chart, per-sample plane-of-incidence
+ * views and, with the analysis, forest plots, profiles and the delta-BIC
+ * overview) in PNG and PDF (SVG on request), and report.html. */
 #include <math.h>
 #include <string.h>
 

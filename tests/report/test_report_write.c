@@ -7,10 +7,10 @@
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cli_run.h"
 #include "support.h"
 
 #define DEG (M_PI / 180.0)
@@ -69,40 +69,6 @@ static void collect(void *ctx, int kind, const char *text)
     }
 }
 
-static char *slurp(const char *path)
-{
-    FILE *fp = fopen(path, "rb");
-    long n;
-    char *s;
-    cr_assert_not_null(fp, "%s missing", path);
-    fseek(fp, 0, SEEK_END);
-    n = ftell(fp);
-    rewind(fp);
-    s = calloc((size_t)n + 1, 1);
-    cr_assert_eq(fread(s, 1, (size_t)n, fp), (size_t)n);
-    fclose(fp);
-    return s;
-}
-
-/* The lse column (8th) of fits.csv's line of model. */
-static double lse_of(const char *csv, const char *model)
-{
-    char key[64];
-    const char *line;
-    const char *p;
-    int field;
-    snprintf(key, sizeof key, ",%s,", model);
-    line = strstr(csv, key);
-    cr_assert_not_null(line, "no %s line in fits.csv", model);
-    while (line > csv && line[-1] != '\n') {
-        line--;
-    }
-    for (p = line, field = 0; field < 7; p++) {
-        field += *p == ',';
-    }
-    return strtod(p, NULL);
-}
-
 static size_t count_png(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -117,14 +83,6 @@ static size_t count_png(const char *dir)
     return n;
 }
 
-static char *temp_dir(void)
-{
-    static char dir[64];
-    snprintf(dir, sizeof dir, "/tmp/bf_report_write.XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-    return dir;
-}
-
 Test(report_write, lambertian_data_recover_lambert_and_every_figure)
 {
     bf_dataset *ds = lambertian();
@@ -135,8 +93,8 @@ Test(report_write, lambertian_data_recover_lambert_and_every_figure)
     char out[128];
     char figs[160];
     char path[200];
-    char *csv;
-    char *page;
+    const char *page;
+    double lse_lambert;
     char echo_text[4096] = "";
     FILE *echo = fmemopen(echo_text, sizeof echo_text - 1, "w");
     size_t n_fig = 0;
@@ -150,7 +108,7 @@ Test(report_write, lambertian_data_recover_lambert_and_every_figure)
     o.echo = echo;
     o.message = collect;
     o.message_ctx = &msg;
-    snprintf(out, sizeof out, "%s/out", temp_dir());
+    snprintf(out, sizeof out, "%s/out", bf_test_tmpdir());
     cr_assert_eq(bf_report_write(&in, &o, out, &n_fig, &err), BF_REPORT_OK,
                  "%s", err.msg);
     fclose(echo);
@@ -158,20 +116,20 @@ Test(report_write, lambertian_data_recover_lambert_and_every_figure)
     snprintf(figs, sizeof figs, "%s/figures", out);
     cr_expect_gt(n_fig, 0);
     cr_expect_eq(count_png(figs), n_fig);
-    snprintf(path, sizeof path, "%s/fits.csv", out);
-    csv = slurp(path);
-    cr_expect_leq(lse_of(csv, "LAMBERT"), 1e-20, "LAMBERT's LSE %g",
-                  lse_of(csv, "LAMBERT"));
-    cr_expect_gt(lse_of(csv, "FC-E"), 1e-6);
+    cr_expect_eq(bf_test_csv_load(out, "fits.csv"), 3); /* header, 2 */
+    lse_lambert = bf_test_csv_num(bf_test_csv_find("1", "LAMBERT", NULL),
+                                  "lse");
+    cr_expect_leq(lse_lambert, 1e-20, "LAMBERT's LSE %g", lse_lambert);
+    cr_expect_gt(bf_test_csv_num(bf_test_csv_find("1", "FC-E", NULL), "lse"),
+                 1e-6);
     snprintf(path, sizeof path, "%s/report.html", out);
-    page = slurp(path);
+    page = bf_test_slurp(path, NULL);
+    cr_assert_not_null(page, "%s missing", path);
     cr_expect_not_null(strstr(page, "Written by <code>bf_report_write"
                                     "</code>"));
     cr_expect_null(strstr(page, "Command:"));
     cr_expect_not_null(strstr(echo_text, "Table 2"));
     cr_expect_not_null(strstr(echo_text, "Table 3"));
-    free(csv);
-    free(page);
     bf_dataset_free(ds);
 }
 
@@ -191,7 +149,7 @@ Test(report_write, a_bad_option_is_an_option_error_and_writes_nothing)
     o.models = "LAMBERT,NOPE";
     o.message = collect;
     o.message_ctx = &msg;
-    snprintf(out, sizeof out, "%s/out", temp_dir());
+    snprintf(out, sizeof out, "%s/out", bf_test_tmpdir());
     cr_assert_eq(bf_report_write(&in, &o, out, NULL, &err),
                  BF_REPORT_BADVALUE);
     cr_expect_eq(err.code, BF_EINVAL);
