@@ -1,4 +1,4 @@
-/* select.c: model selection -- information criteria and k-fold
+/* criteria.c: model selection -- information criteria and k-fold
  * cross-validation over configurations (doc/methods.md §4, §5).
  *
  * [1] H. Akaike, "A new look at the statistical model identification",

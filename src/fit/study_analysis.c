@@ -1,4 +1,4 @@
-/* analyse.c: the study beyond the paper on a study specification -- its
+/* study_analysis.c: the study beyond the paper on a study specification -- its
  * targets' data, inputs and the study's grid optima handed to the engine's
  * analysis (src/fit/analysis.c): for every target and model the grid
  * optimum under the chosen objective, its exact refinement, profile and
