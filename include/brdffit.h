@@ -1124,11 +1124,16 @@ int bf_noise_find(const char *name, bf_noise *noise);
 typedef enum {
     BF_CI_NONE = 0,
     BF_CI_PROFILE,    /* "profile": the objective's S (BF_NOISE_OBJECTIVE) */
-    BF_CI_PROFILE_LIK /* "profile-lik": the noise model's likelihood, scale
-                         and noise level profiled, F threshold */
+    BF_CI_PROFILE_LIK, /* "profile-lik": the noise model's likelihood, scale
+                          and noise level profiled, F threshold */
+    BF_CI_RESIDUAL_BOOTSTRAP /* "residual-bootstrap": percentiles of
+                                maximum-likelihood refits of the fitted
+                                curve plus resampled standardised
+                                residuals (bf_fit_bootstrap) */
 } bf_ci_method;
 
-/* "", "profile", "profile-lik" (static storage), NULL for unknown. */
+/* "", "profile", "profile-lik", "residual-bootstrap" (static storage),
+ * NULL for unknown. */
 const char *bf_ci_method_name(bf_ci_method m);
 
 /* The intervals of every free parameter of one fit. */
@@ -1177,6 +1182,9 @@ typedef struct {
     double not_identified[BF_MAX_PARAMS]; /* share flagged not identified */
 } bf_calibration;
 
+/* Fewest simulations bf_calibrate accepts. */
+#define BF_CALIBRATE_MIN_SIM 10
+
 /* Simulates n_sim measurements of pb's model at truth on pb's
  * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
  * eps_k, eps ~ N(0, 1) (GSL mt19937 seeded with seed), normalised by
@@ -1191,13 +1199,18 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
                  size_t n_sim, unsigned long seed, double level,
                  bf_calibration *out);
 
-/* Percentile bootstrap over configurations (doc/methods.md §3): n_boot
- * replicates, each resampling the n configurations with replacement
- * (weights = counts; a GSL mt19937 generator seeded with seed), fitted by
- * the grid optimum on curves and bf_fit_refine. low[j], high[j] get the
- * (1 -+ level)/2 quantiles of the replicate estimates of every free
- * parameter j (NaN for the others). pb->weight must be NULL. */
-int bf_fit_bootstrap(const bf_problem *pb, const bf_curves *curves,
+/* The residual bootstrap under a fit's noise model (doc/methods.md §3,
+ * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
+ * maximum-likelihood estimate, scale and noise power; BF_EDOM unless
+ * iv->method is BF_CI_PROFILE_LIK); n_boot replicates D*_k = s L_k(ml) +
+ * sqrt(v_k) u*_k, u* drawn with replacement from the centred residuals
+ * standardised by the noise model's sd sqrt(v_k) and the leverage
+ * sqrt(1 - h_k) (a GSL mt19937 seeded with seed), each refitted by
+ * maximum likelihood at iv's noise power with the scale profiled.
+ * low[j], high[j] get the (1 -+ level)/2 quantiles of the replicate
+ * estimates of every free parameter j (NaN for the others). pb->weight
+ * must be NULL. BF_EINVAL, BF_EDOM, BF_ENOMEM. */
+int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
                      size_t n_boot, unsigned long seed, double level,
                      double *low, double *high);
 
@@ -1484,6 +1497,8 @@ typedef struct {
     double ml_param[BF_MAX_PARAMS]; /* the estimate the intervals are
                                        about (bf_interval.ml) */
     unsigned not_identified;        /* bit j (bf_interval.not_identified) */
+    bf_ci_method boot_method;       /* of boot_low, boot_high
+                                       (BF_CI_RESIDUAL_BOOTSTRAP; NONE if none) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under

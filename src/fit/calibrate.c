@@ -22,9 +22,6 @@
 
 #include "fit/engine.h"
 
-/* Fewest simulations a calibration accepts. */
-#define MIN_SIM 10
-
 /* One simulated data set into d (n values): false when not normalisable. */
 static int simulate(const bf_problem *pb, const double *curve, double p,
                     double sigma, gsl_rng *rng, double *d)
@@ -108,7 +105,7 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
     int rc;
 
     if (pb == NULL || truth == NULL || out == NULL || pb->type == NULL ||
-        pb->weight != NULL || n_sim < MIN_SIM || !(sigma >= 0.0) ||
+        pb->weight != NULL || n_sim < BF_CALIBRATE_MIN_SIM || !(sigma >= 0.0) ||
         !(noise_power >= 0.0 && noise_power <= BF_NOISE_PMAX) ||
         bf_noise_name(noise) == NULL || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;

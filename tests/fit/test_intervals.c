@@ -2,6 +2,7 @@
  * (doc/methods.md §3, issue 18) -- coverage of the paper's models on data
  * normalised by their own noisy maximum, as measured data are, under
  * relative and absolute noise and the objectives max, scale and log;
+ * the residual bootstrap on the same kind of data, and its bad input;
  * bf_calibrate on a synthetic material whose answer is known; the
  * not-identified flag on constructed flat profiles; bad input.
  *
@@ -16,6 +17,8 @@
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <string.h>
 
@@ -153,6 +156,121 @@ Test(intervals, the_objectives_own_profile_undercovers_under_max,
     if (REPS >= 200) {
         cr_expect_lt(cal.coverage[1], 0.7, "n: %.3f", cal.coverage[1]);
     }
+}
+
+/* ==== the residual bootstrap ============================================= */
+
+/* Replicates of each bootstrap interval (the percentile's quantiles are
+ * those of 99 refits). */
+#define BOOT_B 99
+
+/* Coverage of bf_fit_bootstrap's intervals (src/fit/bootstrap.c) on data
+ * simulated as bf_calibrate does -- the model at the truth plus noise of
+ * power p, normalised by the noisy maximum -- fitted under obj (grid,
+ * refinement) with the noise model's intervals around them. The
+ * resampling of configurations it replaced covered 16-19 of 40 under max
+ * (issue 18): the value that sets the scale is not resampled. Measured
+ * and not in the suite (below the band; doc/methods.md §3): FC-E's m
+ * under 5% relative noise, 0.885 (n 0.980). */
+static void boot_check(const bf_model_type *base, double p, double sd,
+                       bf_objective obj)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    double curve[BF_CURET_NCONF];
+    double data[BF_CURET_NCONF];
+    size_t n = bf_test_curet_geometry(geom, STRIDE);
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    size_t covered[BF_MAX_PARAMS] = {0};
+    bf_model_variant v;
+    bf_problem pb;
+    bf_curves *c;
+    double truth[BF_MAX_PARAMS];
+    size_t r;
+    size_t j;
+    size_t k;
+    int st;
+    problem(&v, base, n, geom, obj, &pb, truth);
+    pb.data = data;
+    cr_assert_eq(bf_model_eval(&v.type, truth, n, geom, curve), BF_OK);
+    c = bf_curves_alloc(&pb, &st);
+    cr_assert_not_null(c);
+    gsl_rng_set(rng, SEED);
+    for (r = 0; r < REPS; r++) {
+        double top = 0.0;
+        double lo[BF_MAX_PARAMS];
+        double hi[BF_MAX_PARAMS];
+        bf_fit_result g;
+        bf_fit_result best;
+        bf_interval iv;
+        for (k = 0; k < n; k++) {
+            data[k] = curve[k] + sd * pow(curve[k], 0.5 * p) *
+                                     gsl_ran_gaussian(rng, 1.0);
+            top = data[k] > top ? data[k] : top;
+        }
+        for (k = 0; k < n; k++) {
+            data[k] /= top;
+        }
+        cr_assert_eq(bf_curves_best(c, &pb, &g), BF_OK);
+        st = bf_fit_refine(&pb, &g, &best);
+        cr_assert(st == BF_OK || st == BF_ENOCONV);
+        cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_AUTO, LEVEL, &iv),
+                     BF_OK);
+        cr_assert_eq(bf_fit_bootstrap(&pb, &iv, BOOT_B, SEED + r, LEVEL, lo,
+                                      hi),
+                     BF_OK);
+        for (j = 0; j < v.type.p; j++) {
+            if ((pb.free_mask >> j) & 1u) {
+                cr_assert(lo[j] < hi[j]);
+                covered[j] += lo[j] <= truth[j] && truth[j] <= hi[j];
+            } else {
+                cr_assert(isnan(lo[j]) && isnan(hi[j]));
+            }
+        }
+    }
+    for (j = 0; j < v.type.p; j++) {
+        double cov = (double)covered[j] / REPS;
+        if (!((pb.free_mask >> j) & 1u)) {
+            continue;
+        }
+        cr_log_info("%s %s p=%g %s: bootstrap coverage %.3f", base->name,
+                    v.type.param[j].name, p, bf_objective_name(obj), cov);
+        cr_expect(cov >= COVER_LO && cov <= COVER_HI,
+                  "%s %s (p = %g, %s): bootstrap coverage %.3f", base->name,
+                  v.type.param[j].name, p, bf_objective_name(obj), cov);
+    }
+    bf_curves_free(c);
+    gsl_rng_free(rng);
+}
+
+Test(intervals, the_bootstrap_covers_under_absolute_noise_and_max,
+     .timeout = 300)
+{
+    boot_check(bf_model_vh_e, 0.0, 0.02, BF_OBJ_MAX);
+}
+
+Test(intervals, the_bootstrap_needs_the_noise_model)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    double data[BF_CURET_NCONF];
+    size_t n = bf_test_curet_geometry(geom, STRIDE);
+    bf_model_variant v;
+    bf_problem pb;
+    bf_interval iv;
+    double truth[BF_MAX_PARAMS];
+    double lo[BF_MAX_PARAMS];
+    double hi[BF_MAX_PARAMS];
+    problem(&v, bf_model_vh_e, n, geom, BF_OBJ_MAX, &pb, truth);
+    cr_assert_eq(bf_model_eval(&v.type, truth, n, geom, data), BF_OK);
+    pb.data = data;
+    memset(&iv, 0, sizeof iv);
+    iv.method = BF_CI_PROFILE; /* the objective's own: no noise model */
+    cr_assert_eq(bf_fit_bootstrap(&pb, &iv, 20, SEED, LEVEL, lo, hi),
+                 BF_EDOM);
+    cr_assert(isnan(lo[0]) && isnan(hi[0]));
+    cr_assert_eq(bf_fit_bootstrap(&pb, &iv, 1, SEED, LEVEL, lo, hi),
+                 BF_EINVAL);
+    cr_assert_str_eq(bf_ci_method_name(BF_CI_RESIDUAL_BOOTSTRAP),
+                     "residual-bootstrap");
 }
 
 /* ==== calibrate on a known answer ======================================== */
