@@ -6,12 +6,14 @@
  * scale, log and cosw, R simulations each through bf_calibrate (data
  * normalised by their own maximum, as measured data are).
  *
- * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED]]]]]]
+ * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
+ * [B]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
  * or names separated by commas; SEED = 1000, the simulations' seed is
- * SEED + 10 geometry + noise). Prints one Markdown
+ * SEED + 10 geometry + noise; B = 0, else the bootstrap's replicates: two
+ * more columns, the bootstrap's coverage and width over the spread). Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
  * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
@@ -100,6 +102,7 @@ int main(int argc, char **argv)
     const char *dir = argc > 4 ? argv[4] : "../shared/data/curet";
     const char *models = argc > 5 ? argv[5] : "all";
     unsigned long seed0 = argc > 6 ? strtoul(argv[6], NULL, 10) : 1000;
+    size_t n_boot = argc > 7 ? (size_t)atol(argv[7]) : 0;
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -109,8 +112,11 @@ int main(int argc, char **argv)
     n_geom[0] = curet_geom(dir, geoms[0]);
     n_geom[1] = random_geom(geoms[1]);
     printf("| model | param | geometry | noise | objective | covered | "
-           "width / spread | sd obj / sd ML | not identified |\n"
-           "|---|---|---|---|---|---|---|---|---|\n");
+           "width / spread | sd obj / sd ML | not identified |%s\n"
+           "|---|---|---|---|---|---|---|---|---|%s\n",
+           n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
+                       : "",
+           n_boot >= 2 ? "---|---|" : "");
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
         size_t g;
@@ -144,7 +150,7 @@ int main(int argc, char **argv)
                         pb.fixed[j] = truth[j];
                     }
                     rc = bf_calibrate(&pb, truth, npow[q], nsd[q], noise,
-                                      reps, seed0 + 10 * g + q, 0.95, &cal);
+                                      reps, n_boot, seed0 + 10 * g + q, 0.95, &cal);
                     if (rc != BF_OK) {
                         printf("| %s | | %s | %s | %s | error %d | | | |\n",
                                v.type.name, gname[g], nname[q],
@@ -156,13 +162,19 @@ int main(int argc, char **argv)
                             continue;
                         }
                         printf("| %s | %s | %s | %s | %s | %.3f | %.2f | "
-                               "%.2f | %.3f |\n",
+                               "%.2f | %.3f |",
                                v.type.name, v.type.param[j].name, gname[g],
                                nname[q], bf_objective_name(objs[o]),
                                cal.coverage[j],
                                cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
                                cal.sd[j] / cal.ml_sd[j],
                                cal.not_identified[j]);
+                        if (n_boot >= 2) {
+                            printf(" %.3f | %.2f |", cal.boot_coverage[j],
+                                   cal.boot_width[j] /
+                                       (2.0 * 1.959964 * cal.ml_sd[j]));
+                        }
+                        printf("\n");
                         fflush(stdout);
                     }
                 }

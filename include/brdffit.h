@@ -1180,6 +1180,10 @@ typedef struct {
     double ml_sd[BF_MAX_PARAMS];     /*   estimates the intervals are about */
     double width[BF_MAX_PARAMS];     /* median interval width */
     double not_identified[BF_MAX_PARAMS]; /* share flagged not identified */
+    double boot_coverage[BF_MAX_PARAMS]; /* the same share for the
+                                            bootstrap's intervals (NaN
+                                            without n_boot) */
+    double boot_width[BF_MAX_PARAMS];    /* their median width */
 } bf_calibration;
 
 /* Fewest simulations bf_calibrate accepts. */
@@ -1191,13 +1195,16 @@ typedef struct {
  * their maximum as measured data are -- fits each under pb's objective
  * (grid optimum, refinement) and computes its intervals under noise at
  * level; out gets each free parameter's coverage, bias, spread and median
- * width (NaN for the others). BF_EINVAL for bad arguments or n_sim < 10,
+ * width (NaN for the others); with n_boot >= 2 also the coverage and
+ * median width of each simulation's bootstrap interval (bf_fit_bootstrap,
+ * n_boot replicates, seed seed + 1 + the simulation's index; a simulation
+ * whose bootstrap fails counts as failed). BF_EINVAL for bad arguments or n_sim < 10,
  * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
  * BF_ENOMEM. */
 int bf_calibrate(const bf_problem *pb, const double *truth,
                  double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, unsigned long seed, double level,
-                 bf_calibration *out);
+                 size_t n_sim, size_t n_boot, unsigned long seed,
+                 double level, bf_calibration *out);
 
 /* The residual bootstrap under a fit's noise model (doc/methods.md §3,
  * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
@@ -1520,7 +1527,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
  * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
  * target's configurations, the pair's refined parameters as the truth and
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
- * opts's objective, noise and level; n_sim simulations, seed. Errors as
+ * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
  * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
  * not be estimated); BF_EINVAL for a pair that was not analysed. */
 int bf_study_calibrate(const bf_study_spec *spec,
@@ -1533,7 +1540,8 @@ int bf_study_calibrate(const bf_study_spec *spec,
  * fitted parameter): sample, name, channel, model, parameter, value (the
  * truth simulated), objective, noise_power (p), noise_sd,
  * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
- * not_identified (share). Formats as bf_fits_csv_write. */
+ * not_identified (share), boot_coverage, boot_width (empty without the
+ * bootstrap). Formats as bf_fits_csv_write. */
 int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
                              const bf_study_row *rows,
                              const bf_fit_stats *stats,

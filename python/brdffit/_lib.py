@@ -293,6 +293,8 @@ typedef struct {
     double ml_sd[4];
     double width[4];
     double not_identified[4];
+    double boot_coverage[4];
+    double boot_width[4];
 } bf_calibration;
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,

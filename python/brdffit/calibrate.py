@@ -12,7 +12,7 @@ from ._lib import ffi, lib
 
 # The per-parameter fields of bf_calibration, in Calibration's order.
 FIELDS = ("truth", "coverage", "bias", "sd", "ml_bias", "ml_sd", "width",
-          "not_identified")
+          "not_identified", "boot_coverage", "boot_width")
 
 
 class Calibration:
@@ -32,6 +32,9 @@ class Calibration:
         width: (P,) the median interval width.
         not_identified: (P,) share of the simulations whose interval was
             flagged not identified.
+        boot_coverage, boot_width: (P,) the same coverage and median width
+            for the residual bootstrap's intervals with bootstrap=N (NaN
+            without).
         n_sim, n_failed: simulations fitted, and that could not be.
         level, seed: as given (level: the analysis's).
     """
@@ -70,7 +73,8 @@ class Calibration:
 
 
 def calibrate(dataset, model, material=None, n_sim=200, seed=1,
-              channel="mean", fit="exact", objective="max", level=None,
+              bootstrap=0, channel="mean", fit="exact", objective="max",
+              level=None,
               noise="auto", n=None, n_file=None, on_params=None, exclude=(),
               max_theta=None, cone=None, ranges=None, threads=1):
     """Fits model to material as brdffit.fit does (the analysis on), then
@@ -80,7 +84,9 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
     same seed gives the same numbers).
 
     Args as brdffit.fit's (fit="exact" by default); n_sim: simulations,
-    at least 10 (BF_CALIBRATE_MIN_SIM); seed: of the simulations.
+    at least 10 (BF_CALIBRATE_MIN_SIM); seed: of the simulations;
+    bootstrap: N replicates to check the bootstrap's intervals too (each
+    simulation's; the fit's own bootstrap is run as well).
     Returns a Calibration.
     Raises InvalidArgumentError (n_sim < 10, bad options; the library's
     message), DomainError (the noise cannot be estimated: K not above
@@ -89,6 +95,7 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
     from .fit import FitResult, fit_study
     study = fit_study(dataset, model, material, channel=channel, fit=fit,
                       objective=objective, stats=True, folds=0, level=level,
+                      bootstrap=bootstrap,
                       n=n, n_file=n_file, on_params=on_params,
                       exclude=exclude, max_theta=max_theta, cone=cone,
                       ranges=ranges, threads=threads, noise=noise)

@@ -65,8 +65,8 @@ int bf_study_calibrate(const bf_study_spec *spec,
         if (rc == BF_OK) {
             pb.objective = opts->objective;
             rc = bf_calibrate(&pb, st->refined.param, st->noise_power,
-                              st->noise_sigma, opts->noise, n_sim, seed,
-                              opts->level, out);
+                              st->noise_sigma, opts->noise, n_sim,
+                              opts->n_boot, seed, opts->level, out);
         }
         break;
     }
