@@ -12,10 +12,11 @@
  * covers the truth a Binomial(R, 0.95) number of times:
  *   profile, R = 400: sd 0.0109, band [0.92, 0.98] (mean +- 2.7 sd);
  *   bootstrap, R = 60 repetitions of B = 199 replicates: band [0.85, 1].
- * The bootstrap covers a little less than its nominal 95% (measured,
- * doc/methods.md §3: 0.883-0.983 here, every parameter; the configuration
- * resampling it replaced 0.867-0.983, the wild bootstrap LFTG 0.717). The
- * band's lower end is 0.89 - 1.7 sd of R = 60 (sd 0.040). Half-width
+ * Measured (doc/methods.md §3): every parameter's bootstrap coverage in
+ * [0.900, 0.983] (the configuration resampling it replaced 0.867-0.983,
+ * the wild bootstrap LFTG 0.717). The band's lower end is 0.95 - 3.6 sd
+ * of R = 60 (sd 0.028): the test runs every model at small R, and
+ * test_intervals, test_uncertainty make the R = 200 claim. Half-width
  * intervals (about 68%) fail both; twice as wide ones (99.99%) fail the
  * profile's upper limit. The truth is placed at 37% of each parameter's
  * search range (off every grid point). */
