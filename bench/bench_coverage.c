@@ -6,14 +6,19 @@
  * scale, log and cosw, R simulations each through bf_calibrate (data
  * normalised by their own maximum, as measured data are).
  *
- * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR]]]]  (R = 400,
- * NOISE = auto, "objective" gives the intervals before issue 18;
+ * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
+ * [B]]]]]]]
+ * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
- * not depend on the objective, which only starts their fit). Prints one Markdown
+ * not depend on the objective, which only starts their fit; MODELS = all,
+ * or names separated by commas; SEED = 1000, the simulations' seed is
+ * SEED + 10 geometry + noise; B = 0, else the bootstrap's replicates: two
+ * more columns, the bootstrap's coverage and width over the spread). Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
- * (2 z sd; 1 is calibrated), and the sd of the objective's estimates over
- * that of the ML ones. Never part of the tests. */
+ * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
+ * that of the ML ones, and the share of intervals flagged not identified
+ * (open to a bound the estimate is not on). Never part of the tests. */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -64,6 +69,23 @@ static size_t random_geom(bf_geom *geom)
     return NCONF;
 }
 
+/* 1 when name is in the comma-separated list (or the list is "all"). */
+static int listed(const char *list, const char *name)
+{
+    size_t len = strlen(name);
+    const char *p = list;
+    if (strcmp(list, "all") == 0) {
+        return 1;
+    }
+    while ((p = strstr(p, name)) != NULL) {
+        if ((p == list || p[-1] == ',') && (p[len] == ',' || p[len] == '\0')) {
+            return 1;
+        }
+        p += len;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static bf_geom geoms[2][NCONF];
@@ -78,6 +100,9 @@ int main(int argc, char **argv)
     bf_noise noise = BF_NOISE_AUTO;
     const char *only = argc > 3 ? argv[3] : "all";
     const char *dir = argc > 4 ? argv[4] : "../shared/data/curet";
+    const char *models = argc > 5 ? argv[5] : "all";
+    unsigned long seed0 = argc > 6 ? strtoul(argv[6], NULL, 10) : 1000;
+    size_t n_boot = argc > 7 ? (size_t)atol(argv[7]) : 0;
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -87,14 +112,17 @@ int main(int argc, char **argv)
     n_geom[0] = curet_geom(dir, geoms[0]);
     n_geom[1] = random_geom(geoms[1]);
     printf("| model | param | geometry | noise | objective | covered | "
-           "width / spread | sd obj / sd ML |\n|---|---|---|---|---|---|---|"
-           "---|\n");
+           "width / spread | sd obj / sd ML | not identified |%s\n"
+           "|---|---|---|---|---|---|---|---|---|%s\n",
+           n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
+                       : "",
+           n_boot >= 2 ? "---|---|" : "");
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
         size_t g;
         bf_model_variant_init(&v, bf_model_get(i));
         bf_model_variant_exact(&v, 0);
-        if (bf__fits_nothing(&v.type)) {
+        if (bf__fits_nothing(&v.type) || !listed(models, v.type.name)) {
             continue;
         }
         for (g = 0; g < 2; g++) {
@@ -122,9 +150,9 @@ int main(int argc, char **argv)
                         pb.fixed[j] = truth[j];
                     }
                     rc = bf_calibrate(&pb, truth, npow[q], nsd[q], noise,
-                                      reps, 1000 + 10 * g + q, 0.95, &cal);
+                                      reps, n_boot, seed0 + 10 * g + q, 0.95, &cal);
                     if (rc != BF_OK) {
-                        printf("| %s | | %s | %s | %s | error %d | | |\n",
+                        printf("| %s | | %s | %s | %s | error %d | | | |\n",
                                v.type.name, gname[g], nname[q],
                                bf_objective_name(objs[o]), rc);
                         continue;
@@ -134,12 +162,19 @@ int main(int argc, char **argv)
                             continue;
                         }
                         printf("| %s | %s | %s | %s | %s | %.3f | %.2f | "
-                               "%.2f |\n",
+                               "%.2f | %.3f |",
                                v.type.name, v.type.param[j].name, gname[g],
                                nname[q], bf_objective_name(objs[o]),
                                cal.coverage[j],
                                cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
-                               cal.sd[j] / cal.ml_sd[j]);
+                               cal.sd[j] / cal.ml_sd[j],
+                               cal.not_identified[j]);
+                        if (n_boot >= 2) {
+                            printf(" %.3f | %.2f |", cal.boot_coverage[j],
+                                   cal.boot_width[j] /
+                                       (2.0 * 1.959964 * cal.ml_sd[j]));
+                        }
+                        printf("\n");
                         fflush(stdout);
                     }
                 }

@@ -17,7 +17,7 @@ static const bf_cli_defaults calibrate_defaults = {NULL, BF_MODELS_PAPER, 1,
                                                    1};
 
 /* Fewest simulations (bf_calibrate's). */
-#define MIN_SIMS 10
+#define MIN_SIMS BF_CALIBRATE_MIN_SIM
 
 static void usage(FILE *fp)
 {

@@ -114,8 +114,8 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    --fit exact and --bootstrap)\n", fp);
     }
     fputs(
-"  --bootstrap N     also a percentile bootstrap interval, N resamples\n"
-"                    (default 0: profile intervals only)\n"
+"  --bootstrap N     also a residual-bootstrap interval under the noise\n"
+"                    model, N refits (default 0: profile intervals only)\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
 "  --seed S          seed of the bootstrap and the folds (default 1)\n"
 "\n"

@@ -1144,11 +1144,16 @@ int bf_noise_find(const char *name, bf_noise *noise);
 typedef enum {
     BF_CI_NONE = 0,
     BF_CI_PROFILE,    /* "profile": the objective's S (BF_NOISE_OBJECTIVE) */
-    BF_CI_PROFILE_LIK /* "profile-lik": the noise model's likelihood, scale
-                         and noise level profiled, F threshold */
+    BF_CI_PROFILE_LIK, /* "profile-lik": the noise model's likelihood, scale
+                          and noise level profiled, F threshold */
+    BF_CI_RESIDUAL_BOOTSTRAP /* "residual-bootstrap": percentiles of
+                                maximum-likelihood refits of the fitted
+                                curve plus resampled standardised
+                                residuals (bf_fit_bootstrap) */
 } bf_ci_method;
 
-/* "", "profile", "profile-lik" (static storage), NULL for unknown. */
+/* "", "profile", "profile-lik", "residual-bootstrap" (static storage),
+ * NULL for unknown. */
 const char *bf_ci_method_name(bf_ci_method m);
 
 /* The intervals of every free parameter of one fit. */
@@ -1195,7 +1200,14 @@ typedef struct {
     double ml_sd[BF_MAX_PARAMS];     /*   estimates the intervals are about */
     double width[BF_MAX_PARAMS];     /* median interval width */
     double not_identified[BF_MAX_PARAMS]; /* share flagged not identified */
+    double boot_coverage[BF_MAX_PARAMS]; /* the same share for the
+                                            bootstrap's intervals (NaN
+                                            without n_boot) */
+    double boot_width[BF_MAX_PARAMS];    /* their median width */
 } bf_calibration;
+
+/* Fewest simulations bf_calibrate accepts. */
+#define BF_CALIBRATE_MIN_SIM 10
 
 /* Simulates n_sim measurements of pb's model at truth on pb's
  * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
@@ -1203,21 +1215,29 @@ typedef struct {
  * their maximum as measured data are -- fits each under pb's objective
  * (grid optimum, refinement) and computes its intervals under noise at
  * level; out gets each free parameter's coverage, bias, spread and median
- * width (NaN for the others). BF_EINVAL for bad arguments or n_sim < 10,
+ * width (NaN for the others); with n_boot >= 2 also the coverage and
+ * median width of each simulation's bootstrap interval (bf_fit_bootstrap,
+ * n_boot replicates, seed seed + 1 + the simulation's index; a simulation
+ * whose bootstrap fails counts as failed). BF_EINVAL for bad arguments or n_sim < 10,
  * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
  * BF_ENOMEM. */
 int bf_calibrate(const bf_problem *pb, const double *truth,
                  double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, unsigned long seed, double level,
-                 bf_calibration *out);
+                 size_t n_sim, size_t n_boot, unsigned long seed,
+                 double level, bf_calibration *out);
 
-/* Percentile bootstrap over configurations (doc/methods.md §3): n_boot
- * replicates, each resampling the n configurations with replacement
- * (weights = counts; a GSL mt19937 generator seeded with seed), fitted by
- * the grid optimum on curves and bf_fit_refine. low[j], high[j] get the
- * (1 -+ level)/2 quantiles of the replicate estimates of every free
- * parameter j (NaN for the others). pb->weight must be NULL. */
-int bf_fit_bootstrap(const bf_problem *pb, const bf_curves *curves,
+/* The residual bootstrap under a fit's noise model (doc/methods.md §3,
+ * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
+ * maximum-likelihood estimate, scale and noise power; BF_EDOM unless
+ * iv->method is BF_CI_PROFILE_LIK); n_boot replicates D*_k = s L_k(ml) +
+ * sqrt(v_k) u*_k, u* drawn with replacement from the centred residuals
+ * standardised by the noise model's sd sqrt(v_k) and the leverage
+ * sqrt(1 - h_k) (a GSL mt19937 seeded with seed), each refitted by
+ * maximum likelihood at iv's noise power with the scale profiled.
+ * low[j], high[j] get the (1 -+ level)/2 quantiles of the replicate
+ * estimates of every free parameter j (NaN for the others). pb->weight
+ * must be NULL. BF_EINVAL, BF_EDOM, BF_ENOMEM. */
+int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
                      size_t n_boot, unsigned long seed, double level,
                      double *low, double *high);
 
@@ -1504,6 +1524,8 @@ typedef struct {
     double ml_param[BF_MAX_PARAMS]; /* the estimate the intervals are
                                        about (bf_interval.ml) */
     unsigned not_identified;        /* bit j (bf_interval.not_identified) */
+    bf_ci_method boot_method;       /* of boot_low, boot_high
+                                       (BF_CI_RESIDUAL_BOOTSTRAP; NONE if none) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1525,7 +1547,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
  * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
  * target's configurations, the pair's refined parameters as the truth and
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
- * opts's objective, noise and level; n_sim simulations, seed. Errors as
+ * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
  * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
  * not be estimated); BF_EINVAL for a pair that was not analysed. */
 int bf_study_calibrate(const bf_study_spec *spec,
@@ -1538,7 +1560,8 @@ int bf_study_calibrate(const bf_study_spec *spec,
  * fitted parameter): sample, name, channel, model, parameter, value (the
  * truth simulated), objective, noise_power (p), noise_sd,
  * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
- * not_identified (share). Formats as bf_fits_csv_write. */
+ * not_identified (share), boot_coverage, boot_width (empty without the
+ * bootstrap). Formats as bf_fits_csv_write. */
 int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
                              const bf_study_row *rows,
                              const bf_fit_stats *stats,

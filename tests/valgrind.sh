@@ -21,6 +21,11 @@
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
+# intervals/cover_... , intervals/the_objectives_own_profile... and
+# intervals/the_bootstrap_covers_... simulate 200 data sets each (and the
+# bootstrap 99 refits of each): their code runs under valgrind in the
+# other intervals tests (calibrate on a known material, the flat
+# profiles, the bootstrap's bad input) and in test_cli_exact.
 # test_coverage repeats hundreds of analyses per model (interval
 # coverage), test_before analyses all 61 samples x 10 models, and
 # cli_analysis/results_do_not_depend_on_the_thread_count runs the CLI's
@@ -92,6 +97,13 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     test_uncertainty
     test_coverage
     test_before
+    intervals/cover_under_relative_noise_and_the_max_objective
+    intervals/cover_under_absolute_noise_and_the_max_objective
+    intervals/cover_under_absolute_noise_and_the_scale_objective
+    intervals/cover_under_relative_noise_and_the_log_objective
+    intervals/the_objectives_own_profile_undercovers_under_max
+    intervals/the_bootstrap_covers_under_relative_noise_and_max
+    intervals/the_bootstrap_covers_under_absolute_noise_and_max
     cli_analysis/results_do_not_depend_on_the_thread_count
     grid/study_path_finds_the_plain_optimum_on_all_61_samples
     test_refine

@@ -9,6 +9,7 @@ every number comes from the library. See python/README.md section
     brdffit.evaluate("FC-E", {"m": 0.3}, theta_i, phi_i, theta_o, phi_o)
     ds = brdffit.load("../shared/data/curet")
     r = brdffit.fit(ds, "FC-E", material=5, fit="exact")
+    c = brdffit.calibrate(ds, "FC-E", material=5)   # do its intervals cover?
     fits = brdffit.compare(ds, stats=True)   # the rows of fits.csv
     ranking = brdffit.rank(ds)               # the rows of ranking.csv
     brdffit.report(ds, out="out", stats=True)  # `brdffit report`'s files
@@ -23,6 +24,7 @@ from ._lib import path as library_path
 from .studies import compare, rank
 from .dataset import Dataset, Material, load
 from .fit import FitResult, fit
+from .calibrate import Calibration, calibrate
 from .models import Model, Parameter, evaluate, model, models
 from .records import Records
 from ._report import report
@@ -31,6 +33,7 @@ __all__ = [
     "BrdffitError", "ConvergenceError", "DomainError", "DomainWarning",
     "InvalidArgumentError", "LoadError", "NotFoundError", "OutOfMemoryError",
     "ParseError", "Dataset", "Material", "load", "FitResult", "fit",
+    "Calibration", "calibrate",
     "compare", "rank", "report", "Records", "Model", "Parameter", "evaluate",
     "model", "models", "objectives", "library_candidates", "library_path",
     "library_version",

@@ -198,8 +198,8 @@ typedef enum { BF_NOISE_AUTO = 0, BF_NOISE_ABSOLUTE, BF_NOISE_RELATIVE,
                BF_NOISE_OBJECTIVE } bf_noise;
 const char *bf_noise_name(bf_noise noise);
 int bf_noise_find(const char *name, bf_noise *noise);
-typedef enum { BF_CI_NONE = 0, BF_CI_PROFILE, BF_CI_PROFILE_LIK }
-    bf_ci_method;
+typedef enum { BF_CI_NONE = 0, BF_CI_PROFILE, BF_CI_PROFILE_LIK,
+               BF_CI_RESIDUAL_BOOTSTRAP } bf_ci_method;
 const char *bf_ci_method_name(bf_ci_method m);
 
 /* --- the study on a dataset --- */
@@ -278,9 +278,30 @@ typedef struct {
     double noise_sigma;
     double ml_param[8];
     unsigned not_identified;
+    bf_ci_method boot_method;
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
+#define BF_CALIBRATE_MIN_SIM 10
+typedef struct {
+    size_t n_sim;
+    size_t n_failed;
+    double truth[4];
+    double coverage[4];
+    double bias[4];
+    double sd[4];
+    double ml_bias[4];
+    double ml_sd[4];
+    double width[4];
+    double not_identified[4];
+    double boot_coverage[4];
+    double boot_width[4];
+} bf_calibration;
+int bf_study_calibrate(const bf_study_spec *spec,
+                       const bf_analysis_opts *opts,
+                       const bf_study_row *rows, const bf_fit_stats *stats,
+                       size_t u, size_t n_sim, unsigned long seed,
+                       bf_calibration *out, bf_error *err);
 
 /* --- the exact fit's policy, ranking, output files --- */
 typedef struct {

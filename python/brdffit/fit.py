@@ -53,7 +53,9 @@ class FitResult:
         intervals: dict name -> (low, high), the profile interval at level.
         intervals_open: dict name -> (low_open, high_open): True where the
             interval reaches the search range.
-        bootstrap: dict name -> (low, high) with bootstrap=N (else empty).
+        bootstrap: dict name -> (low, high) with bootstrap=N (else empty):
+            the residual bootstrap under the noise model (doc/methods.md
+            §3; bootstrap_method "residual-bootstrap").
         n_params: the parameter count of AIC and BIC.
         aic, bic: of the refined optimum (NaN when the fit is exact: a zero
             residual).
@@ -87,6 +89,8 @@ class FitResult:
             objective's own S, noise="objective").
         noise_power: p of the noise model var ~ mu^p (0 absolute, 2
             relative; NaN for noise="objective").
+        bootstrap_method: how bootstrap was computed ("residual-bootstrap";
+            "" without bootstrap or when it failed).
         ml_estimate: {name: value}, the maximum-likelihood estimate the
             intervals are about (the scale free; under the max objective
             it differs from refined, doc/methods.md §3).
@@ -128,6 +132,7 @@ class FitResult:
         self.clamped = self.not_converged = self.interval_failed = None
         self.ci_method = self.noise_power = self.ml_estimate = None
         self.bootstrap_failed = self.bootstrap_split = None
+        self.bootstrap_method = None
         if stats is not None:
             self._stats(m, stats[0], mask, int(study.opts.n_boot) > 0)
 
@@ -153,6 +158,8 @@ class FitResult:
             self.rho_d = float(st.scale)  # SPEC §9.4: the free scale
         self.ci_method = ffi.string(lib.bf_ci_method_name(
             int(st.ci_method))).decode()
+        self.bootstrap_method = ffi.string(lib.bf_ci_method_name(
+            int(st.boot_method))).decode()
         self.noise_power = float(st.noise_power)
         self.ml_estimate = _by_name(m, st.ml_param, mask)
         self.n_params = int(st.k)
@@ -218,7 +225,9 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             needs fit="exact".
         stats: run the analysis (refinement, intervals, AIC, BIC, CV);
             always on with fit="exact" and with bootstrap.
-        bootstrap: N percentile-bootstrap resamples (0: none).
+        bootstrap: N residual-bootstrap replicates (0: none; refits of
+            the fitted curve plus resampled standardised residuals under
+            the noise model, doc/methods.md §3).
         folds: K-fold cross-validation (0: none); seed: its and the
             bootstrap's seed; level: the interval level. None: the
             library's defaults (bf_analysis_opts_init: 10 folds, seed 1,
@@ -252,6 +261,17 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
     that cannot be normalised), and the loaders' errors for on_params and
     n_file.
     """
+    return FitResult(fit_study(
+        dataset, model, material, channel=channel, fit=fit,
+        objective=objective, stats=stats, bootstrap=bootstrap, folds=folds,
+        seed=seed, level=level, n=n, n_file=n_file, on_params=on_params,
+        exclude=exclude, max_theta=max_theta, cone=cone, ranges=ranges,
+        threads=threads, progress=progress, noise=noise))
+
+
+def fit_study(dataset, model, material, **kw):
+    """The Study of fit(dataset, model, material, **kw) (its arguments),
+    the material's missing inputs checked."""
     if material is None:
         if len(dataset) != 1:
             raise InvalidArgumentError(
@@ -259,12 +279,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
                 % len(dataset), 1)
         material = dataset[0]
     context = "fit %s" % getattr(model, "name", model)
-    study = Study(dataset, [material], [model], channel=channel, fit=fit,
-                  objective=objective, stats=stats, bootstrap=bootstrap,
-                  folds=folds, seed=seed, level=level, n=n, n_file=n_file,
-                  on_params=on_params, exclude=exclude, max_theta=max_theta,
-                  cone=cone, ranges=ranges, threads=threads,
-                  progress=progress, context=context, noise=noise)
+    study = Study(dataset, [material], [model], context=context, **kw)
     row = study.rows[0]
     if study.missing:
         m = study.spec.models[0]
@@ -275,4 +290,4 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
                                             int(row.sample),
                                             dataset[int(row.material)].name),
             int(row.status))
-    return FitResult(study)
+    return study

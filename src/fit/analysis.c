@@ -207,6 +207,7 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     const group_t *gp = &r->groups[r->group_of[u]];
     bf_fit_stats *st = &r->stats[u];
     bf_problem pb;
+    bf_interval iv;
     size_t j;
     int cv;
     int rc;
@@ -268,7 +269,6 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         }
     }
     if (pb.free_mask != 0) {
-        bf_interval iv;
         rc = bf__intervals(fc, &st->refined, opts->noise, opts->level,
                            &iv);
         if (rc == BF_ENOMEM) {
@@ -292,11 +292,8 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     }
     if (opts->n_boot >= 2 && pb.free_mask != 0) {
         unsigned split = 0;
-        rc = gp->gr == NULL ? gp->status
-                            : bf__bootstrap(fc, gp->gr, opts->n_boot,
-                                            opts->seed, opts->level, NULL,
-                                            NULL, st->boot_low, st->boot_high,
-                                            &split);
+        rc = bf__bootstrap(fc, &iv, opts->n_boot, opts->seed, opts->level,
+                           NULL, NULL, st->boot_low, st->boot_high, &split);
         st->boot_split = split;
         if (split != 0) {
             st->flags |= BF_STAT_BOOT_SPLIT;
@@ -306,6 +303,8 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         }
         if (rc != BF_OK) {
             st->flags |= BF_STAT_BOOT_FAIL;
+        } else {
+            st->boot_method = BF_CI_RESIDUAL_BOOTSTRAP;
         }
     }
     if (st->refined.lse > 0.0) {

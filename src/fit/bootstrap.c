@@ -1,37 +1,51 @@
-/* bootstrap.c: the percentile bootstrap over configurations
- * (doc/methods.md §3): resamples as weights over the same curves.
+/* bootstrap.c: the residual bootstrap under a fit's noise model
+ * (doc/methods.md §3): replicate data from the fitted curve plus
+ * residuals drawn from the fit's standardised residuals, refitted by
+ * maximum likelihood with the scale profiled, as the intervals'
+ * likelihood is.
  *
- * [1] B. Efron, R. J. Tibshirani, "An Introduction to the Bootstrap",
- *     Chapman & Hall 1993, ch. 9 (bootstrapping regression by resampling
- *     pairs) and ch. 13 (percentile intervals).
+ * [1] A. C. Davison, D. V. Hinkley, "Bootstrap Methods and their
+ *     Application", CUP 1997, §6.2.3 and algorithm 6.3 (resampling
+ *     modified residuals: e_k / sqrt(1 - h_k), centred), §6.3 (nonlinear
+ *     and weighted regression: residuals standardised by the variance
+ *     function), §5.2 (percentile intervals).
+ * [2] src/fit/noise.c: D_k = s L_k(theta) + e_k, var e_k = sigma^2 v_k,
+ *     v_k = max(L_k, f)^p.
+ * [3] C. F. J. Wu, "Jackknife, bootstrap and other resampling methods in
+ *     regression analysis", Ann. Statist. 14 (1986) 1261-1295 (the wild
+ *     bootstrap, e*_k = e_k eta_k: measured here and not kept, below).
  *
- * Equations: replicate b weights w_bk = the number of times configuration
- * k is drawn in n draws with replacement; the estimate of replicate b
- * minimises S_b = sum_k w_bk r_k^2; the interval is the (1 -+ level)/2
- * quantiles of the B estimates [1].
- *
- * A resample changes only the weights, never the configurations: the grid
- * optimum of every replicate comes from the one set of stored curves,
- * scored against many weight vectors at once (bf__grid_optima), and the
- * refinement reuses the engine's prepared model.
+ * Equations: with theta^ the maximum-likelihood estimate under the noise
+ * model (bf_interval.ml, power p), s^ its profiled scale,
+ * e_k = D_k - s^ L_k(theta^) the residuals and h_k the leverages of the
+ * linearised weighted fit (leverages()),
+ *   u_k   = e_k / (sqrt(v_k) sqrt(1 - h_k)),  u_k -= mean(u)        [1]
+ *   D*_bk = s^ L_k(theta^) + sqrt(v_k) u_J,   J uniform on 1..n     [1]
+ * replicate b's estimate maximises the likelihood [2] of D*_b at the same
+ * p with the scale profiled (refined from theta^); the interval is the
+ * (1 -+ level)/2 quantiles [q_lo, q_hi] of the B estimates, the order
+ * statistics of rank (B + 1)(1 -+ level)/2 [1] §5.2 (order_stat).
+ * The value that sets the data's normalisation is as noisy in every
+ * replicate as it is in the data (the scale is a parameter, no
+ * configuration is special), which resampling configurations cannot give
+ * (issue 18). Measured and not kept (doc/methods.md §3): the wild
+ * bootstrap [3] (each residual with a random sign) estimates each
+ * configuration's variance from its one residual, so its intervals vary
+ * from one data set to the next and cover less (LFTG's n_d on 66
+ * configurations 0.72, VH-E 0.90 of 200); the basic interval
+ * 2 theta^ - [q_hi, q_lo] turns a bound's skew the wrong way (FC-E's n
+ * 0.77 of 200).
  */
-#include <gsl/gsl_randist.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_sort.h>
-#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fit/engine.h"
 
-/* Replicates whose grid optima are found together: for the objectives
- * whose optima need no stored scores (max, cosw: bf__grid_weights_argmin)
- * BATCH, so each super-block's squared residuals serve them all; for the
- * others BATCH_STORED (their scores: BATCH_STORED x grid columns
- * doubles). */
-#define BATCH 1024
-#define BATCH_STORED 64
 /* A gap between replicate estimates wider than this share of the interval
  * splits it (is_split). */
 #define SPLIT_GAP 0.25
@@ -40,7 +54,7 @@
  * the interval [low, high]: a gap wider than SPLIT_GAP of it with at least
  * the interval's tail share (1 - level)/2 of the replicates on either
  * side -- replicates whose optima lie in different basins of the
- * objective, so the percentile interval spans both (doc/methods.md §3). */
+ * likelihood, so the percentile interval spans both (doc/methods.md §3). */
 static int is_split(const double *e, size_t m, double low, double high,
                     double level)
 {
@@ -55,121 +69,252 @@ static int is_split(const double *e, size_t m, double low, double high,
     return 0;
 }
 
-int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
-                  unsigned long seed, double level, double *est,
-                  size_t *n_est, double *low, double *high, unsigned *split)
+/* The a-quantile of the sorted replicate estimates e[0..m): the order
+ * statistic of rank (m + 1) a, interpolated between its neighbours when
+ * the rank is not whole, within [1, m] [1] §5.2. The rule
+ * (m - 1) a + 1 of sample quantiles puts the 2.5 % point of 99 replicates
+ * at rank 3.45, where a normal sample's expected value is -1.87 sd, not
+ * -1.96: intervals 5 % short; rank (m + 1) a is 2.5 there and exactly 5
+ * for m = 199, 25 for 999. */
+static double order_stat(const double *e, size_t m, double a)
 {
-    const bf_problem *pb = fc->pb;
-    size_t n = pb->n;
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    size_t batch = (pb->objective == BF_OBJ_MAX ||
-                    pb->objective == BF_OBJ_COSW)
-                       ? BATCH
-                       : BATCH_STORED;
-    double *w = malloc(batch * n * sizeof *w);
-    const double **wp = malloc(batch * sizeof *wp);
-    bf_fit_result *g = malloc(batch * sizeof *g);
-    double *own = est == NULL ? malloc(n_boot * BF_MAX_PARAMS * sizeof *own)
-                              : NULL;
-    double *e = est != NULL ? est : own;
-    size_t used = 0;
-    size_t b0;
-    size_t j;
-    int rc = BF_OK;
+    double r = (double)(m + 1) * a;
+    size_t i;
+    double f;
+    r = r < 1.0 ? 1.0 : (r > (double)m ? (double)m : r);
+    i = (size_t)floor(r);
+    f = r - (double)i;
+    return i >= m ? e[m - 1] : e[i - 1] + f * (e[i] - e[i - 1]);
+}
 
-    if (split != NULL) {
-        *split = 0;
-    }
-    if (rng == NULL || w == NULL || wp == NULL || g == NULL || e == NULL) {
-        rc = BF_ENOMEM;
-        goto done;
-    }
-    gsl_rng_set(rng, seed);
-    for (b0 = 0; b0 < n_boot && rc == BF_OK; b0 += batch) {
-        size_t nb = n_boot - b0 < batch ? n_boot - b0 : batch;
-        size_t b;
-        size_t k;
-        for (b = 0; b < nb; b++) { /* resample configurations [1] */
-            double *wb = w + b * n;
-            memset(wb, 0, n * sizeof *wb);
-            for (k = 0; k < n; k++) {
-                wb[gsl_rng_uniform_int(rng, n)] += 1.0;
-            }
-            wp[b] = wb;
-        }
-        rc = bf__grid_optima(gr, pb, fc->pm->cs->cti, nb, wp, g);
-        for (b = 0; rc == BF_OK && b < nb; b++) {
-            bf_problem rep = *pb;
-            bf_fit_result r;
-            int st = BF_EDOM;
-            rep.weight = wp[b];
-            if (isfinite(g[b].lse)) {
-                bf__fitctx_use(fc, &rep);
-                st = bf__refine(fc, &g[b], &r);
-                st = st == BF_ENOCONV ? BF_OK : st; /* the best point */
-            }
-            if (st == BF_ENOMEM) {
-                rc = st;
-                break;
-            }
-            if (st != BF_OK) {
-                continue; /* a replicate the model cannot fit: left out */
-            }
-            for (j = 0; j < BF_MAX_PARAMS; j++) {
-                e[j * n_boot + used] = r.param[j];
-            }
-            used++;
-        }
-        bf__fitctx_use(fc, pb);
-    }
-    for (j = 0; rc == BF_OK && j < BF_MAX_PARAMS; j++) {
+/* The percentile interval of each free parameter from e (parameter-major,
+ * used of n_boot per parameter; sorted on return). */
+static void percentiles(const bf_problem *pb, double *e, size_t n_boot,
+                        size_t used, double level, double *low, double *high,
+                        unsigned *split)
+{
+    size_t j;
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
         double *ej = e + j * n_boot;
+        double qlo;
+        double qhi;
         low[j] = NAN;
         high[j] = NAN;
         if (j >= pb->type->p || !((pb->free_mask >> j) & 1u) || used < 2) {
             continue;
         }
         gsl_sort(ej, 1, used);
-        low[j] = gsl_stats_quantile_from_sorted_data(ej, 1, used,
-                                                     0.5 * (1.0 - level));
-        high[j] = gsl_stats_quantile_from_sorted_data(ej, 1, used,
-                                                      0.5 * (1.0 + level));
-        if (split != NULL && is_split(ej, used, low[j], high[j], level)) {
+        qlo = order_stat(ej, used, 0.5 * (1.0 - level));
+        qhi = order_stat(ej, used, 0.5 * (1.0 + level));
+        if (split != NULL && is_split(ej, used, qlo, qhi, level)) {
             *split |= 1u << j;
         }
+        low[j] = qlo;
+        high[j] = qhi;
     }
-    if (rc == BF_OK && used < 2) {
-        rc = BF_EDOM;
+}
+
+/* Relative step of the derivatives of the leverages (of the search
+ * range): central differences, error O(step^2). */
+#define LEV_STEP 1e-4
+
+/* The leverages h_k = z_k (Z'Z)^-1 z_k' of the maximum-likelihood fit iv
+ * [1] §6.3: z_k the derivatives of the mean s L_k(theta) over the free
+ * parameters and s, divided by the noise sd sqrt(v_k) (noise.c). fit:
+ * L(theta^) unscaled; z: n x (free + 1) scratch; t0, t1: n scratch.
+ * Where Z'Z is singular (a parameter without effect) every h_k is the
+ * mean leverage q / n. */
+static int leverages(bf__fitctx *fc, const bf_interval *iv, const double *fit,
+                     double *z, double *t0, double *t1, double *h)
+{
+    const bf_problem *pb = fc->pb;
+    size_t n = pb->n;
+    size_t q = 1;
+    double a[(BF_MAX_PARAMS + 1) * (BF_MAX_PARAMS + 1)] = {0};
+    double x[BF_MAX_PARAMS + 1];
+    gsl_matrix_view av;
+    gsl_vector_view xv;
+    size_t i;
+    size_t j;
+    size_t k;
+    int rc = BF_OK;
+    for (k = 0; k < n; k++) {
+        double l = fit[k] > BF_LOG_FLOOR ? fit[k] : BF_LOG_FLOOR;
+        h[k] = pow(l, -0.5 * iv->noise_power); /* 1 / sqrt(v_k) */
+        z[k * (BF_MAX_PARAMS + 1)] = fit[k] * h[k];
+    }
+    for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
+        double p0[BF_MAX_PARAMS];
+        double p1[BF_MAX_PARAMS];
+        double dx = LEV_STEP * (pb->hi[j] - pb->lo[j]);
+        if (!((pb->free_mask >> j) & 1u)) {
+            continue;
+        }
+        memcpy(p0, iv->ml.param, sizeof p0);
+        memcpy(p1, iv->ml.param, sizeof p1);
+        p0[j] = p0[j] - dx < pb->lo[j] ? pb->lo[j] : p0[j] - dx;
+        p1[j] = p1[j] + dx > pb->hi[j] ? pb->hi[j] : p1[j] + dx;
+        rc = bf__curve(fc->pm, p0, fc->work, t0);
+        if (rc == BF_OK) {
+            rc = bf__curve(fc->pm, p1, fc->work, t1);
+        }
+        for (k = 0; rc == BF_OK && k < n; k++) {
+            z[k * (BF_MAX_PARAMS + 1) + q] =
+                iv->scale * (t1[k] - t0[k]) / (p1[j] - p0[j]) * h[k];
+        }
+        q++;
+    }
+    if (rc != BF_OK) {
+        return rc;
+    }
+    for (k = 0; k < n; k++) {
+        for (i = 0; i < q; i++) {
+            for (j = 0; j < q; j++) {
+                a[i * q + j] += z[k * (BF_MAX_PARAMS + 1) + i] *
+                                z[k * (BF_MAX_PARAMS + 1) + j];
+            }
+        }
+    }
+    av = gsl_matrix_view_array(a, q, q);
+    xv = gsl_vector_view_array(x, q);
+    if (gsl_linalg_cholesky_decomp1(&av.matrix) != GSL_SUCCESS) {
+        for (k = 0; k < n; k++) {
+            h[k] = (double)q / (double)n;
+        }
+        return BF_OK;
+    }
+    for (k = 0; k < n; k++) {
+        gsl_vector_const_view zk =
+            gsl_vector_const_view_array(z + k * (BF_MAX_PARAMS + 1), q);
+        double hk = 0.0;
+        gsl_linalg_cholesky_solve(&av.matrix, &zk.vector, &xv.vector);
+        for (i = 0; i < q; i++) {
+            hk += zk.vector.data[i] * x[i];
+        }
+        h[k] = hk;
+    }
+    return BF_OK;
+}
+
+int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
+                  unsigned long seed, double level, double *est,
+                  size_t *n_est, double *low, double *high, unsigned *split)
+{
+    const bf_problem *pb = fc->pb;
+    size_t n = pb->n;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    double *fit = malloc((7 + BF_MAX_PARAMS) * n * sizeof *fit);
+    double *own = est == NULL ? malloc(n_boot * BF_MAX_PARAMS * sizeof *own)
+                              : NULL;
+    double *e = est != NULL ? est : own;
+    double *resid = fit == NULL ? NULL : fit + n;
+    double *d = fit == NULL ? NULL : fit + 2 * n;
+    double *lev = fit == NULL ? NULL : fit + 3 * n;
+    double *t1 = fit == NULL ? NULL : fit + 4 * n;
+    double *sdv = fit == NULL ? NULL : fit + 5 * n;
+    double *z = fit == NULL ? NULL : fit + 6 * n; /* n x (free + 1) */
+    double mean = 0.0;
+    bf_problem rep = *pb;
+    bf_fit_result start;
+    size_t used = 0;
+    size_t b;
+    size_t i;
+    int rc = BF_OK;
+
+    if (split != NULL) {
+        *split = 0;
+    }
+    for (i = 0; i < BF_MAX_PARAMS; i++) {
+        low[i] = NAN;
+        high[i] = NAN;
+    }
+    if (rng == NULL || fit == NULL || e == NULL) {
+        rc = BF_ENOMEM;
+        goto done;
+    }
+    if (iv->method != BF_CI_PROFILE_LIK || !isfinite(iv->scale) ||
+        !(n > bf_problem_nfree(pb) + 1)) {
+        rc = BF_EDOM; /* no noise model fitted (bf__intervals) */
+        goto done;
+    }
+    rep.objective = BF__OBJ_LIK; /* [4], at the fitted power */
+    rep.noise_power = iv->noise_power;
+    rep.data = d;
+    rc = bf__curve(fc->pm, iv->ml.param, fc->work, fit);
+    if (rc == BF_OK) {
+        rc = leverages(fc, iv, fit, z, d, t1, lev);
+    }
+    for (i = 0; rc == BF_OK && i < n; i++) { /* [1] alg. 6.3 */
+        double l = fit[i] > BF_LOG_FLOOR ? fit[i] : BF_LOG_FLOOR;
+        double r = pb->data[i] - iv->scale * fit[i];
+        sdv[i] = pow(l, 0.5 * iv->noise_power); /* sqrt(v_i) */
+        fit[i] *= iv->scale;
+        resid[i] = (lev[i] < 1.0 ? r / sqrt(1.0 - lev[i]) : r) / sdv[i];
+        mean += resid[i] / (double)n;
+    }
+    for (i = 0; rc == BF_OK && i < n; i++) {
+        resid[i] -= mean; /* centred: E* e* = 0 */
+    }
+    gsl_rng_set(rng, seed);
+    memset(&start, 0, sizeof start);
+    memcpy(start.param, iv->ml.param, sizeof start.param);
+    bf__fitctx_use(fc, &rep);
+    for (b = 0; rc == BF_OK && b < n_boot; b++) {
+        bf_fit_result r;
+        int st;
+        size_t j;
+        for (i = 0; i < n; i++) { /* [1] alg. 6.3 */
+            d[i] = fit[i] + sdv[i] * resid[gsl_rng_uniform_int(rng, n)];
+        }
+        st = bf__fit_value(fc, start.param, &start.lse);
+        if (st == BF_OK) {
+            st = bf__refine(fc, &start, &r);
+            st = st == BF_ENOCONV ? BF_OK : st; /* the best point */
+        }
+        if (st == BF_ENOMEM) {
+            rc = st;
+            break;
+        }
+        if (st != BF_OK) {
+            continue; /* a replicate the model cannot fit: left out */
+        }
+        for (j = 0; j < BF_MAX_PARAMS; j++) {
+            e[j * n_boot + used] = r.param[j];
+        }
+        used++;
+    }
+    bf__fitctx_use(fc, pb);
+    if (rc == BF_OK) {
+        percentiles(pb, e, n_boot, used, level, low, high, split);
+        rc = used >= 2 ? BF_OK : BF_EDOM;
     }
     if (n_est != NULL) {
         *n_est = used;
     }
 done:
     gsl_rng_free(rng);
-    free(w);
-    free(wp);
-    free(g);
+    free(fit);
     free(own);
     return rc;
 }
 
-int bf_fit_bootstrap(const bf_problem *pb, const bf_curves *curves,
+int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
                      size_t n_boot, unsigned long seed, double level,
                      double *low, double *high)
 {
     bf__solo so;
     int rc;
-    if (bf__curves_check(curves, pb) != BF_OK || low == NULL ||
-        high == NULL || pb->weight != NULL || n_boot < 2 ||
-        !(level > 0.0 && level < 1.0)) {
+    if (pb == NULL || iv == NULL || low == NULL || high == NULL ||
+        pb->type == NULL || pb->data == NULL || pb->weight != NULL ||
+        n_boot < 2 || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
     }
     rc = bf__solo_init(&so, pb);
     if (rc != BF_OK) {
         return rc;
     }
-    rc = bf__bootstrap(&so.fc, bf__curves_grid(curves), n_boot, seed, level,
-                       NULL, NULL, low, high, NULL);
+    rc = bf__bootstrap(&so.fc, iv, n_boot, seed, level, NULL, NULL, low,
+                       high, NULL);
     bf__solo_free(&so);
     return rc;
 }

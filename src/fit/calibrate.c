@@ -8,7 +8,8 @@
  * eps_k ~ N(0, 1), divided by max_k D_k [1] (so the value that sets the
  * scale is as noisy as a measurement's); the fit under pb's objective
  * (grid optimum on stored curves, refinement) and its intervals
- * (bf__intervals); the truth inside or not. Coverage is the share of
+ * (bf__intervals) and, with n_boot, its bootstrap interval
+ * (bf__bootstrap); the truth inside or not. Coverage is the share of
  * simulations whose interval holds the truth; bias and sd are those of
  * the objective's estimates and of the maximum-likelihood ones.
  */
@@ -21,9 +22,6 @@
 #include <string.h>
 
 #include "fit/engine.h"
-
-/* Fewest simulations a calibration accepts. */
-#define MIN_SIM 10
 
 /* One simulated data set into d (n values): false when not normalisable. */
 static int simulate(const bf_problem *pb, const double *curve, double p,
@@ -49,8 +47,10 @@ typedef struct {
     double *est;   /* n_sim x BF_MAX_PARAMS, parameter-major */
     double *ml;
     double *width;
+    double *boot_width; /* NULL without the bootstrap */
     size_t *cover; /* BF_MAX_PARAMS */
     size_t *flag;
+    size_t *boot_cover;
 } tally_t;
 
 static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
@@ -72,6 +72,12 @@ static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
         out->ml_sd[j] = gsl_stats_sd(q, 1, m);
         gsl_sort(w, 1, m);
         out->width[j] = gsl_stats_median_from_sorted_data(w, 1, m);
+        if (t->boot_width != NULL) {
+            double *bw = t->boot_width + j * n_sim;
+            out->boot_coverage[j] = (double)t->boot_cover[j] / (double)m;
+            gsl_sort(bw, 1, m);
+            out->boot_width[j] = gsl_stats_median_from_sorted_data(bw, 1, m);
+        }
     }
 }
 
@@ -84,13 +90,14 @@ static void clear(bf_calibration *out, const double *truth, size_t p)
         out->coverage[j] = out->bias[j] = out->sd[j] = NAN;
         out->ml_bias[j] = out->ml_sd[j] = out->width[j] = NAN;
         out->not_identified[j] = NAN;
+        out->boot_coverage[j] = out->boot_width[j] = NAN;
     }
 }
 
 int bf_calibrate(const bf_problem *pb, const double *truth,
                  double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, unsigned long seed, double level,
-                 bf_calibration *out)
+                 size_t n_sim, size_t n_boot, unsigned long seed,
+                 double level, bf_calibration *out)
 {
     bf__solo so;
     bf__grid_layout_t lay;
@@ -100,6 +107,7 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
     tally_t t;
     size_t cover[BF_MAX_PARAMS] = {0};
     size_t flag[BF_MAX_PARAMS] = {0};
+    size_t boot_cover[BF_MAX_PARAMS] = {0};
     double *curve = NULL;
     double *d = NULL;
     size_t m = 0;
@@ -108,7 +116,7 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
     int rc;
 
     if (pb == NULL || truth == NULL || out == NULL || pb->type == NULL ||
-        pb->weight != NULL || n_sim < MIN_SIM || !(sigma >= 0.0) ||
+        pb->weight != NULL || n_sim < BF_CALIBRATE_MIN_SIM || !(sigma >= 0.0) ||
         !(noise_power >= 0.0 && noise_power <= BF_NOISE_PMAX) ||
         bf_noise_name(noise) == NULL || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
@@ -124,15 +132,18 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
     if (rc != BF_OK) {
         return rc;
     }
-    t.est = malloc(3 * n_sim * BF_MAX_PARAMS * sizeof *t.est);
+    t.est = malloc((n_boot >= 2 ? 4 : 3) * n_sim * BF_MAX_PARAMS *
+                   sizeof *t.est);
     curve = malloc(2 * pb->n * sizeof *curve);
     rng = gsl_rng_alloc(gsl_rng_mt19937);
     rc = t.est == NULL || curve == NULL || rng == NULL ? BF_ENOMEM : BF_OK;
     if (rc == BF_OK) {
         t.ml = t.est + n_sim * BF_MAX_PARAMS;
         t.width = t.ml + n_sim * BF_MAX_PARAMS;
+        t.boot_width = n_boot >= 2 ? t.width + n_sim * BF_MAX_PARAMS : NULL;
         t.cover = cover;
         t.flag = flag;
+        t.boot_cover = boot_cover;
         d = curve + pb->n;
         sim.data = d;
         gsl_rng_set(rng, seed);
@@ -150,6 +161,8 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
         bf_fit_result g;
         bf_fit_result best;
         bf_interval iv;
+        double blo[BF_MAX_PARAMS];
+        double bhi[BF_MAX_PARAMS];
         int st;
         if (!simulate(&sim, curve, noise_power, sigma, rng, d)) {
             out->n_failed++;
@@ -163,6 +176,10 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
         st = isfinite(g.lse) ? bf__refine(&so.fc, &g, &best) : BF_EDOM;
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
+        }
+        if (st == BF_OK && n_boot >= 2) {
+            st = bf__bootstrap(&so.fc, &iv, n_boot, seed + 1 + r, level, NULL,
+                               NULL, blo, bhi, NULL);
         }
         if (st == BF_ENOMEM) {
             rc = st;
@@ -181,6 +198,10 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
             t.width[j * n_sim + m] = iv.high[j] - iv.low[j];
             cover[j] += iv.low[j] <= truth[j] && truth[j] <= iv.high[j];
             flag[j] += (iv.not_identified >> j) & 1u;
+            if (t.boot_width != NULL) {
+                t.boot_width[j * n_sim + m] = bhi[j] - blo[j];
+                boot_cover[j] += blo[j] <= truth[j] && truth[j] <= bhi[j];
+            }
         }
         m++;
     }

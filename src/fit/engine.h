@@ -384,12 +384,12 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
 /* bf_fit_intervals on fc (fc->pb the problem; restored on return). */
 int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
                   double level, bf_interval *out);
-/* bf_fit_bootstrap on fc with the grid gr of fc->pb's free parameters;
- * est (n_boot x BF_MAX_PARAMS, parameter-major, sorted per parameter on
+/* bf_fit_bootstrap on fc around iv (bf__intervals of fc->pb); est
+ * (n_boot x BF_MAX_PARAMS, parameter-major, sorted per parameter on
  * return, NULL: not kept) and *n_est (may be NULL) get the estimates;
  * *split (may be NULL) bit j when parameter j's estimates fall into
  * separate groups (replicates in different basins). */
-int bf__bootstrap(bf__fitctx *fc, const bf_grid *gr, size_t n_boot,
+int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_cv_folds);

@@ -190,6 +190,7 @@ int bf_noise_find(const char *name, bf_noise *noise)
 
 const char *bf_ci_method_name(bf_ci_method m)
 {
-    static const char *const names[] = {"", "profile", "profile-lik"};
+    static const char *const names[] = {"", "profile", "profile-lik",
+                                        "residual-bootstrap"};
     return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : NULL;
 }

@@ -31,6 +31,11 @@ int bf_study_calibrate(const bf_study_spec *spec,
         return STUDY_ERR(err, BF_EINVAL, "calibrate: the pair was not "
                                          "analysed");
     }
+    if (n_sim < BF_CALIBRATE_MIN_SIM) {
+        return STUDY_ERR(err, BF_EINVAL, "calibrate: %zu simulations: at "
+                                         "least %d are needed", n_sim,
+                         BF_CALIBRATE_MIN_SIM);
+    }
     r = &rows[u];
     st = &stats[u];
     t = u / spec->n_models;
@@ -60,8 +65,8 @@ int bf_study_calibrate(const bf_study_spec *spec,
         if (rc == BF_OK) {
             pb.objective = opts->objective;
             rc = bf_calibrate(&pb, st->refined.param, st->noise_power,
-                              st->noise_sigma, opts->noise, n_sim, seed,
-                              opts->level, out);
+                              st->noise_sigma, opts->noise, n_sim,
+                              opts->n_boot, seed, opts->level, out);
         }
         break;
     }

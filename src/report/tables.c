@@ -232,7 +232,7 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
     }
     fprintf(fp, "Intervals: 95%% profile, n ln(S/S_min) <= 3.841");
     if (o->n_boot >= 2) {
-        fprintf(fp, "; percentile bootstrap, %zu resamples, seed %lu",
+        fprintf(fp, "; residual bootstrap, %zu replicates, seed %lu",
                 o->n_boot, o->seed);
     }
     fprintf(fp, " (doc/methods.md §3)\n");
