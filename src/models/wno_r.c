@@ -37,9 +37,9 @@
  * and n: with ring weights q_i(sigma) = exp(-t_i^2 / (2 sigma^2)) w_i,
  *   L(sigma, n) = sum_i q_i(sigma) B_i(n) / (cos t_i 2 pi sum_i q_i),
  * B_i the ring sums of facet values. P is normalised by the same rule, so
- * sigma -> 0 tends to WNO; sigma = 0 is WNO exactly. Within 1e-10 of
- * GSL's adaptive quadrature relative to the value on CURET's geometry
- * (doc/methods.md §7; tested against 1e-8). bf_model_eval runs the rule;
+ * sigma -> 0 tends to WNO; sigma = 0 is WNO exactly. Within 2e-9 of
+ * GSL's adaptive quadrature relative to the value on CURET's 205
+ * configurations (doc/methods.md §7; tested against 1e-8). bf_model_eval runs the rule;
  * the engine's kernel interpolates its values in (sigma, n) from tables
  * built once per configuration set (below).
  *

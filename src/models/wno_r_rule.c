@@ -30,13 +30,18 @@
 /* Breakpoints of theta_a closer than this are one (bf__wnor_theta). */
 #define WNOR_MERGE 1e-5
 
-/* The WNOR_Q = 12 point Gauss-Legendre rule on [-1, 1]: GSL's precomputed
- * table of gsl_integration_glfixed_table_alloc(12), bit for bit
+/* The WNOR_Q = 12 point Gauss-Legendre rule on [-1, 1], ascending: GSL's
+ * precomputed table of gsl_integration_glfixed_table_alloc(12) (its
+ * positive abscissae and their weights) mirrored, bit for bit
  * (tests/models/test_wno_r.c checks it). */
-static const double gl_x[WNOR_Q / 2] = {
-    0x1.007a5f8f630e4p-3, 0x1.78a8d20a8b19dp-2, 0x1.2cb4f05c077f9p-1,
-    0x1.8a30aeed88f36p-1, 0x1.cee874ffb88b4p-1, 0x1.f68f1d8e42e81p-1};
-static const double gl_w[WNOR_Q / 2] = {
+static const double gl_x[WNOR_Q] = {
+    -0x1.f68f1d8e42e81p-1, -0x1.cee874ffb88b4p-1, -0x1.8a30aeed88f36p-1,
+    -0x1.2cb4f05c077f9p-1, -0x1.78a8d20a8b19dp-2, -0x1.007a5f8f630e4p-3,
+    0x1.007a5f8f630e4p-3,  0x1.78a8d20a8b19dp-2,  0x1.2cb4f05c077f9p-1,
+    0x1.8a30aeed88f36p-1,  0x1.cee874ffb88b4p-1,  0x1.f68f1d8e42e81p-1};
+static const double gl_w[WNOR_Q] = {
+    0x1.8275d9dea6d8fp-5, 0x1.b60602bce6181p-4, 0x1.47d7258f22d8fp-3,
+    0x1.a0163e6b1ab72p-3, 0x1.de3155c256ab5p-3, 0x1.fe40ce6d4f025p-3,
     0x1.fe40ce6d4f025p-3, 0x1.de3155c256ab5p-3, 0x1.a0163e6b1ab72p-3,
     0x1.47d7258f22d8fp-3, 0x1.b60602bce6181p-4, 0x1.8275d9dea6d8fp-5};
 
@@ -44,14 +49,6 @@ void bf__wnor_gl(const double **x, const double **w)
 {
     *x = gl_x;
     *w = gl_w;
-}
-
-/* Node j (0 <= j < WNOR_Q, ascending) of the rule on [-1, 1]. */
-static void gl_node(size_t j, double *x, double *w)
-{
-    size_t h = WNOR_Q / 2;
-    *x = j < h ? -gl_x[h - 1 - j] : gl_x[j - h];
-    *w = j < h ? gl_w[h - 1 - j] : gl_w[j - h];
 }
 
 void bf__wnor_kinks(const double l[3], const double v[3], wnor_kinks *kc)
@@ -171,11 +168,10 @@ void bf__wnor_theta(const wnor_kinks *kc, double cl, double cv,
             ts = -1.0;
         }
         for (j = 0; j < WNOR_Q; j++) {
-            double gx;
-            double gw;
+            double gx = gl_x[j];
+            double gw = gl_w[j];
             double t;
             double w;
-            gl_node(j, &gx, &gw);
             if (ts >= 0.0) { /* u in [sqrt(a - ts), sqrt(b - ts)] */
                 double ua = sqrt(a - ts);
                 double ub = sqrt(b - ts);
@@ -193,18 +189,6 @@ void bf__wnor_theta(const wnor_kinks *kc, double cl, double cv,
         }
     }
 }
-
-/* The rule in full, ascending (gl_node's). */
-static const double gl_xf[WNOR_Q] = {
-    -0x1.f68f1d8e42e81p-1, -0x1.cee874ffb88b4p-1, -0x1.8a30aeed88f36p-1,
-    -0x1.2cb4f05c077f9p-1, -0x1.78a8d20a8b19dp-2, -0x1.007a5f8f630e4p-3,
-    0x1.007a5f8f630e4p-3,  0x1.78a8d20a8b19dp-2,  0x1.2cb4f05c077f9p-1,
-    0x1.8a30aeed88f36p-1,  0x1.cee874ffb88b4p-1,  0x1.f68f1d8e42e81p-1};
-static const double gl_wf[WNOR_Q] = {
-    0x1.8275d9dea6d8fp-5, 0x1.b60602bce6181p-4, 0x1.47d7258f22d8fp-3,
-    0x1.a0163e6b1ab72p-3, 0x1.de3155c256ab5p-3, 0x1.fe40ce6d4f025p-3,
-    0x1.fe40ce6d4f025p-3, 0x1.de3155c256ab5p-3, 0x1.a0163e6b1ab72p-3,
-    0x1.47d7258f22d8fp-3, 0x1.b60602bce6181p-4, 0x1.8275d9dea6d8fp-5};
 
 /* sin u and cos u for |u| <= pi/4 by their Taylor series to u^17 and u^18
  * (the first terms left out are below 1e-19): no library call per facet. */
@@ -265,11 +249,11 @@ static inline void ring_piece(double a, double b, double st, double ct,
     for (j = 0; j < WNOR_Q; j++) {
         double su;
         double cu;
-        sincos_small(h * gl_xf[j], &su, &cu);
+        sincos_small(h * gl_x[j], &su, &cu);
         ax[j] = st * ((cc * cu) - (sc * su));
         ay[j] = st * ((sc * cu) + (cc * su));
         az[j] = ct;
-        wp[j] = gl_wf[j] * h;
+        wp[j] = gl_w[j] * h;
     }
     rg->m += WNOR_Q;
 }

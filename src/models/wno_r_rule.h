@@ -63,8 +63,8 @@ double bf__wnor_ring_sum(const double *ax, const double *ay,
 /* The weights of th's rings at sigma > 0, normalised, 1 / cos t folded
  * in: the value is sum_i c[i] b[i], b the ring sums. */
 void bf__wnor_weights(const wnor_theta *th, double sigma, double *c);
-/* The Gauss-Legendre rule of WNOR_Q points on [-1, 1]: the positive
- * abscissae and their weights (GSL's table, WNOR_Q / 2 of each). */
+/* The Gauss-Legendre rule of WNOR_Q points on [-1, 1], ascending: its
+ * abscissae and weights (GSL's table, mirrored). */
 void bf__wnor_gl(const double **x, const double **w);
 
 #endif
