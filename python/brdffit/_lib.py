@@ -286,16 +286,16 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
 typedef struct {
     size_t n_sim;
     size_t n_failed;
-    double truth[4];
-    double coverage[4];
-    double bias[4];
-    double sd[4];
-    double ml_bias[4];
-    double ml_sd[4];
-    double width[4];
-    double not_identified[4];
-    double boot_coverage[4];
-    double boot_width[4];
+    double truth[8];
+    double coverage[8];
+    double bias[8];
+    double sd[8];
+    double ml_bias[8];
+    double ml_sd[8];
+    double width[8];
+    double not_identified[8];
+    double boot_coverage[8];
+    double boot_width[8];
 } bf_calibration;
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
