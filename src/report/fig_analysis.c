@@ -246,8 +246,9 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "interval that reaches the search range is cut there and drawn "
              "without an end tick.",
              N, t->name, bf_objective_name(st->opts.objective),
-             boot ? "; dotted below it, the percentile bootstrap interval "
-                    "over resampled configurations"
+             boot ? "; dotted below it, the residual bootstrap's "
+                    "percentile interval (residuals resampled under the "
+                    "noise model and refitted, doc/methods.md §3)"
                   : "");
     snprintf(e->alt, sizeof e->alt,
              "Forest plot: %s's fitted parameter%s with 95%% intervals for "
