@@ -242,9 +242,7 @@ static void polar_log(double *v, size_t n, double lo)
     }
 }
 
-/* What the legend calls the fit's value under obj: the paper's LSE,
- * SPEC §10's E under ngan, the objective S under cuberoot and log1p. */
-static const char *value_name(bf_objective obj)
+const char *bf_fig_value_name(bf_objective obj)
 {
     return obj == BF_OBJ_NGAN               ? "E"
            : bf_objective_keeps_scale(obj) ? "S"
@@ -325,7 +323,7 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         const bf_study_row *row = bf_fig_row(st, s, D->idx[b]);
         if (row->status == BF_OK && src->abs) {
             snprintf(labels[b], sizeof labels[b], "%s (%s %.3g)",
-                     row->type->name, value_name(st->opts.objective),
+                     row->type->name, bf_fig_value_name(st->opts.objective),
                      row->fit.lse);
         } else if (row->status == BF_OK) {
             snprintf(labels[b], sizeof labels[b], "%s (LSE %.2f)",
