@@ -411,8 +411,9 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "\xce\xb8i, \xce\xb8o \xe2\x89\xa4 80\xc2\xb0 and each "
                  "model's \xcf\x81\xcc\x82 with its fitted scales, never "
                  "normalised; the legend gives each fit's %s. The radiance "
-                 "axis is %s (logarithmic when the measured points drawn "
-                 "span more than %.0f decades), from %.3g to %.3g sr\xe2\x81\xbb\xc2\xb9"
+                 "axis is %s (the rule: logarithmic when the measured points "
+                 "drawn span more than %.0f decades), from %.3g to %.3g "
+                 "sr\xe2\x81\xbb\xc2\xb9"
                  "%s; model peaks above %.0f\xc3\x97 the measured maximum "
                  "are cut.",
                  bf_objective_name(st->opts.objective), src->K,
