@@ -1296,6 +1296,28 @@ int bf_fit_curve(const bf_model_type *type, const double *param,
                  size_t n_used, const bf_geom *used, size_t n,
                  const bf_geom *at, double *work, double *out);
 
+/* A fitted model drawn anywhere in absolute units under an objective
+ * that keeps the scale (SPEC §10): its rho_hat = BRDF x cos theta_i at
+ * the n configurations at[], the fitted scales included, never
+ * normalised. A specular model or composite (SPEC §9.3, §9.4) carries its
+ * scales in param: bf_model_eval x cos theta_i. A diffuse model's scale
+ * is the fit's, solved on pb (its data rho, configurations, weights and
+ * objective; bf_fit_scale's rho_d): rho_d v(at) / (pi v(normal)), v the
+ * model's value (SPEC §9.4). out[i] is NaN where the model is undefined.
+ * BF_EINVAL for another objective or bad arguments; bf_fit_scale's
+ * errors. (src/fit/plane.c) */
+int bf_fit_rho_curve(const bf_problem *pb, const double *param, size_t n,
+                     const bf_geom *at, double *out);
+
+/* The radiance axis of a figure of fitted and measured rho (SPEC §10):
+ * 1 when the positive finite values of v[0..n-1] span more than
+ * BF_LOG_AXIS_DECADES decades (max / min > 10^2), so that a linear axis
+ * would flatten the lower ones to the baseline (a gloss peak above a
+ * diffuse floor): the figure then draws a logarithmic axis; else 0.
+ * (src/fit/plane.c) */
+#define BF_LOG_AXIS_DECADES 2.0
+int bf_fit_log_axis(size_t n, const double *v);
+
 /* The configuration of the plane of incidence at incidence theta_i and
  * signed viewing angle t in [-pi/2, pi/2] (t > 0 on the forward, specular
  * side; Beckmann's frame, SPEC §1.2). */
@@ -1409,6 +1431,15 @@ typedef struct {
  * normalised; BF_ENOTFOUND when an excluded number does not exist. */
 int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
                          size_t *k, double *data, bf_error *err);
+
+/* The used configurations and measured data of target t exactly as the
+ * analysis fits them under objective obj: bf_study_target_data's for the
+ * max-normalised objectives; for those that keep the scale (SPEC §10)
+ * rho = BRDF x cos theta_i as measured, not normalised, on the
+ * configurations with theta_i, theta_o <= 80 degrees
+ * (BF_KEEP_SCALE_THETA). Same capacities and errors. */
+int bf_study_fit_data(const bf_study_spec *spec, bf_objective obj, size_t t,
+                      size_t *sel, size_t *k, double *data, bf_error *err);
 
 /* The outcome of one (target, model) pair. */
 typedef struct {

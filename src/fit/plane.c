@@ -1,5 +1,7 @@
 /* plane.c: fitted models where a figure draws them -- a model's curve at
- * any configurations, normalised as in the fit (SPEC §2), and the plane of
+ * any configurations, normalised as in the fit (SPEC §2) or in absolute
+ * units under the objectives that keep the scale (SPEC §10), the rule of
+ * a figure's log radiance axis, and the plane of
  * incidence (SPEC §1.2: Beckmann's frame, phi_i = pi, the forward or
  * specular side at phi_s = 0).
  *
@@ -44,6 +46,61 @@ int bf_fit_curve(const bf_model_type *type, const double *param,
         out[k] /= mx; /* SPEC §2 */
     }
     return BF_OK;
+}
+
+int bf_fit_rho_curve(const bf_problem *pb, const double *param, size_t n,
+                     const bf_geom *at, double *out)
+{
+    static const bf_geom normal = {0.0, M_PI, 0.0, 0.0};
+    double vn = 1.0;
+    double rho_d = 1.0;
+    double f = 1.0; /* the diffuse model's scale over its value */
+    int specular;
+    size_t k;
+    int rc;
+    if (pb == NULL || pb->type == NULL || param == NULL ||
+        !bf_objective_keeps_scale(pb->objective) ||
+        (n > 0 && (at == NULL || out == NULL))) {
+        return BF_EINVAL;
+    }
+    specular = pb->type->kind == BF_MODEL_SPECULAR;
+    if (!specular) { /* SPEC §9.4: rho_d v / (pi v(normal)) */
+        rc = bf_fit_scale(pb, param, &rho_d);
+        if (rc == BF_OK) {
+            rc = bf_model_eval(pb->type, param, 1, &normal, &vn);
+        }
+        if (rc != BF_OK) {
+            return rc;
+        }
+        f = rho_d / (M_PI * vn);
+    }
+    if (n == 0) {
+        return BF_OK;
+    }
+    rc = bf_model_eval(pb->type, param, n, at, out);
+    if (rc != BF_OK && rc != BF_EDOM) {
+        return rc; /* BF_EDOM: NaN where undefined, as bf_fit_curve */
+    }
+    for (k = 0; k < n; k++) {
+        /* SPEC §10: a specular model's value is the BRDF, rho_hat = BRDF
+         * cos ti; a diffuse model's is already radiance (cos ti in it) */
+        out[k] *= specular ? f * cos(at[k].theta_i) : f;
+    }
+    return BF_OK;
+}
+
+int bf_fit_log_axis(size_t n, const double *v)
+{
+    double lo = HUGE_VAL;
+    double hi = 0.0;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        if (v[k] > 0.0 && isfinite(v[k])) {
+            lo = fmin(lo, v[k]);
+            hi = fmax(hi, v[k]);
+        }
+    }
+    return hi > 0.0 && log10(hi / lo) > BF_LOG_AXIS_DECADES;
 }
 
 bf_geom bf_geom_in_plane(double theta_i, double t)

@@ -92,6 +92,20 @@ int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
     return target_data(spec, t, 0, sel, k, data, err);
 }
 
+int bf_study_fit_data(const bf_study_spec *spec, bf_objective obj, size_t t,
+                      size_t *sel, size_t *k, double *data, bf_error *err)
+{
+    bf_study_spec keep;
+    if (spec == NULL || !bf_objective_keeps_scale(obj)) {
+        return target_data(spec, t, 0, sel, k, data, err);
+    }
+    keep = *spec; /* SPEC §10: theta_i, theta_o <= 80 deg, as bf_analyse */
+    if (keep.select.max_theta > BF_KEEP_SCALE_THETA) {
+        keep.select.max_theta = BF_KEEP_SCALE_THETA;
+    }
+    return target_data(&keep, t, 1, sel, k, data, err);
+}
+
 static int target_data(const bf_study_spec *spec, size_t t, int raw,
                        size_t *sel, size_t *k, double *data, bf_error *err)
 {

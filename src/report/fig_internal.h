@@ -54,6 +54,11 @@ typedef struct {
 void *bf_fig_alloc(bf_fig_desc *d, size_t size);
 void bf_fig_desc_free(bf_fig_desc *d);
 
+/* What the figures call a fit's value (bf_study_row.fit.lse) under obj:
+ * the paper's "LSE", SPEC §10's "E" under ngan, the objective "S" under
+ * cuberoot and log1p. (fig_plane.c) */
+const char *bf_fig_value_name(bf_objective obj);
+
 /* The study row of sample index s and model index m. */
 const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m);
 /* 1 when model m was evaluated (status BF_OK) for at least one sample of

@@ -155,7 +155,13 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.nx = d->fig.ny = 1;
     d->fig.xlabel = by_slope ? "sample (by increasing fitted FC-E slope)"
                              : "sample";
-    d->fig.ylabel = p->logy ? "LSE (log scale)" : "LSE";
+    if (st->opts.objective == BF_OBJ_NGAN) { /* SPEC §10's E */
+        d->fig.ylabel = p->logy ? "E (log scale)" : "E";
+    } else if (bf_objective_keeps_scale(st->opts.objective)) {
+        d->fig.ylabel = p->logy ? "S (log scale)" : "S";
+    } else {
+        d->fig.ylabel = p->logy ? "LSE (log scale)" : "LSE";
+    }
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = p;
     d->fig.n_panels = 1;
@@ -170,6 +176,25 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->title, sizeof e->title, "Figure 2(b): LSE of each model, "
              "samples %s", by_slope ? "sorted by fitted FC-E slope"
                                     : "by number");
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        snprintf(e->title, sizeof e->title, "Figure 2(b): %s of each "
+                 "model, samples %s", bf_fig_value_name(st->opts.objective),
+                 by_slope ? "sorted by fitted FC-E slope" : "by number");
+        snprintf(e->caption, sizeof e->caption,
+                 "%s of the %s objective (SPEC §10: over each sample's used "
+                 "configurations with \xce\xb8i, \xce\xb8o \xe2\x89\xa4 "
+                 "80\xc2\xb0, \xcf\x81 = BRDF cos \xce\xb8i as measured, "
+                 "nothing normalised) of %s for each of the %zu samples; the "
+                 "x axis lists the sample numbers %s%s.",
+                 st->opts.objective == BF_OBJ_NGAN
+                     ? "E = \xe2\x88\x9a(\xce\xa3 (\xcf\x81 \xe2\x88\x92 "
+                       "\xcf\x81\xcc\x82)\xc2\xb2 / K)"
+                     : "The sum S",
+                 bf_objective_name(st->opts.objective), models, N,
+                 by_slope ? "in order of increasing fitted FC-E slope m"
+                          : "in increasing order (FC-E is not in the run)",
+                 p->logy ? "; logarithmic axis" : "");
+    } else {
     snprintf(e->caption, sizeof e->caption,
              "LSE (the sum over the %s used configurations of the "
              "squared difference between the model's and the measured "
@@ -181,6 +206,7 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                         "the paper's Figure 2(b)"
                       : "in increasing order (FC-E is not in the run)",
              p->logy ? "; logarithmic LSE axis" : "");
+    }
     snprintf(e->alt, sizeof e->alt,
              "Line chart: LSE of %zu models (%.400s) for %zu samples%s.", M,
              models, N, by_slope ? " sorted by FC-E slope" : "");
@@ -341,7 +367,12 @@ static void scatter_fill(const bf_fig_data *D, size_t s0, size_t ns,
             const char *sep = g == GRID_FLOW ? ": " : "";
             bf_plot_series *ser = &w->ser[p];
             bf_plot_panel *pan = &w->panel[p];
-            if (row->status == BF_OK) {
+            if (row->status == BF_OK &&
+                bf_objective_keeps_scale(st->opts.objective)) {
+                snprintf(w->notes[p], sizeof w->notes[p], "%.24s%s%s %.3g",
+                         name, sep, bf_fig_value_name(st->opts.objective),
+                         row->fit.lse);
+            } else if (row->status == BF_OK) {
                 snprintf(w->notes[p], sizeof w->notes[p], "%.24s%sLSE %.2f",
                          name, sep, row->fit.lse);
             } else {
@@ -490,7 +521,7 @@ int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "predicted radiance are each divided by their maximum over the "
              "K configurations (SPEC §2), the models at their fitted "
              "parameters; the grey diagonal is perfect agreement, and each "
-             "panel gives the model's LSE.",
+             "panel gives the model's %s.",
              ktext,
              g == GRID_PAPER        ? ", one column per sample"
              : g == GRID_TRANSPOSED ? ", one row per sample"
@@ -498,7 +529,7 @@ int bf_fig_scatter(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              g == GRID_PAPER        ? "one row per model"
              : g == GRID_TRANSPOSED ? "one column per model"
                                     : "one panel per model",
-             models);
+             models, bf_fig_value_name(st->opts.objective));
     snprintf(e->alt, sizeof e->alt,
              "Grid of %zu scatter plots: predicted against measured "
              "normalised radiance of %zu sample%s for the models %s.",

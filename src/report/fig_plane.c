@@ -1,8 +1,14 @@
 /* fig_plane.c: one sample's fitted models and measurements in the plane
  * of incidence (fig_internal.h), as curves over the signed viewing angle
  * (Cartesian) or as a polar half-disc, one panel per incidence angle.
- * Curves are normalised as in the fit (SPEC §2, bf_fit_curve), so points
- * and curves compare directly. */
+ * Curves are drawn as in the fit, so points and curves compare directly:
+ * under the paper's objectives normalised (SPEC §2, bf_fit_curve); under
+ * those that keep the scale (SPEC §10) in absolute units, the measured
+ * rho = BRDF cos ti and each model's rho_hat with its fitted scales
+ * (bf_study_fit_data, bf_fit_rho_curve), on a logarithmic radiance axis
+ * when the measured points drawn span more than BF_LOG_AXIS_DECADES
+ * decades (bf_fit_log_axis: the gloss peak and the diffuse floor both
+ * visible). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,13 +41,72 @@ typedef struct {
     char note[48];
 } plane_data;
 
-/* Fills pd for incidence theta_i of sample index s. Returns the largest
- * value drawn, or -1 on error (*rc set). */
-static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
-                            plane_data *pd, int *rc)
+/* What the panels draw from: the used configurations and measured data of
+ * the fit (normalised, or rho under the scale-keeping objectives: abs),
+ * and with abs each model's problem (bf_fit_rho_curve's pb). */
+typedef struct {
+    size_t K;
+    const bf_geom *geom;
+    const double *data;
+    int abs;
+    bf_problem pb[BF_FIG_MAX_MODELS];
+} plane_src;
+
+/* ps for sample index s: the figure data's (bf_fig_sample) under the
+ * paper's objectives, the fit's rho (SPEC §10) under the others. */
+static int src_init(const bf_fig_data *D, size_t s, bf_fig_desc *d,
+                    plane_src *ps)
 {
     const bf_rep_study *st = D->st;
     const bf_fig_sample *r = &D->smp[s];
+    bf_objective obj = st->opts.objective;
+    size_t mat = st->targets[s].material;
+    size_t nconf = bf_dataset_nconf(st->in.ds, mat);
+    const bf_geom *all = bf_dataset_geom(st->in.ds, mat);
+    size_t *sel;
+    bf_geom *geom;
+    double *data;
+    bf_error err;
+    size_t k;
+    size_t b;
+    int rc;
+
+    memset(ps, 0, sizeof *ps);
+    ps->K = r->K;
+    ps->geom = r->geom;
+    ps->data = r->data;
+    if (!bf_objective_keeps_scale(obj)) {
+        return BF_OK;
+    }
+    ps->abs = 1;
+    sel = bf_fig_alloc(d, (nconf + 1) * sizeof *sel);
+    geom = bf_fig_alloc(d, (nconf + 1) * sizeof *geom);
+    data = bf_fig_alloc(d, (nconf + 1) * sizeof *data);
+    if (sel == NULL || geom == NULL || data == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = bf_study_fit_data(&st->spec, obj, s, sel, &ps->K, data, &err);
+    for (k = 0; rc == BF_OK && k < ps->K; k++) {
+        geom[k] = all[sel[k]];
+    }
+    ps->geom = geom;
+    ps->data = data;
+    for (b = 0; rc == BF_OK && b < D->nm; b++) {
+        const bf_study_row *row = bf_fig_row(st, s, D->idx[b]);
+        rc = bf_problem_init(&ps->pb[b], row->type, row->fit.param, ps->K,
+                             ps->geom, ps->data);
+        ps->pb[b].objective = obj;
+    }
+    return rc;
+}
+
+/* Fills pd for incidence theta_i of sample index s. Returns the largest
+ * value drawn, or -1 on error (*rc set). */
+static double plane_compute(const bf_fig_data *D, size_t s,
+                            const plane_src *r, double theta_i,
+                            plane_data *pd, int *rc)
+{
+    const bf_rep_study *st = D->st;
     bf_geom cg[CURVE_POINTS];
     double *work = malloc(r->K * sizeof *work + 1);
     double top = 0.0;
@@ -75,9 +140,11 @@ static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
         size_t m = D->idx[b];
         const bf_study_row *row = bf_fig_row(st, s, m);
         double *y = pd->cy[b];
-        int e = r->ok[m] ? bf_fit_curve(row->type, row->fit.param, r->K,
-                                        r->geom, CURVE_POINTS, cg, work, y)
-                         : BF_ENOTFOUND;
+        int e = !D->smp[s].ok[m] ? BF_ENOTFOUND
+                : r->abs ? bf_fit_rho_curve(&r->pb[b], row->fit.param,
+                                            CURVE_POINTS, cg, y)
+                         : bf_fit_curve(row->type, row->fit.param, r->K,
+                                        r->geom, CURVE_POINTS, cg, work, y);
         for (k = 0; k < CURVE_POINTS; k++) {
             if (e != BF_OK) {
                 y[k] = NAN; /* not evaluated for this sample */
@@ -92,6 +159,96 @@ static double plane_compute(const bf_fig_data *D, size_t s, double theta_i,
     return top;
 }
 
+
+/* ==== the axes ============================================================ */
+
+/* The radiance axis of the absolute figures (SPEC §10) beyond the
+ * measured maximum: model peaks up to ABS_CAP_LIN (linear axis) or
+ * ABS_CAP_LOG (log axis) times it are drawn, higher ones cut. */
+#define ABS_CAP_LIN 1.3
+#define ABS_CAP_LOG 10.0
+
+/* x rounded up to two significant digits (x > 0). */
+static double nice_up(double x)
+{
+    double e = pow(10.0, floor(log10(x)));
+    return ceil(x / e * 10.0 - 1e-9) / 10.0 * e;
+}
+
+/* The largest and smallest positive measured value of pd[0..na-1] (0 and
+ * HUGE_VAL when none), the largest finite curve value (0 when none). */
+static void abs_range(const plane_data *pd, size_t na, size_t nm,
+                      double *mhi, double *mlo, double *chi)
+{
+    size_t a;
+    size_t k;
+    size_t b;
+    *mhi = 0.0;
+    *mlo = HUGE_VAL;
+    *chi = 0.0;
+    for (a = 0; a < na; a++) {
+        for (k = 0; k < pd[a].np; k++) {
+            if (pd[a].py[k] > 0.0 && isfinite(pd[a].py[k])) {
+                *mhi = fmax(*mhi, pd[a].py[k]);
+                *mlo = fmin(*mlo, pd[a].py[k]);
+            }
+        }
+        for (b = 0; b < nm; b++) {
+            for (k = 0; k < CURVE_POINTS; k++) {
+                if (isfinite(pd[a].cy[b][k])) {
+                    *chi = fmax(*chi, pd[a].cy[b][k]);
+                }
+            }
+        }
+    }
+}
+
+/* The upper end of an absolute axis: the measured maximum mhi and the
+ * curves' chi up to cap x mhi (linear: rounded up; log: to a decade). */
+static double abs_top(double mhi, double chi, double cap, int logy)
+{
+    double t = mhi > 0.0 ? fmax(mhi, fmin(chi, cap * mhi)) : chi;
+    if (!(t > 0.0)) {
+        return 1.0;
+    }
+    t *= 1.05;
+    return logy ? pow(10.0, ceil(log10(t))) : nice_up(t);
+}
+
+/* 1 when the measured points drawn in pd[0..na-1] call for a log axis
+ * (bf_fit_log_axis). */
+static int abs_logy(const plane_data *pd, size_t na)
+{
+    double v[BF_FIG_MAX_INCIDENCE * MAX_POINTS];
+    size_t n = 0;
+    size_t a;
+    size_t k;
+    for (a = 0; a < na; a++) {
+        for (k = 0; k < pd[a].np; k++) {
+            v[n++] = pd[a].py[k];
+        }
+    }
+    return bf_fit_log_axis(n, v);
+}
+
+/* Polar panels on a log axis: radius log10(v / lo), at least 0. */
+static void polar_log(double *v, size_t n, double lo)
+{
+    size_t k;
+    for (k = 0; k < n; k++) {
+        if (isfinite(v[k])) {
+            v[k] = v[k] > lo ? log10(v[k] / lo) : 0.0;
+        }
+    }
+}
+
+const char *bf_fig_value_name(bf_objective obj)
+{
+    return obj == BF_OBJ_NGAN               ? "E"
+           : bf_objective_keeps_scale(obj) ? "S"
+                                           : "LSE";
+}
+
 int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  int full)
 {
@@ -101,27 +258,40 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     size_t na = D->o->n_incidence;
     size_t nm = D->nm;
     plane_data *pd = bf_fig_alloc(d, na * sizeof *pd);
+    plane_src *src = bf_fig_alloc(d, sizeof *src);
     bf_plot_panel *panel = bf_fig_alloc(d, na * sizeof *panel);
     bf_plot_series *ser = bf_fig_alloc(d, na * (nm + 1) * sizeof *ser);
     char (*labels)[64] = bf_fig_alloc(d, nm * sizeof *labels);
+    char *axis = bf_fig_alloc(d, 160);
     char who[256];
     char key[64];
     char models[256];
+    char scale[800];
     double top = 1.0;
     double ptop[BF_FIG_MAX_INCIDENCE];
     double ymax;
+    double ymin = 0.0;
+    double mhi = 0.0;
+    double mlo = HUGE_VAL;
+    double chi = 0.0;
+    int logy = 0;
     size_t a;
     size_t b;
     int rc = BF_OK;
 
     (void)full; /* the curves set the radiance axis, named in the caption */
-    if (pd == NULL || panel == NULL || ser == NULL || labels == NULL ||
-        nm > BF_FIG_MAX_MODELS) {
+    if (pd == NULL || src == NULL || panel == NULL || ser == NULL ||
+        labels == NULL || axis == NULL || nm > BF_FIG_MAX_MODELS) {
         return BF_ENOMEM;
+    }
+    rc = src_init(D, s, d, src);
+    if (rc != BF_OK) {
+        return rc;
     }
     bf_fig_sample_label(st, e->index, who, sizeof who);
     for (a = 0; a < na; a++) {
-        double t = plane_compute(D, s, D->o->incidence[a], &pd[a], &rc);
+        double t =
+            plane_compute(D, s, src, D->o->incidence[a], &pd[a], &rc);
         if (t < 0.0) {
             return rc;
         }
@@ -129,9 +299,33 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         ptop[a] = fmin(ceil(t * 1.05 * 10.0) / 10.0, YMAX_CAP);
     }
     ymax = fmin(ceil(top * 1.05 * 10.0) / 10.0, YMAX_CAP);
+    if (src->abs) { /* SPEC §10: absolute units, no cap at 1 */
+        abs_range(pd, na, nm, &mhi, &mlo, &chi);
+        logy = abs_logy(pd, na);
+        ymin = logy ? pow(10.0, floor(log10(mlo))) : 0.0;
+        ymax = abs_top(mhi, chi, logy ? ABS_CAP_LOG : ABS_CAP_LIN, logy);
+        for (a = 0; a < na; a++) {
+            double phi;
+            double plo;
+            double pch;
+            abs_range(&pd[a], 1, nm, &phi, &plo, &pch);
+            ptop[a] = logy ? log10(ymax / ymin)
+                           : abs_top(phi, pch, ABS_CAP_LIN, 0);
+            if (polar && logy) {
+                polar_log(pd[a].py, pd[a].np, ymin);
+                for (b = 0; b < nm; b++) {
+                    polar_log(pd[a].cy[b], CURVE_POINTS, ymin);
+                }
+            }
+        }
+    }
     for (b = 0; b < nm; b++) {
         const bf_study_row *row = bf_fig_row(st, s, D->idx[b]);
-        if (row->status == BF_OK) {
+        if (row->status == BF_OK && src->abs) {
+            snprintf(labels[b], sizeof labels[b], "%s (%s %.3g)",
+                     row->type->name, bf_fig_value_name(st->opts.objective),
+                     row->fit.lse);
+        } else if (row->status == BF_OK) {
             snprintf(labels[b], sizeof labels[b], "%s (LSE %.2f)",
                      row->type->name, row->fit.lse);
         } else {
@@ -158,8 +352,9 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         q[nm].style = BF_PLOT_INK;
         q[nm].label = "measured";
         p->polar = polar;
-        p->ymin = 0.0;
+        p->ymin = polar ? 0.0 : ymin;
         p->ymax = polar && ptop[a] > 0.0 ? ptop[a] : ymax;
+        p->logy = !polar && logy;
         p->note = pd[a].note;
         p->series = q;
         p->n_series = nm + 1;
@@ -175,7 +370,24 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.ny = (na + 1) / 2;
     d->fig.share_x = d->fig.share_y = 1;
     d->fig.legend = BF_LEGEND_TOP;
-    if (polar) {
+    if (src->abs && polar) {
+        if (logy) {
+            snprintf(axis, 160, "angle: \xce\xb8_{s} from the surface normal "
+                     "(> 0 forward); radius: log_{10}(\xcf\x81/%.3g sr^{-1})",
+                     ymin);
+        } else {
+            snprintf(axis, 160, "angle: \xce\xb8_{s} from the surface normal "
+                     "(> 0 forward); radius: \xcf\x81 = BRDF cos \xce\xb8_{i} "
+                     "(sr^{-1})");
+        }
+        d->fig.xlabel = axis;
+    } else if (src->abs) {
+        snprintf(axis, 160, "\xcf\x81 = BRDF cos \xce\xb8_{i} (sr^{-1}%s)",
+                 logy ? ", log scale" : "");
+        d->fig.xlabel = "\xce\xb8_{s} in the plane of incidence "
+                        "(\xc2\xb0, > 0 forward)";
+        d->fig.ylabel = axis;
+    } else if (polar) {
         d->fig.xlabel = "angle: \xce\xb8_{s} from the surface normal "
                         "(> 0 forward); radius: L/L_{max}";
     } else {
@@ -191,7 +403,43 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              bf_fig_target_key(st, s, key, sizeof key));
     snprintf(e->title, sizeof e->title, "%.160s: plane of incidence%s", who,
              polar ? " (polar)" : "");
-    snprintf(e->caption, sizeof e->caption,
+    if (src->abs) {
+        snprintf(scale, sizeof scale,
+                 "Points and curves are in absolute units as fitted under "
+                 "the %s objective (SPEC §10): the measured \xcf\x81 = BRDF "
+                 "cos \xce\xb8i on the K = %zu used configurations with "
+                 "\xce\xb8i, \xce\xb8o \xe2\x89\xa4 80\xc2\xb0 and each "
+                 "model's \xcf\x81\xcc\x82 with its fitted scales, never "
+                 "normalised; the legend gives each fit's %s. The radiance "
+                 "axis is %s (the rule: logarithmic when the measured points "
+                 "drawn span more than %.0f decades), from %.3g to %.3g "
+                 "sr\xe2\x81\xbb\xc2\xb9"
+                 "%s; model peaks above %.0f\xc3\x97 the measured maximum "
+                 "are cut.",
+                 bf_objective_name(st->opts.objective), src->K,
+                 st->opts.objective == BF_OBJ_NGAN
+                     ? "E = \xe2\x88\x9a(\xce\xa3 (\xcf\x81 \xe2\x88\x92 "
+                       "\xcf\x81\xcc\x82)\xc2\xb2 / K)"
+                     : "objective S",
+                 logy ? "logarithmic" : "linear", BF_LOG_AXIS_DECADES, ymin,
+                 ymax,
+                 polar ? (logy ? " (radius: decades above the lower end)"
+                               : " (each panel's radius fits its largest "
+                                 "value)")
+                       : "",
+                 logy ? ABS_CAP_LOG : ABS_CAP_LIN);
+        snprintf(e->caption, sizeof e->caption,
+                 "The fitted models (%s; lines, with markers every 30\xc2\xb0 "
+                 "to tell them apart) over \xce\xb8s from \xe2\x88\x92"
+                 "90\xc2\xb0 to 90\xc2\xb0 in the plane of incidence "
+                 "(\xce\xb8s > 0: forward, the specular side)%s, and the "
+                 "used measured configurations within %.0f\xc2\xb0 of that "
+                 "plane (black points), one panel per incidence angle "
+                 "\xce\xb8i. %s",
+                 models, polar ? " as a polar plot" : "",
+                 BF_FIG_PLANE_TOL / BF_FIG_DEG, scale);
+    } else {
+        snprintf(e->caption, sizeof e->caption,
              "The fitted models (%s; lines, with markers every 30\xc2\xb0 to "
              "tell them apart) over \xce\xb8s from \xe2\x88\x92" "90\xc2\xb0 to "
              "90\xc2\xb0 in the plane of incidence (\xce\xb8s > 0: forward, "
@@ -210,6 +458,7 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              polar ? "each panel's radius fits its largest value, at most"
                    : "the radiance axis ends at",
              polar ? YMAX_CAP : ymax);
+    }
     snprintf(e->alt, sizeof e->alt,
              "%s plots of the models %.200s and the measurements of %.160s in the "
              "plane of incidence, %zu incidence angle%s.",

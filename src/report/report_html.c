@@ -365,11 +365,24 @@ static void conventions(FILE *fp, const bf_rep_study *st,
     size_t a;
 
     fputs("<h2 id=\"conventions\">Conventions</h2>\n<ul>\n", fp);
-    fputs("<li>Measured radiance = BRDF × cos θ<sub>i</sub>, divided by its "
-          "maximum over the K used configurations; every model curve is "
-          "divided by its own maximum over the same configurations, so the "
-          "models' scale constants cancel (SPEC §2). Every figure shows "
-          "radiance normalised this way.</li>\n", fp);
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        fprintf(fp, "<li>Objective %s (SPEC §10): the measured ρ = BRDF × "
+                "cos θ<sub>i</sub> as measured on the configurations with "
+                "θ<sub>i</sub>, θ<sub>o</sub> ≤ 80°, nothing normalised; "
+                "each model's ρ̂ carries its fitted scales. The plane and "
+                "polar figures show ρ and ρ̂ in these absolute units; the "
+                "predicted-against-measured figures (Figures 3–6) show "
+                "radiance divided by its maximum over the K used "
+                "configurations (SPEC §2).</li>\n",
+                bf_objective_name(st->opts.objective));
+    } else {
+        fputs("<li>Measured radiance = BRDF × cos θ<sub>i</sub>, divided by "
+              "its maximum over the K used configurations; every model "
+              "curve is divided by its own maximum over the same "
+              "configurations, so the models' scale constants cancel (SPEC "
+              "§2). Every figure shows radiance normalised this way.</li>\n",
+              fp);
+    }
     fputs("<li>LSE = Σ<sub>k</sub> (L<sub>model,k</sub> − L<sub>data,k"
           "</sub>)², a sum over the K configurations (SPEC §7.3).</li>\n"
           "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "

@@ -189,6 +189,44 @@ static void describe_freed(const bf_rep_study *st, FILE *fp)
     fputc('\n', fp);
 }
 
+/* How many of st's models are specular or composites D+S (SPEC §9). */
+static size_t n_specular(const bf_rep_study *st)
+{
+    size_t m;
+    size_t n = 0;
+    for (m = 0; m < st->n_models; m++) {
+        n += st->models[m]->kind == BF_MODEL_SPECULAR;
+    }
+    return n;
+}
+
+/* The fit of the specular models and composites (src/fit/varpro.c). */
+static void describe_separable(const bf_rep_study *st, FILE *fp)
+{
+    size_t m;
+    const char *sep = "";
+    if (n_specular(st) == 0) {
+        return;
+    }
+    fputs("Fit of", fp);
+    for (m = 0; m < st->n_models; m++) {
+        if (st->models[m]->kind == BF_MODEL_SPECULAR) {
+            fprintf(fp, "%s %s", sep, st->models[m]->name);
+            sep = ",";
+        }
+    }
+    fprintf(fp, ": separable least squares -- the scales solved exactly "
+                "(non-negative least squares) at every point, a product "
+                "grid over the other parameters, then Levenberg-Marquardt "
+                "from the grid's lowest local minima%s (doc/methods.md §1, "
+                "\"The specular models and the composites: separable least "
+                "squares\")\n",
+            st->opts.objective == BF_OBJ_NGAN
+                ? ""
+                : ", from whose ngan optimum Nelder-Mead minimises the "
+                  "objective over every free parameter");
+}
+
 /* What Table 3 shows under obj. */
 static const char *table3_label(bf_objective obj)
 {
@@ -203,10 +241,12 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
     const bf_report_options *o = &st->opts;
     size_t r;
     if (o->exact) {
-        fprintf(fp, "Fit: exact -- grid optimum, then GSL Brent (1 "
+        fprintf(fp, "Fit: exact -- %sgrid optimum, then GSL Brent (1 "
                     "parameter) or Nelder-Mead (2+) within one grid step, "
                     "|d param| < %g (doc/methods.md §2)\n",
+                n_specular(st) > 0 ? "diffuse models: " : "",
                 BF_REFINE_TOL);
+        describe_separable(st, fp);
         describe_freed(st, fp);
     }
     for (r = 0; r < o->n_range; r++) {
@@ -252,8 +292,14 @@ int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
         bf_rep_err("out of memory");
         return BF_REPORT_SOFTWARE;
     }
-    fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided by "
-                "its maximum over the K used configurations (SPEC §2)\n");
+    if (bf_objective_keeps_scale(o->objective)) {
+        fprintf(fp, "Normalisation: none (SPEC §10): rho = BRDF x "
+                    "cos(theta_i) as measured, in sr^-1\n");
+    } else {
+        fprintf(fp, "Normalisation: radiance = BRDF x cos(theta_i), divided "
+                    "by its maximum over the K used configurations (SPEC "
+                    "§2)\n");
+    }
     if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
         fprintf(fp, "Channel: %s\n", o->channel);
     }
