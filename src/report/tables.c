@@ -481,7 +481,16 @@ static int write_outputs(const bf_rep_study *st, const bf_tt *t2,
                      "bound)\n\n",
           f[1].fp);
     bf_tt_print(t2, f[1].fp);
-    fputs("Table 3: LSE (sum over the K used configurations)\n\n", f[2].fp);
+    if (bf_objective_keeps_scale(o->objective)) { /* as printed */
+        fprintf(f[2].fp, "Table 3: %s (over each sample's used "
+                         "configurations with theta_i, theta_o <= 80 deg: K "
+                         "in fits.csv's k, SPEC §10)\n\n",
+                table3_label(o->objective));
+    } else {
+        fprintf(f[2].fp, "Table 3: %s (sum over the K used "
+                         "configurations)\n\n",
+                table3_label(o->objective));
+    }
     bf_tt_print(t3, f[2].fp);
     for (i = 0; i < 3; i++) {
         rc = bf_out_commit(&f[i]);
