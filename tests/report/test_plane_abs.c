@@ -314,5 +314,11 @@ Test(plane_abs, description_under_ngan)
     cr_assert(strstr(html, "in absolute units as fitted under the ngan "
                            "objective") != NULL);
     cr_assert(strstr(html, "L/L_max") == NULL);
+    /* table3.md names E, as the printed Table 3 does, never LSE */
+    snprintf(path, sizeof path, "%s/table3.md", dir);
+    html = bf_test_slurp(path, NULL);
+    cr_assert(html != NULL);
+    cr_assert(strncmp(html, "Table 3: E = sqrt(S / K) of the ngan objective",
+                      46) == 0, "%.120s", html);
     free(copy);
 }
