@@ -13,7 +13,9 @@
  *
  * Equations (rho = BRDF cos ti measured, w weights, theta the scales):
  *   rho_hat = c_0 + sum_j theta_j c_j,   c_0 = rho_hat at theta = 0,
- *             c_j = rho_hat at theta = e_j minus c_0      (affine in theta)
+ *             c_j = rho_hat at theta = e_j minus c_0      (affine in theta;
+ *             the kernel's columns evaluate each part once: a lobe
+ *             rho_s f has c_0 = 0, a composite's c_rho_d is D's alone)
  *   theta = argmin_{theta >= 0} sum_k w_k (rho_hat_k - rho_k)^2
  *     (NNLS, two columns at most: the unconstrained solution of the
  *      normal equations when it is >= 0, else the better of the two
@@ -126,7 +128,6 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
 {
     const bf_problem *pb = fc->pb;
     const size_t n = fc->pm->n;
-    double p[BF_MAX_PARAMS];
     double *col[MAX_LIN + 1];
     double hi[MAX_LIN];
     size_t lj[MAX_LIN];
@@ -135,7 +136,6 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
     size_t q;
     double t[MAX_LIN] = {0.0, 0.0};
     int rc;
-    memcpy(p, param, sizeof p);
     for (j = 0; j < pb->type->p; j++) {
         if ((fc->lin_mask >> j) & 1u) {
             if (n_l == MAX_LIN || fc->cols == NULL) {
@@ -143,28 +143,28 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
             }
             hi[n_l] = pb->hi[j];
             lj[n_l++] = j;
-            p[j] = 0.0;
         }
     }
     for (q = 0; q <= n_l; q++) {
         col[q] = fc->cols + q * n;
     }
-    /* c_0, then c_j = rho_hat(e_j) - c_0: n_l + 1 evaluations */
+    /* c_0 and the c_j, each part of the model evaluated once (the
+     * kernel's columns), then as bf__curve: rho = values cos ti */
+    fc->n_eval++;
+    rc = (fc->pm->kr->columns != NULL ? fc->pm->kr->columns
+                                      : bf__columns_values)(
+        fc->pm, param, fc->lin_mask, fc->work, col[0], col + 1);
+    if (rc != BF_OK) {
+        return BF_EDOM;
+    }
     for (q = 0; q <= n_l; q++) {
-        if (q > 0) {
-            p[lj[q - 1]] = 1.0;
-        }
-        fc->n_eval++;
-        rc = bf__curve(fc->pm, p, fc->work, col[q]);
-        if (rc != BF_OK) {
-            return rc;
-        }
-        if (q > 0) {
-            size_t k;
-            for (k = 0; k < n; k++) {
-                col[q][k] -= col[0][k];
+        const double *cti = fc->pm->cs->cti;
+        size_t k;
+        for (k = 0; k < n; k++) {
+            col[q][k] *= cti[k];
+            if (!isfinite(col[q][k])) {
+                return BF_EDOM;
             }
-            p[lj[q - 1]] = 0.0;
         }
     }
     nnls(pb, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
