@@ -41,6 +41,11 @@
 #define MAX_LIN 2
 #define STARTS 6
 #define NM_ITER 300
+/* Nelder-Mead stops on a plateau: NM_FLAT (m + 1) trial values in a row
+ * exactly equal (a lobe whose scale solves to 0 there: its other
+ * parameters move nothing; or trial points all clamped into one corner of
+ * the domain), where no vertex leads anywhere. */
+#define NM_FLAT 10
 #define NM_SIZE 1e-7
 #define UNDEFINED 1e300
 
@@ -200,6 +205,8 @@ typedef struct {
     double hi[BF_MAX_PARAMS];
     size_t count[BF_MAX_PARAMS]; /* grid points */
     double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+    double flat_f;  /* Nelder-Mead's last trial value */
+    size_t flat_n;  /* trial values in a row equal to it */
 } space_t;
 
 /* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
@@ -288,14 +295,22 @@ static double value_at(bf__fitctx *fc, const double *x)
 
 static double f_nm(const gsl_vector *u, void *arg)
 {
-    const space_t *sp = arg;
+    space_t *sp = arg;
     double x[BF_MAX_PARAMS];
+    double v;
     size_t a;
     memcpy(x, sp->base, sizeof x);
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
     }
-    return value_at(sp->fc, x);
+    v = value_at(sp->fc, x);
+    if (v == sp->flat_f) {
+        sp->flat_n++;
+    } else {
+        sp->flat_f = v;
+        sp->flat_n = 1;
+    }
+    return v;
 }
 
 /* Minimises from x (in place; *f its value on return) with initial steps
@@ -331,8 +346,12 @@ static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
     fn.n = sp->m;
     fn.f = f_nm;
     fn.params = sp;
+    sp->flat_f = NAN;
+    sp->flat_n = 0;
     gsl_multimin_fminimizer_set(mn, &fn, u, ss);
-    for (it = 0; it < NM_ITER && status == GSL_CONTINUE; it++) {
+    for (it = 0; it < NM_ITER && status == GSL_CONTINUE &&
+                 sp->flat_n < NM_FLAT * (sp->m + 1);
+         it++) {
         if (gsl_multimin_fminimizer_iterate(mn) != GSL_SUCCESS) {
             break;
         }
