@@ -171,6 +171,61 @@ int bf__curve(const bf__prep *pm, const double *param, void *work,
     return bf_normalise(pm->n, curve, curve);
 }
 
+/* values() at param with the parameters of lin at 0 except index one
+ * (SIZE_MAX: none) at 1, into out. */
+static int values_at_unit(const bf__prep *pm, const double *param,
+                          unsigned lin, size_t one, void *work, double *out)
+{
+    double p[BF_MAX_PARAMS];
+    size_t j;
+    memcpy(p, param, pm->type->p * sizeof *p);
+    for (j = 0; j < pm->type->p; j++) {
+        if ((lin >> j) & 1u) {
+            p[j] = j == one ? 1.0 : 0.0;
+        }
+    }
+    return pm->kr->values(pm, p, work, out) == BF_OK ? BF_OK : BF_EDOM;
+}
+
+int bf__columns_values(const bf__prep *pm, const double *param, unsigned lin,
+                       void *work, double *c0, double *const *col)
+{
+    size_t q = 0;
+    size_t j;
+    if (values_at_unit(pm, param, lin, SIZE_MAX, work, c0) != BF_OK) {
+        return BF_EDOM;
+    }
+    for (j = 0; j < pm->type->p; j++) {
+        size_t k;
+        if (!((lin >> j) & 1u)) {
+            continue;
+        }
+        if (values_at_unit(pm, param, lin, j, work, col[q]) != BF_OK) {
+            return BF_EDOM;
+        }
+        for (k = 0; k < pm->n; k++) {
+            col[q][k] -= c0[k];
+        }
+        q++;
+    }
+    return BF_OK;
+}
+
+int bf__columns_scaled(const bf__prep *pm, const double *param, unsigned lin,
+                       void *work, double *c0, double *const *col)
+{
+    size_t q = 0;
+    size_t j;
+    memset(c0, 0, pm->n * sizeof *c0);
+    for (j = 0; j < pm->type->p; j++) {
+        if (((lin >> j) & 1u) &&
+            values_at_unit(pm, param, lin, j, work, col[q++]) != BF_OK) {
+            return BF_EDOM;
+        }
+    }
+    return BF_OK;
+}
+
 /* ==== the objective of a fit ============================================= */
 
 int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm)

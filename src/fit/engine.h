@@ -110,7 +110,25 @@ struct bf_kernel {
      * NULL: none. */
     int (*prepare)(bf__prep *pm);
     void (*release)(bf__prep *pm);
+    /* The columns of the separable fit (src/fit/varpro.c) at param for the
+     * linear parameters lin (a mask, in index order): c0 = values() with
+     * those parameters at 0, col[q] = values() with the q-th at 1 and the
+     * others at 0, minus c0 -- each part of the model evaluated once
+     * (bf__columns_scaled, a composite's own). BF_OK or BF_EDOM. NULL:
+     * bf__columns_values, values() n_lin + 1 times. */
+    int (*columns)(const bf__prep *pm, const double *param, unsigned lin,
+                   void *work, double *c0, double *const *col);
 };
+
+/* The columns from values(): at the linear parameters 0, then at each
+ * unit vector, minus c0 (any kernel). */
+int bf__columns_values(const bf__prep *pm, const double *param, unsigned lin,
+                       void *work, double *c0, double *const *col);
+/* The columns of a kernel whose values are linear in its linear
+ * parameters without offset (value = sum_q theta_q f_q(others): the
+ * specular lobes' rho_s, SPEC §9.3): c0 = 0, one values() per column. */
+int bf__columns_scaled(const bf__prep *pm, const double *param, unsigned lin,
+                       void *work, double *c0, double *const *col);
 
 /* The plain kernel: values() is type->eval on the configurations (no
  * terms). The reference path and types made outside the library (kernel

@@ -13,7 +13,9 @@
  *
  * Equations (rho = BRDF cos ti measured, w weights, theta the scales):
  *   rho_hat = c_0 + sum_j theta_j c_j,   c_0 = rho_hat at theta = 0,
- *             c_j = rho_hat at theta = e_j minus c_0      (affine in theta)
+ *             c_j = rho_hat at theta = e_j minus c_0      (affine in theta;
+ *             the kernel's columns evaluate each part once: a lobe
+ *             rho_s f has c_0 = 0, a composite's c_rho_d is D's alone)
  *   theta = argmin_{theta >= 0} sum_k w_k (rho_hat_k - rho_k)^2
  *     (NNLS, two columns at most: the unconstrained solution of the
  *      normal equations when it is >= 0, else the better of the two
@@ -39,6 +41,11 @@
 #define MAX_LIN 2
 #define STARTS 6
 #define NM_ITER 300
+/* Nelder-Mead stops on a plateau: NM_FLAT (m + 1) trial values in a row
+ * exactly equal (a lobe whose scale solves to 0 there: its other
+ * parameters move nothing; or trial points all clamped into one corner of
+ * the domain), where no vertex leads anywhere. */
+#define NM_FLAT 10
 #define NM_SIZE 1e-7
 #define UNDEFINED 1e300
 
@@ -126,7 +133,6 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
 {
     const bf_problem *pb = fc->pb;
     const size_t n = fc->pm->n;
-    double p[BF_MAX_PARAMS];
     double *col[MAX_LIN + 1];
     double hi[MAX_LIN];
     size_t lj[MAX_LIN];
@@ -135,7 +141,6 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
     size_t q;
     double t[MAX_LIN] = {0.0, 0.0};
     int rc;
-    memcpy(p, param, sizeof p);
     for (j = 0; j < pb->type->p; j++) {
         if ((fc->lin_mask >> j) & 1u) {
             if (n_l == MAX_LIN || fc->cols == NULL) {
@@ -143,28 +148,28 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
             }
             hi[n_l] = pb->hi[j];
             lj[n_l++] = j;
-            p[j] = 0.0;
         }
     }
     for (q = 0; q <= n_l; q++) {
         col[q] = fc->cols + q * n;
     }
-    /* c_0, then c_j = rho_hat(e_j) - c_0: n_l + 1 evaluations */
+    /* c_0 and the c_j, each part of the model evaluated once (the
+     * kernel's columns), then as bf__curve: rho = values cos ti */
+    fc->n_eval++;
+    rc = (fc->pm->kr->columns != NULL ? fc->pm->kr->columns
+                                      : bf__columns_values)(
+        fc->pm, param, fc->lin_mask, fc->work, col[0], col + 1);
+    if (rc != BF_OK) {
+        return BF_EDOM;
+    }
     for (q = 0; q <= n_l; q++) {
-        if (q > 0) {
-            p[lj[q - 1]] = 1.0;
-        }
-        fc->n_eval++;
-        rc = bf__curve(fc->pm, p, fc->work, col[q]);
-        if (rc != BF_OK) {
-            return rc;
-        }
-        if (q > 0) {
-            size_t k;
-            for (k = 0; k < n; k++) {
-                col[q][k] -= col[0][k];
+        const double *cti = fc->pm->cs->cti;
+        size_t k;
+        for (k = 0; k < n; k++) {
+            col[q][k] *= cti[k];
+            if (!isfinite(col[q][k])) {
+                return BF_EDOM;
             }
-            p[lj[q - 1]] = 0.0;
         }
     }
     nnls(pb, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
@@ -200,6 +205,8 @@ typedef struct {
     double hi[BF_MAX_PARAMS];
     size_t count[BF_MAX_PARAMS]; /* grid points */
     double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+    double flat_f;  /* Nelder-Mead's last trial value */
+    size_t flat_n;  /* trial values in a row equal to it */
 } space_t;
 
 /* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
@@ -288,14 +295,22 @@ static double value_at(bf__fitctx *fc, const double *x)
 
 static double f_nm(const gsl_vector *u, void *arg)
 {
-    const space_t *sp = arg;
+    space_t *sp = arg;
     double x[BF_MAX_PARAMS];
+    double v;
     size_t a;
     memcpy(x, sp->base, sizeof x);
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
     }
-    return value_at(sp->fc, x);
+    v = value_at(sp->fc, x);
+    if (v == sp->flat_f) {
+        sp->flat_n++;
+    } else {
+        sp->flat_f = v;
+        sp->flat_n = 1;
+    }
+    return v;
 }
 
 /* Minimises from x (in place; *f its value on return) with initial steps
@@ -331,8 +346,12 @@ static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
     fn.n = sp->m;
     fn.f = f_nm;
     fn.params = sp;
+    sp->flat_f = NAN;
+    sp->flat_n = 0;
     gsl_multimin_fminimizer_set(mn, &fn, u, ss);
-    for (it = 0; it < NM_ITER && status == GSL_CONTINUE; it++) {
+    for (it = 0; it < NM_ITER && status == GSL_CONTINUE &&
+                 sp->flat_n < NM_FLAT * (sp->m + 1);
+         it++) {
         if (gsl_multimin_fminimizer_iterate(mn) != GSL_SUCCESS) {
             break;
         }

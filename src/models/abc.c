@@ -32,7 +32,7 @@ static double abc_value(const bf__mf_t *m, const double *p)
            * (4.0 / BF__PI) * bf__mf_gv_over(m);
 }
 
-BF__MF_ENTRY(abc, abc_value);
+BF__MF_SCALED(abc, abc_value);
 
 static const bf_param param_abc[4] = {
     BF__PARAM_SCALE("A", "scale A"),

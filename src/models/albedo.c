@@ -37,6 +37,7 @@ typedef struct {
     void *work;
     double theta_i;
     double theta_o;
+    double cos_sin_o; /* cos to sin to, once per to */
     gsl_integration_workspace *inner;
     double pts_in[ALB_MAXPTS];
     size_t n_in;
@@ -84,7 +85,7 @@ static double integrand(double phi_s, void *arg)
         a->failed = 1;
         return 0.0;
     }
-    return v * cos(a->theta_o) * sin(a->theta_o);
+    return v * a->cos_sin_o;
 }
 
 /* 2 int_0^pi f cos to sin to d phi_s at to. */
@@ -95,6 +96,7 @@ static double over_phi(double theta_o, void *arg)
     double r = 0.0;
     double err = 0.0;
     a->theta_o = theta_o;
+    a->cos_sin_o = cos(theta_o) * sin(theta_o);
     if (gsl_integration_qagp(&fn, a->pts_in, a->n_in, ALB_EPSABS_IN,
                              ALB_EPSREL_IN, ALB_LIMIT, a->inner, &r, &err)
         != GSL_SUCCESS) {

@@ -22,7 +22,7 @@ static double bp_value(const bf__mf_t *m, const double *p)
     return p[0] * (p[1] + 8.0) / (8.0 * BF__PI) * pow(m->ch, p[1]);
 }
 
-BF__MF_ENTRY(bp, bp_value);
+BF__MF_SCALED(bp, bp_value);
 
 static const bf_param param_bp[2] = {
     BF__PARAM_RHO_S,

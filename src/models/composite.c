@@ -193,21 +193,30 @@ static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
            + part_work(ck->s->kernel, n) + part_work(ck->d->kernel, 1);
 }
 
-/* Values of the composite from its parts' kernels (the reference path's
- * formula, SPEC §9.4). The workspace: n doubles, then D's, S's and the
- * normal configuration's D's, apart (a part may keep a cache of its
- * configurations' terms in its workspace: FC's Fresnel factor). */
-static int comp_values(const bf__prep *pm, const double *param, void *work,
-                       double *out)
+/* The workspace of comp_values and comp_columns: n doubles, then D's,
+ * S's and the normal configuration's D's, apart (a part may keep a cache
+ * of its configurations' terms in its workspace: FC's Fresnel factor). */
+static char *d_work(const bf__prep *pm, void *work)
+{
+    return (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+}
+
+static char *s_work(const bf__prep *pm, void *work)
+{
+    return d_work(pm, work) + part_work(comp_of(pm->kr)->d->kernel, pm->n);
+}
+
+/* Adds D's term rho d(i, o) of SPEC §9.4 at param (the composite's) to
+ * out from D's kernel; NaN everywhere and BF_EDOM where D(n, n) is not
+ * positive. */
+static int add_diffuse(const bf__prep *pm, const double *param, double rho,
+                       void *work, double *out)
 {
     const comp_kernel *ck = comp_of(pm->kr);
     const bf_model_type *d = ck->d;
     double *dv = work;
-    char *dw = (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
-    char *sw = dw + part_work(d->kernel, pm->n);
-    char *nw = sw + part_work(ck->s->kernel, pm->n);
+    char *nw = s_work(pm, work) + part_work(ck->s->kernel, pm->n);
     bf__prep pd;
-    bf__prep ps;
     bf__prep pn;
     bf__cset ncs;
     bf__trig_t trig;
@@ -224,13 +233,9 @@ static int comp_values(const bf__prep *pm, const double *param, void *work,
         }
         return BF_EDOM;
     }
-    scale = param[0] / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    scale = rho / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
     part_prep(pm, 0, &pd, NULL, NULL, NULL);
-    part_prep(pm, 1, &ps, NULL, NULL, NULL);
-    rc = d->kernel->values(&pd, param + 1, dw, dv);
-    if (ck->s->kernel->values(&ps, param + 1 + d->p, sw, out) != BF_OK) {
-        rc = BF_EDOM;
-    }
+    rc = d->kernel->values(&pd, param + 1, d_work(pm, work), dv);
     for (k = 0; k < pm->n; k++) {
         double ci = pm->cs->cti[k];
         if (ci == 0.0) { /* grazing: the limit, as the reference path */
@@ -247,6 +252,52 @@ static int comp_values(const bf__prep *pm, const double *param, void *work,
         out[k] += scale * dv[k] / ci;
     }
     return rc == BF_OK ? BF_OK : BF_EDOM;
+}
+
+/* Values of the composite from its parts' kernels (the reference path's
+ * formula, SPEC §9.4). */
+static int comp_values(const bf__prep *pm, const double *param, void *work,
+                       double *out)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    bf__prep ps;
+    int rc;
+    part_prep(pm, 1, &ps, NULL, NULL, NULL);
+    rc = ck->s->kernel->values(&ps, param + 1 + ck->d->p, s_work(pm, work),
+                               out);
+    if (add_diffuse(pm, param, param[0], work, out) != BF_OK) {
+        rc = BF_EDOM;
+    }
+    return rc == BF_OK ? BF_OK : BF_EDOM;
+}
+
+/* The separable fit's columns (bf_kernel.columns): rho_d's is D's term at
+ * rho_d = 1 alone, S's from S's own columns, so each part is evaluated
+ * once (not the whole composite n_lin + 1 times). A fixed rho_d adds D's
+ * term to c0. */
+static int comp_columns(const bf__prep *pm, const double *param, unsigned lin,
+                        void *work, double *c0, double *const *col)
+{
+    const comp_kernel *ck = comp_of(pm->kr);
+    const bf_kernel *skr = ck->s->kernel;
+    const size_t off = 1 + ck->d->p;
+    bf__prep ps;
+    int rc;
+    if (((lin >> 1) & ((1u << ck->d->p) - 1u)) != 0) {
+        return BF_EINVAL; /* D's own parameters are not scales */
+    }
+    part_prep(pm, 1, &ps, NULL, NULL, NULL);
+    rc = (skr->columns != NULL ? skr->columns : bf__columns_values)(
+        &ps, param + off, lin >> off, s_work(pm, work), c0,
+        col + (lin & 1u));
+    if (rc != BF_OK) {
+        return BF_EDOM;
+    }
+    if (lin & 1u) {
+        memset(col[0], 0, pm->n * sizeof *col[0]);
+        return add_diffuse(pm, param, 1.0, work, col[0]);
+    }
+    return add_diffuse(pm, param, param[0], work, c0);
 }
 
 /* 1 when a part's kernel can serve inside the composite's: it has terms
@@ -320,6 +371,7 @@ static void make_types(void)
             ck->k.terms = comp_terms;
             ck->k.work_bytes = comp_work_bytes;
             ck->k.values = comp_values;
+            ck->k.columns = comp_columns;
             ck->k.cheap = -1;
             t->kernel = &ck->k;
         }

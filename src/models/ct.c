@@ -34,7 +34,7 @@ static inline double ct(const bf__mf_t *m, const double *p,
     {                                                                      \
         return ct(m, p, f);                                                \
     }                                                                      \
-    BF__MF_ENTRY(tag, tag##_value)
+    BF__MF_SCALED(tag, tag##_value)
 
 CT_VALUE(ct_s, BF_FRESNEL_SCHLICK);
 CT_VALUE(ct_d, BF_FRESNEL_DIELECTRIC);

@@ -12,6 +12,7 @@
  *   [3] R. L. Cook, K. E. Torrance, ACM TOG 1(1), 1982 (V-cavity G).
  */
 #include <math.h>
+#include <string.h>
 
 #include "models/smith_lobe.h"
 
@@ -20,6 +21,31 @@
 
 /* SPEC §9.1 in Beckmann's frame (microfacet.h): i = (-si, 0, ci),
  * o = (so cos phi_s, so sin phi_s, co). */
+/* The zenith sines and cosines of the last configuration of this thread:
+ * a quadrature over phi_s at fixed zeniths (albedo.c) asks for the same
+ * two angles hundreds of times in a row. The same bits as computing them
+ * (a pure function of the two angles, compared bit for bit). */
+typedef struct {
+    double ti, to, si, ci, so, co;
+} zenith_memo_t;
+static _Thread_local zenith_memo_t zenith_memo = {NAN, NAN, 0, 0, 0, 0};
+
+static void zeniths(const bf_geom *g, bf__mf_t *m)
+{
+    zenith_memo_t *z = &zenith_memo;
+    if (memcmp(&z->ti, &g->theta_i, sizeof z->ti) != 0 ||
+        memcmp(&z->to, &g->theta_s, sizeof z->to) != 0) {
+        z->ti = g->theta_i;
+        z->to = g->theta_s;
+        bf__zenith_sincos(g->theta_i, &z->si, &z->ci);
+        bf__zenith_sincos(g->theta_s, &z->so, &z->co);
+    }
+    m->si = z->si;
+    m->ci = z->ci;
+    m->so = z->so;
+    m->co = z->co;
+}
+
 void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
 {
     double hs = sin(0.5 * g->phi_s);
@@ -30,8 +56,7 @@ void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
     double h2;
     double dz;
     double dxy2;
-    bf__zenith_sincos(g->theta_i, &m->si, &m->ci);
-    bf__zenith_sincos(g->theta_s, &m->so, &m->co);
+    zeniths(g, m);
     m->dxy = -(m->si * m->so) * cos(g->phi_s); /* ix ox + iy oy */
     dso = m->so - m->si;
     hz = m->ci + m->co; /* H = i + o */

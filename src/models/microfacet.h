@@ -87,8 +87,11 @@ int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
                    bf__mf_value_fn f);
 
 /* The eval function, kernel values and kernel of one type object whose
- * value function is value (`name_eval`, `name_kernel`). */
-#define BF__MF_ENTRY(name, value)                                          \
+ * value function is value (`name_eval`, `name_kernel`); cols the
+ * kernel's separable-fit columns (bf_kernel.columns). BF__MF_ENTRY: a
+ * value with an offset at zero scales (AS's specular term beside Rd);
+ * BF__MF_SCALED: value = rho_s times a function of the others. */
+#define BF__MF_ENTRY_COLS(name, value, cols)                               \
     static int name##_eval(const double *param, size_t count,              \
                            const bf_geom *geom, double *out, void *work)   \
     {                                                                      \
@@ -106,7 +109,11 @@ int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
         .terms = bf__mf_kterms,                                            \
         .values = name##_kvalues,                                          \
         .cheap = -1,                                                       \
+        .columns = cols,                                                   \
     }
+#define BF__MF_ENTRY(name, value) BF__MF_ENTRY_COLS(name, value, NULL)
+#define BF__MF_SCALED(name, value)                                         \
+    BF__MF_ENTRY_COLS(name, value, bf__columns_scaled)
 
 /* ==== what the type objects share (SPEC §9.3) ========================== */
 

@@ -53,7 +53,7 @@ extern const bf_param bf__mf_param_none[2];
     {                                                                      \
         return bf__smith_lobe(m, p, ndf, f, s);                            \
     }                                                                      \
-    BF__MF_ENTRY(tag, tag##_value)
+    BF__MF_SCALED(tag, tag##_value)
 
 #define BF__SMITH_TYPE(tag, fam, np, params, mask, fres, nm, ndfname, ttl, \
                        ref, st)                                            \

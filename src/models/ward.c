@@ -54,9 +54,9 @@ static double gmd_value(const bf__mf_t *m, const double *p)
     return ward_lobe(m, p) / ((m->cd * m->cd) * (m->c2h * m->c2h));
 }
 
-BF__MF_ENTRY(ward, ward_value);
-BF__MF_ENTRY(duer, duer_value);
-BF__MF_ENTRY(gmd, gmd_value);
+BF__MF_SCALED(ward, ward_value);
+BF__MF_SCALED(duer, duer_value);
+BF__MF_SCALED(gmd, gmd_value);
 
 static const bf_param param_ward[2] = {BF__PARAM_RHO_S, BF__PARAM_ALPHA};
 

@@ -160,3 +160,132 @@ Test(specular_vectors, mitsuba_values)
     bf_assert_rel(1.0 / (1.0 + bf__mf_lambda_ggx(0.98 * BF__PI_2, 0.1)),
                   0.46130955, 1e-7);
 }
+
+/* ==== the separable fit's columns (bf_kernel.columns) ==================== */
+
+/* A parameter vector of t inside its domain from u in [0, 1): the scales
+ * in [0.2, 2.2], the others uniform (log-uniform over a factor 50). */
+static void param_at(const bf_model_type *t, unsigned *seed, double *p)
+{
+    size_t j;
+    for (j = 0; j < t->p; j++) {
+        double u = (double)rand_r(seed) / ((double)RAND_MAX + 1.0);
+        double lo = t->param[j].min;
+        double hi = t->param[j].max;
+        if (t->param[j].linear) {
+            p[j] = 0.2 + 2.0 * u;
+        } else if (lo > 0.0 && hi / lo >= 50.0) {
+            p[j] = lo * exp(u * log(hi / lo));
+        } else {
+            p[j] = lo + u * (hi - lo);
+        }
+    }
+}
+
+/* Every specular model's and composite's columns: c0 + sum theta_q
+ * col_q gives values() at param (so a lobe declared proportional to rho_s
+ * is), and they equal the columns from values() alone. */
+static void expect_columns(const bf_model_type *t, unsigned *seed)
+{
+    enum { N = 48 };
+    bf_geom g[N];
+    double c0[N], ref0[N], val[N], buf[4][N];
+    double *col[2] = {buf[0], buf[1]};
+    double *ref[2] = {buf[2], buf[3]};
+    double p[BF_MAX_PARAMS];
+    bf__cset cs;
+    bf__prep pm;
+    unsigned lin = 0;
+    size_t n_lin = 0;
+    void *work;
+    size_t j;
+    size_t k;
+    int trial;
+    int ok = 0;
+    for (k = 0; k < N; k++) {
+        double u[4];
+        for (j = 0; j < 4; j++) {
+            u[j] = (double)rand_r(seed) / ((double)RAND_MAX + 1.0);
+        }
+        g[k] = bf_geom_from_measurement(1.5 * u[0], 2.0 * BF__PI * u[1],
+                                        1.5 * u[2], 2.0 * BF__PI * u[3]);
+    }
+    for (j = 0; j < t->p; j++) {
+        if (t->param[j].linear) {
+            lin |= 1u << j;
+            n_lin++;
+        }
+    }
+    cr_assert_leq(n_lin, 2u, "%s", t->name);
+    cr_assert_eq(bf__cset_init(&cs, N, g), BF_OK);
+    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
+    work = bf__work_alloc(&pm);
+    cr_assert_not_null(work);
+    for (trial = 0; trial < 40 && ok < 4; trial++) {
+        param_at(t, seed, p);
+        if (pm.kr->values(&pm, p, work, val) != BF_OK) {
+            continue; /* undefined there (a clamp of D at the normal) */
+        }
+        ok++;
+        cr_assert_eq(bf__columns_values(&pm, p, lin, work, ref0, ref),
+                     BF_OK, "%s", t->name);
+        cr_assert_eq((pm.kr->columns != NULL ? pm.kr->columns
+                                             : bf__columns_values)(
+                         &pm, p, lin, work, c0, col),
+                     BF_OK, "%s", t->name);
+        for (k = 0; k < N; k++) {
+            double sum = c0[k];
+            double q0 = ref0[k];
+            size_t q = 0;
+            for (j = 0; j < t->p; j++) {
+                if ((lin >> j) & 1u) {
+                    sum += p[j] * col[q][k];
+                    q0 += p[j] * ref[q][k];
+                    cr_expect(fabs(col[q][k] - ref[q][k])
+                                  <= 1e-12 * fabs(val[k]) / p[j] + 1e-290,
+                              "%s column %zu at %zu: %.17g vs %.17g",
+                              t->name, q, k, col[q][k], ref[q][k]);
+                    q++;
+                }
+            }
+            cr_expect(fabs(sum - val[k]) <= 1e-12 * fabs(val[k]) + 1e-290,
+                      "%s at %zu: columns give %.17g, values %.17g",
+                      t->name, k, sum, val[k]);
+            cr_expect(fabs(q0 - val[k]) <= 1e-12 * fabs(val[k]) + 1e-290,
+                      "%s at %zu: differences give %.17g, values %.17g",
+                      t->name, k, q0, val[k]);
+        }
+    }
+    cr_expect_eq(ok, 4, "%s: defined at %d of %d parameter draws", t->name,
+                 ok, trial);
+    free(work);
+    bf__prep_free(&pm);
+    bf__cset_free(&cs);
+}
+
+Test(specular_vectors, columns_reproduce_the_values)
+{
+    static const char *const diffuse[] = {"LAMBERT", "ON", "FC-E", "VH-G"};
+    unsigned seed = 17u;
+    size_t tested = 0;
+    size_t i;
+    for (i = 0; i < bf_model_count(); i++) {
+        const bf_model_type *s = bf_model_get(i);
+        size_t d;
+        if (s->kind != BF_MODEL_SPECULAR) {
+            continue;
+        }
+        expect_columns(s, &seed);
+        tested++;
+        for (d = 0; d < sizeof diffuse / sizeof diffuse[0]; d++) {
+            char name[64];
+            const bf_model_type *t;
+            snprintf(name, sizeof name, "%s+%s", diffuse[d], s->name);
+            t = bf_model_find(name);
+            cr_assert_not_null(t, "%s", name);
+            expect_columns(t, &seed);
+            tested++;
+        }
+    }
+    cr_assert_eq(tested, 50u, "%zu models and composites", tested);
+}
