@@ -61,10 +61,6 @@
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
-# test_intervals' coverage checks (intervals/cover_*, the_objectives_own_*:
-# 200 simulated fits per model, over five minutes each under valgrind) run
-# the code of bf_calibrate, which calibrate_reports_coverage_... runs here,
-# and ASan runs them on 20 simulations.
 # The repeated fits of the grid's round trip over every model and of its
 # thread-count check (grid/round_trip_recovers..., grid/study_results...),
 # WNO-R's sweeps against the quadrature and its fit back
@@ -138,8 +134,6 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     composite/cornell_every_fit_at_most_the_peers_e
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
-    intervals/cover_*
-    intervals/the_objectives_own_profile_undercovers_under_max
     grid/round_trip_recovers_every_model_exactly_at_grid_values
     grid/study_results_do_not_depend_on_the_thread_count
     wno_r/the_engines_evaluation_is_the_quadrature_to_rounding
