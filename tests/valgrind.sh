@@ -61,6 +61,9 @@
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
+# plane_abs/description_under_ngan runs the report through the CLI on a
+# Cornell file (1439 configurations, every figure); the figure data it
+# describes are checked under valgrind by plane_abs's library tests.
 # The repeated fits of the grid's round trip over every model and of its
 # thread-count check (grid/round_trip_recovers..., grid/study_results...),
 # WNO-R's sweeps against the quadrature and its fit back
@@ -140,6 +143,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     wno_r/fits_its_own_curve_back_to_the_parameters
     test_stream
     cli_calibrate/writes_coverage_and_bias_of_every_fitted_parameter
+    plane_abs/description_under_ngan
     report/writes_every_figure_valid_and_sized_as_the_page_says"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
