@@ -1418,6 +1418,49 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
 #define BF_STUDY_NSAMPLES 24
 extern const int bf_study_samples[BF_STUDY_NSAMPLES];
 
+/* The models of a study from list, a comma-separated list of registry
+ * names (bf_model_find_why: composites D+S too), "all" (every diffuse
+ * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
+ * into out (room for cap; bf_model_count() + 1 is enough). Returns BF_OK;
+ * BF_ENOTFOUND for an unknown name; BF_EINVAL for a bad list (an empty
+ * name, a trailing comma), a model listed twice or more than cap; BF_EDOM
+ * for a specular model under an objective that max-normalises (SPEC §9,
+ * §10: !bf_objective_keeps_scale). err->msg says which ("unknown model
+ * 'XX'", "'ON' listed twice", "GGX gives absolute BRDF values (SPEC §9)"),
+ * for the caller to prefix with its own option's name. */
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err);
+
+/* A user's search range of the parameter called name (--range NAME=LO:HI). */
+typedef struct {
+    const char *name;
+    double lo, hi;
+} bf_param_range;
+#define BF_STUDY_MAX_RANGES 8
+
+/* The types a study fits for models (n_models registry types): with exact,
+ * the exact fit's variants (bf_model_variant_exact(v, keep)); each of the
+ * n_ranges ranges (at most BF_STUDY_MAX_RANGES) applied to every model
+ * that has the parameter (bf_model_variant_range). out[m] is models[m]
+ * when neither applies, else &variants[m].type (variants: room for
+ * n_models, not moved afterwards; unused when neither applies, may then be
+ * NULL). Returns BF_OK; BF_EINVAL when range *bad_range does not fit model
+ * *bad_model's parameter (bf_model_variant_range) or for bad arguments;
+ * BF_ENOTFOUND when range *bad_range names no parameter of any model. */
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model);
+
+/* The check of the n rows a study wrote (bf_study_run, bf_study_analyse):
+ * BF_OK when every row is BF_OK or BF_ENOTFOUND (a missing input: a gap
+ * the tables leave and the caller notes); otherwise the first other row's
+ * status (BF_EDOM: the model cannot be normalised on the used
+ * configurations, SPEC §2; BF_ENOMEM), its index in *bad (may be NULL). */
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
+
 /* The paper's default refractive index for FC models (SPEC §4.2). */
 #define BF_DEFAULT_N 1.7
 
