@@ -294,6 +294,20 @@ int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
 int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
                            double hi);
 size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err);
+typedef struct {
+    const char *name;
+    double lo, hi;
+} bf_param_range;
+#define BF_STUDY_MAX_RANGES 8
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model);
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
 typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
 #define BF_NCRIT 3
 const char *bf_criterion_name(bf_criterion c);

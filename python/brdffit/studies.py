@@ -29,24 +29,6 @@ COMPARE_MODELS = _model_set("BF_MODELS_PAPER")
 RANK_MODELS = _model_set("BF_MODELS_RANKING")
 
 
-def _models(models, default):
-    """The list of models: default for None, every diffuse registry model
-    for "all" (the study max-normalises, SPEC §2; the specular models of
-    SPEC §9 need SPEC §10's objectives), a comma-separated string or a
-    sequence of names/Models."""
-    from .models import models as registry
-    if models is None:
-        return list(default)
-    if isinstance(models, str):
-        if models == "all":
-            return [m for m in registry() if m.kind == "diffuse"]
-        names = models.split(",")
-        if not all(names):
-            raise InvalidArgumentError("models: bad list %r" % models, 1)
-        return names
-    return list(models)
-
-
 def _samples(dataset, samples, default):
     """samples, with None resolved as the CLI does: the paper's 24 samples
     on CURET data (default "paper"), every material otherwise."""
@@ -63,9 +45,9 @@ def _run(kw, default_models, default_samples, context):
     note does, about models left out for lack of inputs."""
     kw = dict(kw)
     dataset = kw.pop("dataset")
-    models = _models(kw.pop("models"), default_models)
     samples = _samples(dataset, kw.pop("samples"), default_samples)
-    study = Study(dataset, samples, models, context=context, **kw)
+    study = Study(dataset, samples, kw.pop("models"),
+                  defaults=default_models, context=context, **kw)
     note = study.missing_note()
     if note:
         warnings.warn(note, UserWarning, stacklevel=3)
@@ -108,7 +90,7 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
     Raises the errors of brdffit.fit (InvalidArgumentError, NotFoundError,
     DomainError, the loaders' errors).
     """
-    study = _run(locals(), COMPARE_MODELS, "paper", "compare")
+    study = _run(locals(), "BF_MODELS_PAPER", "paper", "compare")
     return Records.from_csv(study.fits_csv())
 
 
@@ -134,7 +116,8 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
         for that model), for "AIC", "BIC" and "CV" (CV empty with
         folds=0).
     """
-    study = _run(dict(locals(), stats=True), RANK_MODELS, "all", "rank")
+    study = _run(dict(locals(), stats=True), "BF_MODELS_RANKING", "all",
+                 "rank")
     out = Records.from_csv(study.ranking_csv())
     out.wins = {c: study.spec.wins(study.stats, c) for c in CRITERIA}
     return out
