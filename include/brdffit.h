@@ -1664,6 +1664,49 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
 size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
                            char *buf, size_t len);
 
+/* One line of fits.csv (below): the values of its columns after sample,
+ * name and channel (those of target rows[row].target, bf_dataset_number,
+ * bf_dataset_name, bf_dataset_channel). NaN, NULL and -1 stand for an
+ * empty field. */
+#define BF_FITS_FLAGS_MAX 512
+typedef enum {
+    BF_FITS_PARAM = 0, /* a fitted parameter of the model */
+    BF_FITS_SCALE,     /* the free scale rho_d (SPEC §9.4) */
+    BF_FITS_NONE       /* a model without fitted parameters */
+} bf_fits_kind;
+typedef struct {
+    size_t row;              /* index into the study's rows */
+    bf_fits_kind kind;
+    const char *model;       /* rows[row].type->name */
+    const char *parameter;   /* NULL for BF_FITS_NONE */
+    const char *unit;
+    double value;            /* NaN for BF_FITS_NONE */
+    double lse;
+    int bound_hit;
+    size_t k;                /* configurations used */
+    const char *objective;   /* bf_objective_name */
+    const char *fit;         /* "paper" or "exact" */
+    int analysed;            /* 0: grid_value ... flags are empty */
+    double grid_value, grid_lse, refined_value, refined_lse;
+    double ci_low, ci_high;
+    const char *ci_method;   /* NULL: none */
+    int ci_open;             /* -1: none */
+    double boot_low, boot_high;
+    long n_params;           /* -1: none */
+    double aic, bic, cv;
+    char flags[BF_FITS_FLAGS_MAX]; /* bf_fit_flags_format */
+    const char *ndf, *masking, *fresnel; /* NULL for a diffuse model */
+    double albedo[4];        /* at 0, 30, 60, 80 degrees; NaN: none */
+    int albedo_over_1;       /* -1 for a diffuse model */
+} bf_fits_line;
+
+/* The lines of fits.csv (below) for a study, in order, into out (NULL:
+ * only counted; otherwise room for the count). Returns their number;
+ * 0 for NULL spec or rows. */
+size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_fits_line *out);
+
 /* Writes fits.csv for a study: a header line, then one line per (target,
  * model, fitted parameter) in target-major order, a model without fitted
  * parameters on one line with parameter, unit and value empty; rows whose
@@ -1671,7 +1714,9 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
  * model, parameter, unit, value, lse, bound_hit, k (configurations used),
  * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
  * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
- * n_params, aic, bic, cv, flags (bf_fit_flags_format). rows: from
+ * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
+ * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
+ * lines of bf_fits_lines. rows: from
  * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
  * (the analysis columns empty); opts: the analysis's, or NULL (objective
  * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields

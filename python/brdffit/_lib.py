@@ -325,6 +325,36 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
                   size_t *n_names);
 size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
                            char *buf, size_t len);
+#define BF_FITS_FLAGS_MAX 512
+typedef enum { BF_FITS_PARAM = 0, BF_FITS_SCALE, BF_FITS_NONE } bf_fits_kind;
+typedef struct {
+    size_t row;
+    bf_fits_kind kind;
+    const char *model;
+    const char *parameter;
+    const char *unit;
+    double value;
+    double lse;
+    int bound_hit;
+    size_t k;
+    const char *objective;
+    const char *fit;
+    int analysed;
+    double grid_value, grid_lse, refined_value, refined_lse;
+    double ci_low, ci_high;
+    const char *ci_method;
+    int ci_open;
+    double boot_low, boot_high;
+    long n_params;
+    double aic, bic, cv;
+    char flags[512];
+    const char *ndf, *masking, *fresnel;
+    double albedo[4];
+    int albedo_over_1;
+} bf_fits_line;
+size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_fits_line *out);
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);

@@ -18,6 +18,7 @@ from ._errors import (DomainError, InvalidArgumentError, check, error,
 from ._lib import DEFAULT_N, ffi, lib, libc, text
 from ._streams import read_from, written_by
 from .models import _find
+from .records import Records
 
 #: The 24 CURET samples of Ragheb & Hancock's study (bf_study_samples).
 PAPER_SAMPLES = tuple(int(s) for s in lib.bf_study_samples)
@@ -148,6 +149,22 @@ def _models(models, defaults, objective):
     if not base:
         raise InvalidArgumentError("no model to fit", 1)
     return [_find(text(t.name)) for t in base], base
+
+
+def _field(v):
+    """A value of a bf_fits_line as a record's field: NaN, NULL, "" and
+    -1 (the library's empty fields) None, text str, numbers int or
+    float."""
+    if isinstance(v, float):
+        return None if v != v else v
+    if isinstance(v, int):
+        return None if v < 0 else v
+    if isinstance(v, ffi.CData):
+        if ffi.typeof(v).kind == "pointer" and v == ffi.NULL:
+            return None
+        v = ffi.string(v)
+    v = v.decode("utf-8", "replace") if isinstance(v, bytes) else v
+    return v or None
 
 
 class _Progress:
@@ -459,6 +476,41 @@ class Study:
         """fits.csv of the run (bf_fits_csv_write), as text."""
         return self.spec.write(lib.bf_fits_csv_write, self.rows, self.stats,
                                self.opts)
+
+    def fits_records(self):
+        """fits.csv's lines as Records from the library's structs
+        (bf_fits_lines): numbers at full precision, empty fields None;
+        .text the table (fits_csv)."""
+        text_ = self.fits_csv()
+        columns = text_.split("\n", 1)[0].split(",")
+        spec = self.spec.spec
+        stats = ffi.NULL if self.stats is None else self.stats
+        opts = ffi.NULL if self.opts is None else self.opts
+        n = lib.bf_fits_lines(spec, self.rows, stats, opts, ffi.NULL)
+        lines = ffi.new("bf_fits_line[]", max(n, 1))
+        lib.bf_fits_lines(spec, self.rows, stats, opts, lines)
+        albedo = [c for c in columns if c.startswith("albedo_")
+                  and c[7:].isdigit()]
+        ds = self.spec.dataset._ds
+        out = []
+        for i in range(n):
+            ln = lines[i]
+            t = spec.targets[self.rows[ln.row].target]
+            rec = {}
+            for c in columns:
+                if c == "sample":
+                    v = int(lib.bf_dataset_number(ds, t.material))
+                elif c == "name":
+                    v = lib.bf_dataset_name(ds, t.material)
+                elif c == "channel":
+                    v = lib.bf_dataset_channel(ds, t.material, t.channel)
+                elif c in albedo:
+                    v = float(ln.albedo[albedo.index(c)])
+                else:
+                    v = getattr(ln, c)
+                rec[c] = _field(v)
+            out.append(rec)
+        return Records(out, columns, text_)
 
     def ranking_csv(self):
         """ranking.csv of the run (bf_ranking_csv_write), as text; needs

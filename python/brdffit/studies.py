@@ -1,10 +1,12 @@
 """studies: the CLI's studies (`brdffit compare`, `brdffit rank`) from
 Python, returning the rows of fits.csv and ranking.csv as records.
 
-The tables are the library's own: its writers (bf_fits_csv_write,
-bf_ranking_csv_write) write them into an in-memory stream and
-brdffit.records reads the text back, so every column and value is the
-CLI's, byte for byte (records.text).
+The study is the CLI's: the same library functions set it up
+(bf_study_models, bf_study_variants, bf_study_rows_check). compare()'s
+records are the library's structs (bf_fits_lines, the lines its writer
+bf_fits_csv_write prints); rank()'s are read back from its writer's text
+(bf_ranking_csv_write, brdffit.records). .text is the CLI's file, byte
+for byte.
 """
 
 import warnings
@@ -91,7 +93,7 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
     DomainError, the loaders' errors).
     """
     study = _run(locals(), "BF_MODELS_PAPER", "paper", "compare")
-    return Records.from_csv(study.fits_csv())
+    return study.fits_records()
 
 
 def rank(dataset, models=None, samples="all", channel="mean", fit="exact",

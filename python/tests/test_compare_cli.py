@@ -3,8 +3,9 @@ same library functions (bf_study_models, bf_study_variants,
 bf_study_rows_check): for two CURET samples, under the paper's protocol
 with the analysis and under the exact fit with a model list, a given n and
 a search range (the variants), Python's records hold exactly the CLI's
-fits.csv -- the same rows in the same order, every value equal to the bit
-the CLI printed."""
+fits.csv -- the same rows in the same order, every value (a double read
+from the library's bf_fits_line, not from the text) printing as the CLI
+printed it."""
 
 import csv
 import io
@@ -58,8 +59,10 @@ def test_compare_equals_cli_fits_csv(case, cli, curet, curet_dir,
                 ok = v is None
             elif isinstance(v, str):
                 ok = v == w
-            else:  # the CLI's digits, read back, are Python's value
-                ok = float(w) == v and not math.isnan(v)
+            elif isinstance(v, int):
+                ok = str(v) == w
+            else:  # the library's double, printed as the CLI prints it
+                ok = "%.10g" % v == w and not math.isnan(v)
             if not ok:
                 bad.append("%s %s %s: CLI %r, Python %r" % (
                     want["sample"], want["model"], col, w, v))
