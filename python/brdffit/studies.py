@@ -85,8 +85,10 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
     Returns:
         Records: one dict per fits.csv row (sample, name, channel, model,
         parameter, unit, value, lse, bound_hit, k, objective, fit, ...;
-        README "Output files"), .columns, .text (the CSV as the library
-        wrote it) and .to_dataframe(). A model that lacks its inputs for a
+        README "Output files") from the library's structs
+        (bf_fits_lines: numbers at full precision, an empty field None),
+        .columns, .text (the CSV as the library wrote it, %.10g) and
+        .to_dataframe(). A model that lacks its inputs for a
         sample (ON without on_params) has no rows there, and a
         UserWarning says so, as the CLI's note does.
     Raises the errors of brdffit.fit (InvalidArgumentError, NotFoundError,
