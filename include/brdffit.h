@@ -1469,6 +1469,49 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
 #define BF_STUDY_NSAMPLES 24
 extern const int bf_study_samples[BF_STUDY_NSAMPLES];
 
+/* The models of a study from list, a comma-separated list of registry
+ * names (bf_model_find_why: composites D+S too), "all" (every diffuse
+ * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
+ * into out (room for cap; bf_model_count() + 1 is enough). Returns BF_OK;
+ * BF_ENOTFOUND for an unknown name; BF_EINVAL for a bad list (an empty
+ * name, a trailing comma), a model listed twice or more than cap; BF_EDOM
+ * for a specular model under an objective that max-normalises (SPEC §9,
+ * §10: !bf_objective_keeps_scale). err->msg says which ("unknown model
+ * 'XX'", "'ON' listed twice", "GGX gives absolute BRDF values (SPEC §9)"),
+ * for the caller to prefix with its own option's name. */
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err);
+
+/* A user's search range of the parameter called name (--range NAME=LO:HI). */
+typedef struct {
+    const char *name;
+    double lo, hi;
+} bf_param_range;
+#define BF_STUDY_MAX_RANGES 8
+
+/* The types a study fits for models (n_models registry types): with exact,
+ * the exact fit's variants (bf_model_variant_exact(v, keep)); each of the
+ * n_ranges ranges (at most BF_STUDY_MAX_RANGES) applied to every model
+ * that has the parameter (bf_model_variant_range). out[m] is models[m]
+ * when neither applies, else &variants[m].type (variants: room for
+ * n_models, not moved afterwards; unused when neither applies, may then be
+ * NULL). Returns BF_OK; BF_EINVAL when range *bad_range does not fit model
+ * *bad_model's parameter (bf_model_variant_range) or for bad arguments;
+ * BF_ENOTFOUND when range *bad_range names no parameter of any model. */
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model);
+
+/* The check of the n rows a study wrote (bf_study_run, bf_study_analyse):
+ * BF_OK when every row is BF_OK or BF_ENOTFOUND (a missing input: a gap
+ * the tables leave and the caller notes); otherwise the first other row's
+ * status (BF_EDOM: the model cannot be normalised on the used
+ * configurations, SPEC §2; BF_ENOMEM), its index in *bad (may be NULL). */
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
+
 /* The paper's default refractive index for FC models (SPEC §4.2). */
 #define BF_DEFAULT_N 1.7
 
@@ -1675,6 +1718,49 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
 size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
                            char *buf, size_t len);
 
+/* One line of fits.csv (below): the values of its columns after sample,
+ * name and channel (those of target rows[row].target, bf_dataset_number,
+ * bf_dataset_name, bf_dataset_channel). NaN, NULL and -1 stand for an
+ * empty field. */
+#define BF_FITS_FLAGS_MAX 512
+typedef enum {
+    BF_FITS_PARAM = 0, /* a fitted parameter of the model */
+    BF_FITS_SCALE,     /* the free scale rho_d (SPEC §9.4) */
+    BF_FITS_NONE       /* a model without fitted parameters */
+} bf_fits_kind;
+typedef struct {
+    size_t row;              /* index into the study's rows */
+    bf_fits_kind kind;
+    const char *model;       /* rows[row].type->name */
+    const char *parameter;   /* NULL for BF_FITS_NONE */
+    const char *unit;
+    double value;            /* NaN for BF_FITS_NONE */
+    double lse;
+    int bound_hit;
+    size_t k;                /* configurations used */
+    const char *objective;   /* bf_objective_name */
+    const char *fit;         /* "paper" or "exact" */
+    int analysed;            /* 0: grid_value ... flags are empty */
+    double grid_value, grid_lse, refined_value, refined_lse;
+    double ci_low, ci_high;
+    const char *ci_method;   /* NULL: none */
+    int ci_open;             /* -1: none */
+    double boot_low, boot_high;
+    long n_params;           /* -1: none */
+    double aic, bic, cv;
+    char flags[BF_FITS_FLAGS_MAX]; /* bf_fit_flags_format */
+    const char *ndf, *masking, *fresnel; /* NULL for a diffuse model */
+    double albedo[4];        /* at 0, 30, 60, 80 degrees; NaN: none */
+    int albedo_over_1;       /* -1 for a diffuse model */
+} bf_fits_line;
+
+/* The lines of fits.csv (below) for a study, in order, into out (NULL:
+ * only counted; otherwise room for the count). Returns their number;
+ * 0 for NULL spec or rows. */
+size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_fits_line *out);
+
 /* Writes fits.csv for a study: a header line, then one line per (target,
  * model, fitted parameter) in target-major order, a model without fitted
  * parameters on one line with parameter, unit and value empty; rows whose
@@ -1682,7 +1768,9 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
  * model, parameter, unit, value, lse, bound_hit, k (configurations used),
  * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
  * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
- * n_params, aic, bic, cv, flags (bf_fit_flags_format). rows: from
+ * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
+ * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
+ * lines of bf_fits_lines. rows: from
  * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
  * (the analysis columns empty); opts: the analysis's, or NULL (objective
  * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields

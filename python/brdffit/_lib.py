@@ -315,6 +315,20 @@ int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
 int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
                            double hi);
 size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err);
+typedef struct {
+    const char *name;
+    double lo, hi;
+} bf_param_range;
+#define BF_STUDY_MAX_RANGES 8
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model);
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
 typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
 #define BF_NCRIT 3
 const char *bf_criterion_name(bf_criterion c);
@@ -332,6 +346,36 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
                   size_t *n_names);
 size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
                            char *buf, size_t len);
+#define BF_FITS_FLAGS_MAX 512
+typedef enum { BF_FITS_PARAM = 0, BF_FITS_SCALE, BF_FITS_NONE } bf_fits_kind;
+typedef struct {
+    size_t row;
+    bf_fits_kind kind;
+    const char *model;
+    const char *parameter;
+    const char *unit;
+    double value;
+    double lse;
+    int bound_hit;
+    size_t k;
+    const char *objective;
+    const char *fit;
+    int analysed;
+    double grid_value, grid_lse, refined_value, refined_lse;
+    double ci_low, ci_high;
+    const char *ci_method;
+    int ci_open;
+    double boot_low, boot_high;
+    long n_params;
+    double aic, bic, cv;
+    char flags[512];
+    const char *ndf, *masking, *fresnel;
+    double albedo[4];
+    int albedo_over_1;
+} bf_fits_line;
+size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_fits_line *out);
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);

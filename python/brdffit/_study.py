@@ -18,6 +18,7 @@ from ._errors import (DomainError, InvalidArgumentError, check, error,
 from ._lib import DEFAULT_N, ffi, lib, libc, text
 from ._streams import read_from, written_by
 from .models import _find
+from .records import Records
 
 #: The 24 CURET samples of Ragheb & Hancock's study (bf_study_samples).
 PAPER_SAMPLES = tuple(int(s) for s in lib.bf_study_samples)
@@ -121,6 +122,51 @@ def _ranges(ranges):
     return out
 
 
+def _models(models, defaults, objective):
+    """([Model], [bf_model_type *]) of models (bf_study_models): None (the
+    library's model set called defaults, e.g. "BF_MODELS_PAPER"), "all"
+    (every diffuse registry model), a comma-separated string or a sequence
+    of names or Models."""
+    if models is not None and not isinstance(models, str):
+        if not models:
+            raise InvalidArgumentError("no model to fit", 1)
+        models = ",".join(m if isinstance(m, str) else m.name
+                          for m in models)
+    cap = lib.bf_model_count() + 1
+    out = ffi.new("const bf_model_type *[]", cap)
+    n = ffi.new("size_t *")
+    err = new_error()
+    rc = lib.bf_study_models(ffi.NULL if models is None else
+                             models.encode(), getattr(lib, defaults),
+                             _objective(objective), out, cap, n, err)
+    if rc == lib.BF_EDOM:  # SPEC §9, §10: the others max-normalise
+        raise InvalidArgumentError(
+            "models: %s; fit it with fit='exact' and objective 'ngan', "
+            "'cuberoot' or 'log1p'" % text(err.msg), rc)
+    if rc != 0:
+        raise type(error(rc))("models: %s" % text(err.msg), rc)
+    base = [out[i] for i in range(n[0])]
+    if not base:
+        raise InvalidArgumentError("no model to fit", 1)
+    return [_find(text(t.name)) for t in base], base
+
+
+def _field(v):
+    """A value of a bf_fits_line as a record's field: NaN, NULL, "" and
+    -1 (the library's empty fields) None, text str, numbers int or
+    float."""
+    if isinstance(v, float):
+        return None if v != v else v
+    if isinstance(v, int):
+        return None if v < 0 else v
+    if isinstance(v, ffi.CData):
+        if ffi.typeof(v).kind == "pointer" and v == ffi.NULL:
+            return None
+        v = ffi.string(v)
+    v = v.decode("utf-8", "replace") if isinstance(v, bytes) else v
+    return v or None
+
+
 class _Progress:
     """The analysis's progress callback (bf_progress_fn) calling fn(done,
     total). An exception fn raises is kept (the library cannot be
@@ -163,19 +209,14 @@ class Spec:
 
     def __init__(self, dataset, materials, channel, models, n=None,
                  n_file=None, on_params=None, exclude=(), max_theta=None,
-                 cone=None, threads=1, exact=False, ranges=None):
+                 cone=None, threads=1, exact=False, ranges=None,
+                 defaults="BF_MODELS_PAPER", objective="max"):
         self.dataset = dataset
-        self.models = [_find(m) for m in models]
-        if not self.models:
-            raise InvalidArgumentError("no model to fit", 1)
-        if len(set(self.models)) != len(self.models):
-            raise InvalidArgumentError("models: a model is listed twice: %s"
-                                       % ", ".join(m.name for m in
-                                                   self.models), 1)
+        self._keep = []
+        self.models, base = _models(models, defaults, objective)
         index = _material_indices(dataset, materials)
         if not index:
             raise InvalidArgumentError("no material to fit", 1)
-        self._keep = []
         spec = self.spec = ffi.new("bf_study_spec *")
         spec.data = dataset._ds
 
@@ -208,7 +249,7 @@ class Spec:
             sel.exclude = arr
             sel.n_exclude = len(exclude)
 
-        self.types = self._variants(exact, n is not None or
+        self.types = self._variants(base, exact, n is not None or
                                     n_file is not None, _ranges(ranges))
         types = ffi.new("const bf_model_type *[]", self.types)
         self._keep.append(types)
@@ -223,41 +264,38 @@ class Spec:
             raise InvalidArgumentError("threads must be an integer >= 0", 1)
         spec.n_threads = int(threads) or os.cpu_count() or 1
 
-    def _variants(self, exact, n_given, ranges):
-        """The model types fitted: the registry's, or -- with exact or
-        ranges -- variants of them (kept alive and never moved: the types
-        point into them), as CLI's --fit exact and --range make them."""
-        if not exact and not ranges:
-            return [m._type for m in self.models]
-        v = ffi.new("bf_model_variant[]", len(self.models))
-        self._keep.append(v)
+    def _variants(self, base, exact, n_given, ranges):
+        """The model types fitted (bf_study_variants): base, or -- with
+        exact or ranges -- the library's variants of them (kept alive and
+        never moved: the types point into them), as the CLI's --fit exact
+        and --range make them."""
+        n = len(base)
+        v = ffi.new("bf_model_variant[]", n)
+        out = ffi.new("const bf_model_type *[]", n)
+        r = ffi.new("bf_param_range[]", max(len(ranges), 1))
+        names = [ffi.new("char[]", name.encode()) for name, _, _ in ranges]
+        self._keep += [v, names]
+        for i, (name, lo, hi) in enumerate(ranges):
+            r[i].name, r[i].lo, r[i].hi = names[i], lo, hi
+        bad_range = ffi.new("size_t *")
+        bad_model = ffi.new("size_t *")
         keep = (1 << lib.BF_INPUT_INDEX) if n_given else 0
-        used = set()
-        out = []
-        for i, m in enumerate(self.models):
-            vi = ffi.addressof(v, i)
-            lib.bf_model_variant_init(vi, m._type)
-            if exact:
-                lib.bf_model_variant_exact(vi, keep)
-            for name, lo, hi in ranges:
-                rc = lib.bf_model_variant_range(vi, name.encode(), lo, hi)
-                if rc == lib.BF_ENOTFOUND:
-                    continue
-                used.add(name)
-                if rc != 0:
-                    (p,) = [q for q in m.parameters if q.name == name]
-                    raise InvalidArgumentError(
-                        "ranges[%r] = (%r, %r): %s's %s must stay in [%g, "
-                        "%g], lo < hi, with at most %d grid points"
-                        % (name, lo, hi, m.name, name, p.min, p.max,
-                           lib.BF_VARIANT_MAX_GRID), rc)
-            out.append(ffi.addressof(vi[0], "type"))
-        unused = [name for name, _, _ in ranges if name not in used]
-        if unused:
+        rc = lib.bf_study_variants(base, n, 1 if exact else 0, keep, r,
+                                   len(ranges), v, out, bad_range, bad_model)
+        if rc == lib.BF_ENOTFOUND:
             raise InvalidArgumentError("ranges: no model fitted has a "
-                                       "parameter %s" % ", ".join(
-                                           map(repr, unused)), 1)
-        return out
+                                       "parameter %r"
+                                       % ranges[bad_range[0]][0], 1)
+        if rc != 0:
+            name, lo, hi = ranges[bad_range[0]]
+            m = self.models[bad_model[0]]
+            (p,) = [q for q in m.parameters if q.name == name]
+            raise InvalidArgumentError(
+                "ranges[%r] = (%r, %r): %s's %s must stay in [%g, %g], lo < "
+                "hi, with at most %d grid points"
+                % (name, lo, hi, m.name, name, p.min, p.max,
+                   lib.BF_VARIANT_MAX_GRID), rc)
+        return [out[i] for i in range(n)]
 
     @property
     def n_rows(self):
@@ -313,26 +351,24 @@ class Spec:
 
     def check_rows(self, rows, context):
         """The rows whose model lacks an input (ON without rho, sigma:
-        BF_ENOTFOUND), as indices; any other failed row raises (a model
-        that cannot be normalised on the used configurations)."""
-        missing = []
-        for i in range(self.n_rows):
-            r = rows[i]
-            if r.status == 0:
-                continue
-            if r.status == lib.BF_ENOTFOUND:
-                missing.append(i)
-                continue
-            if r.status != lib.BF_EDOM:
-                raise error(int(r.status), context=context)
+        BF_ENOTFOUND), as indices; a failed row (bf_study_rows_check)
+        raises (a model that cannot be normalised on the used
+        configurations)."""
+        bad = ffi.new("size_t *")
+        rc = lib.bf_study_rows_check(rows, self.n_rows, bad)
+        if rc == lib.BF_EDOM:
+            r = rows[bad[0]]
             raise DomainError(
                 "%s: %s cannot be fitted to sample %d: the model is "
                 "undefined at some of the K = %d used configurations or "
                 "zero at all of them, so it cannot be normalised (SPEC §2);"
                 " leave configurations out with exclude=, cone= or "
                 "max_theta=" % (context, text(r.type.name), int(r.sample),
-                                int(r.k)), int(r.status))
-        return missing
+                                int(r.k)), rc)
+        if rc != 0:
+            raise error(rc, context=context)
+        return [i for i in range(self.n_rows)
+                if rows[i].status == lib.BF_ENOTFOUND]
 
     def write(self, writer, rows, stats, opts):
         """The text the library's writer (bf_fits_csv_write,
@@ -401,7 +437,7 @@ class Study:
     CLI."""
 
     def __init__(self, dataset, materials, models, channel="mean",
-                 fit="paper", objective="max", stats=False, bootstrap=0,
+                 defaults="BF_MODELS_PAPER", fit="paper", objective="max", stats=False, bootstrap=0,
                  folds=None, seed=None, level=None, n=None, n_file=None,
                  on_params=None, exclude=(), max_theta=None, cone=None,
                  ranges=None, threads=1, progress=None, context="study",
@@ -421,7 +457,8 @@ class Study:
         self.spec = Spec(dataset, materials, channel, models, n=n,
                          n_file=n_file, on_params=on_params,
                          exclude=exclude, max_theta=max_theta, cone=cone,
-                         threads=threads, exact=exact, ranges=ranges)
+                         threads=threads, exact=exact, ranges=ranges,
+                         defaults=defaults, objective=objective)
         self.stats = self.opts = None
         if exact:  # the analysis is the study (it fills the rows)
             self.rows = ffi.new("bf_study_row[]", self.spec.n_rows)
@@ -439,6 +476,41 @@ class Study:
         """fits.csv of the run (bf_fits_csv_write), as text."""
         return self.spec.write(lib.bf_fits_csv_write, self.rows, self.stats,
                                self.opts)
+
+    def fits_records(self):
+        """fits.csv's lines as Records from the library's structs
+        (bf_fits_lines): numbers at full precision, empty fields None;
+        .text the table (fits_csv)."""
+        text_ = self.fits_csv()
+        columns = text_.split("\n", 1)[0].split(",")
+        spec = self.spec.spec
+        stats = ffi.NULL if self.stats is None else self.stats
+        opts = ffi.NULL if self.opts is None else self.opts
+        n = lib.bf_fits_lines(spec, self.rows, stats, opts, ffi.NULL)
+        lines = ffi.new("bf_fits_line[]", max(n, 1))
+        lib.bf_fits_lines(spec, self.rows, stats, opts, lines)
+        albedo = [c for c in columns if c.startswith("albedo_")
+                  and c[7:].isdigit()]
+        ds = self.spec.dataset._ds
+        out = []
+        for i in range(n):
+            ln = lines[i]
+            t = spec.targets[self.rows[ln.row].target]
+            rec = {}
+            for c in columns:
+                if c == "sample":
+                    v = int(lib.bf_dataset_number(ds, t.material))
+                elif c == "name":
+                    v = lib.bf_dataset_name(ds, t.material)
+                elif c == "channel":
+                    v = lib.bf_dataset_channel(ds, t.material, t.channel)
+                elif c in albedo:
+                    v = float(ln.albedo[albedo.index(c)])
+                else:
+                    v = getattr(ln, c)
+                rec[c] = _field(v)
+            out.append(rec)
+        return Records(out, columns, text_)
 
     def ranking_csv(self):
         """ranking.csv of the run (bf_ranking_csv_write), as text; needs

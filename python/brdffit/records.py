@@ -1,8 +1,9 @@
 """records: the rows of a table the library writes (fits.csv,
 ranking.csv) as Python records.
 
-The library owns the tables' columns and formats: compare() and rank() ask
-its writer for the CSV text and this module only reads it back, column by
+The library owns the tables' columns and formats. compare()'s records
+are built from the library's structs (bf_fits_lines); rank() asks its
+writer for ranking.csv's text and from_csv reads it back, column by
 column, as pandas.read_csv infers types -- a column whose every value is
 an integer becomes int, one whose values are numbers becomes float, any
 other stays str; an empty field is None (NaN in a DataFrame). Columns that

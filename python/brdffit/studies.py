@@ -1,10 +1,12 @@
 """studies: the CLI's studies (`brdffit compare`, `brdffit rank`) from
 Python, returning the rows of fits.csv and ranking.csv as records.
 
-The tables are the library's own: its writers (bf_fits_csv_write,
-bf_ranking_csv_write) write them into an in-memory stream and
-brdffit.records reads the text back, so every column and value is the
-CLI's, byte for byte (records.text).
+The study is the CLI's: the same library functions set it up
+(bf_study_models, bf_study_variants, bf_study_rows_check). compare()'s
+records are the library's structs (bf_fits_lines, the lines its writer
+bf_fits_csv_write prints); rank()'s are read back from its writer's text
+(bf_ranking_csv_write, brdffit.records). .text is the CLI's file, byte
+for byte.
 """
 
 import warnings
@@ -29,24 +31,6 @@ COMPARE_MODELS = _model_set("BF_MODELS_PAPER")
 RANK_MODELS = _model_set("BF_MODELS_RANKING")
 
 
-def _models(models, default):
-    """The list of models: default for None, every diffuse registry model
-    for "all" (the study max-normalises, SPEC §2; the specular models of
-    SPEC §9 need SPEC §10's objectives), a comma-separated string or a
-    sequence of names/Models."""
-    from .models import models as registry
-    if models is None:
-        return list(default)
-    if isinstance(models, str):
-        if models == "all":
-            return [m for m in registry() if m.kind == "diffuse"]
-        names = models.split(",")
-        if not all(names):
-            raise InvalidArgumentError("models: bad list %r" % models, 1)
-        return names
-    return list(models)
-
-
 def _samples(dataset, samples, default):
     """samples, with None resolved as the CLI does: the paper's 24 samples
     on CURET data (default "paper"), every material otherwise."""
@@ -63,9 +47,9 @@ def _run(kw, default_models, default_samples, context):
     note does, about models left out for lack of inputs."""
     kw = dict(kw)
     dataset = kw.pop("dataset")
-    models = _models(kw.pop("models"), default_models)
     samples = _samples(dataset, kw.pop("samples"), default_samples)
-    study = Study(dataset, samples, models, context=context, **kw)
+    study = Study(dataset, samples, kw.pop("models"),
+                  defaults=default_models, context=context, **kw)
     note = study.missing_note()
     if note:
         warnings.warn(note, UserWarning, stacklevel=3)
@@ -101,15 +85,17 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
     Returns:
         Records: one dict per fits.csv row (sample, name, channel, model,
         parameter, unit, value, lse, bound_hit, k, objective, fit, ...;
-        README "Output files"), .columns, .text (the CSV as the library
-        wrote it) and .to_dataframe(). A model that lacks its inputs for a
+        README "Output files") from the library's structs
+        (bf_fits_lines: numbers at full precision, an empty field None),
+        .columns, .text (the CSV as the library wrote it, %.10g) and
+        .to_dataframe(). A model that lacks its inputs for a
         sample (ON without on_params) has no rows there, and a
         UserWarning says so, as the CLI's note does.
     Raises the errors of brdffit.fit (InvalidArgumentError, NotFoundError,
     DomainError, the loaders' errors).
     """
-    study = _run(locals(), COMPARE_MODELS, "paper", "compare")
-    return Records.from_csv(study.fits_csv())
+    study = _run(locals(), "BF_MODELS_PAPER", "paper", "compare")
+    return study.fits_records()
 
 
 def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
@@ -134,7 +120,8 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
         for that model), for "AIC", "BIC" and "CV" (CV empty with
         folds=0).
     """
-    study = _run(dict(locals(), stats=True), RANK_MODELS, "all", "rank")
+    study = _run(dict(locals(), stats=True), "BF_MODELS_RANKING", "all",
+                 "rank")
     out = Records.from_csv(study.ranking_csv())
     out.wins = {c: study.spec.wins(study.stats, c) for c in CRITERIA}
     return out

@@ -2,7 +2,8 @@
 `brdffit compare` and `brdffit rank`: each case runs the CLI and the
 Python call with the same options and compares fits.csv / ranking.csv
 byte for byte, then every value of the records with the CLI file read here
-with the csv module (empty field = None, numbers as floats, text as is).
+with the csv module (empty field = None, numbers printed as the table
+prints them, %.10g, text as is).
 The wins of rank() are those of the CLI's summary in ranking.md."""
 
 import csv
@@ -38,8 +39,10 @@ def assert_records_are_the_table(records, text):
             value = got[col]
             if field == "":
                 ok = value is None
-            elif isinstance(value, (int, float)):
-                ok = float(field) == value
+            elif isinstance(value, int):
+                ok = str(value) == field
+            elif isinstance(value, float):  # the table prints %.10g
+                ok = "%.10g" % value == field
             else:
                 ok = value == field
             if not ok:

@@ -3,82 +3,15 @@
  * "Output files", doc/methods.md). */
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "output/output.h"
 
-/* j of the row of the free scale rho_d (SPEC §9.4). */
 #define SCALE_ROW (SIZE_MAX - 1)
-
-/* The analysis columns of row i and parameter j (SIZE_MAX: a model with
- * no fitted parameter; SCALE_ROW: the free scale, refined value only). */
-static void analysis_cols(FILE *fp, const bf_study_row *r,
-                          const bf_fit_stats *s, const bf_analysis_opts *opts,
-                          size_t j)
-{
-    int has = j < BF_MAX_PARAMS;
-    char flags[512];
-    fprintf(fp, ",%s,%s",
-            bf_objective_name(opts != NULL ? opts->objective : BF_OBJ_MAX),
-            opts != NULL && opts->exact ? "exact" : "paper");
-    if (s == NULL || !s->done) {
-        fputs(",,,,,,,,,,,,,,,", fp);
-        return;
-    }
-    bf__csv_num(fp, has ? s->grid.param[j] : NAN);
-    bf__csv_num(fp, s->grid.lse);
-    bf__csv_num(fp, has ? s->refined.param[j]
-                        : j == SCALE_ROW ? s->scale : NAN);
-    bf__csv_num(fp, s->refined.lse);
-    bf__csv_num(fp, has ? s->ci_low[j] : NAN);
-    bf__csv_num(fp, has ? s->ci_high[j] : NAN);
-    fprintf(fp, ",%s", has ? bf_ci_method_name(s->ci_method) : "");
-    if (has) {
-        fprintf(fp, ",%u", (s->ci_open >> (2 * j)) & 3u);
-    } else {
-        fputc(',', fp);
-    }
-    bf__csv_num(fp, has ? s->boot_low[j] : NAN);
-    bf__csv_num(fp, has ? s->boot_high[j] : NAN);
-    fprintf(fp, ",%zu", s->k);
-    bf__csv_num(fp, s->aic);
-    bf__csv_num(fp, s->bic);
-    bf__csv_num(fp, s->cv);
-    bf_fit_flags_format(r->type, s, flags, sizeof flags);
-    fputc(',', fp);
-    bf__csv_field(fp, flags);
-}
 
 /* The incidences of the energy columns (issue 17 item 8), degrees. */
 static const double albedo_deg[4] = {0.0, 30.0, 60.0, 80.0};
-
-/* The specular columns of row r (empty for a diffuse model): the NDF,
- * masking and Fresnel term of its specular part (SPEC §9.2: every output
- * names them), and that part's directional albedo at the fitted
- * parameters (bf_model_albedo) at the incidences above, with 1 where one
- * exceeds 1 (the white-furnace check). */
-static void specular_cols(FILE *fp, const bf_study_row *r,
-                          const double *albedo)
-{
-    size_t first;
-    const bf_model_type *sp = bf_model_specular_part(r->type, &first);
-    size_t a;
-    int over = 0;
-    if (sp == NULL) {
-        fputs(",,,,,,,,", fp);
-        return;
-    }
-    fputc(',', fp);
-    bf__csv_field(fp, sp->ndf != NULL ? sp->ndf : "");
-    fputc(',', fp);
-    bf__csv_field(fp, sp->masking != NULL ? sp->masking : "");
-    fputc(',', fp);
-    bf__csv_field(fp, sp->fresnel_term != NULL ? sp->fresnel_term : "");
-    for (a = 0; a < 4; a++) {
-        bf__csv_num(fp, albedo[a]);
-        over |= albedo[a] > 1.0;
-    }
-    fprintf(fp, ",%d", over);
-}
 
 /* The albedos of specular_cols for row r (NaN where the quadrature fails
  * or the model is diffuse). */
@@ -98,71 +31,214 @@ static void row_albedo(const bf_study_row *r, double *albedo)
     }
 }
 
+/* Line l of row r for parameter j (SIZE_MAX: a model with no fitted
+ * parameter; SCALE_ROW: the free scale, refined value only), with its
+ * analysis columns (s: NULL or not done, empty) and its specular columns
+ * (albedo: row_albedo; empty for a diffuse model). */
+static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
+                      const bf_fit_stats *s, const bf_analysis_opts *opts,
+                      size_t j, const double *albedo)
+{
+    int has = j < BF_MAX_PARAMS;
+    size_t first;
+    const bf_model_type *sp = bf_model_specular_part(r->type, &first);
+    size_t a;
+    memset(l, 0, sizeof *l);
+    l->row = i;
+    l->kind = has ? BF_FITS_PARAM
+                  : j == SCALE_ROW ? BF_FITS_SCALE : BF_FITS_NONE;
+    l->model = r->type->name;
+    l->parameter = has ? r->type->param[j].name
+                       : j == SCALE_ROW ? "rho_d" : NULL;
+    l->unit = has ? r->type->param[j].unit : j == SCALE_ROW ? "1" : NULL;
+    l->value = has ? r->fit.param[j]
+                   : j == SCALE_ROW && s != NULL ? s->scale : NAN;
+    l->lse = r->fit.lse;
+    l->bound_hit = has ? (r->fit.bound_hit & (1u << j)) != 0
+                       : j == SCALE_ROW && s != NULL && s->scale == 0.0;
+    l->k = r->k;
+    l->objective =
+        bf_objective_name(opts != NULL ? opts->objective : BF_OBJ_MAX);
+    l->fit = opts != NULL && opts->exact ? "exact" : "paper";
+    l->analysed = s != NULL && s->done;
+    l->grid_value = l->grid_lse = l->refined_value = l->refined_lse = NAN;
+    l->ci_low = l->ci_high = l->boot_low = l->boot_high = NAN;
+    l->aic = l->bic = l->cv = NAN;
+    l->ci_open = -1;
+    l->n_params = -1;
+    if (l->analysed) {
+        l->grid_value = has ? s->grid.param[j] : NAN;
+        l->grid_lse = s->grid.lse;
+        l->refined_value = has ? s->refined.param[j]
+                               : j == SCALE_ROW ? s->scale : NAN;
+        l->refined_lse = s->refined.lse;
+        l->ci_low = has ? s->ci_low[j] : NAN;
+        l->ci_high = has ? s->ci_high[j] : NAN;
+        l->ci_method = has ? bf_ci_method_name(s->ci_method) : NULL;
+        l->ci_open = has ? (int)((s->ci_open >> (2 * j)) & 3u) : -1;
+        l->boot_low = has ? s->boot_low[j] : NAN;
+        l->boot_high = has ? s->boot_high[j] : NAN;
+        l->n_params = (long)s->k;
+        l->aic = s->aic;
+        l->bic = s->bic;
+        l->cv = s->cv;
+        bf_fit_flags_format(r->type, s, l->flags, sizeof l->flags);
+    }
+    l->albedo_over_1 = -1;
+    for (a = 0; a < 4; a++) {
+        l->albedo[a] = sp != NULL ? albedo[a] : NAN;
+    }
+    if (sp != NULL) {
+        l->ndf = sp->ndf != NULL ? sp->ndf : "";
+        l->masking = sp->masking != NULL ? sp->masking : "";
+        l->fresnel = sp->fresnel_term != NULL ? sp->fresnel_term : "";
+        l->albedo_over_1 = 0;
+        for (a = 0; a < 4; a++) {
+            l->albedo_over_1 |= albedo[a] > 1.0;
+        }
+    }
+}
+
+size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_fits_line *out)
+{
+    size_t n = 0;
+    size_t i;
+    if (spec == NULL || rows == NULL) {
+        return 0;
+    }
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
+        const bf_study_row *r = &rows[i];
+        const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
+        size_t j;
+        size_t before = n;
+        double albedo[4];
+        if (r->status != BF_OK) {
+            continue;
+        }
+        if (out != NULL) {
+            row_albedo(r, albedo);
+        }
+        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)
+            && r->type->kind != BF_MODEL_SPECULAR) {
+            /* SPEC §9.4: rho_d, a parameter of the fit (a specular
+             * model's scales are its own parameters) */
+            if (out != NULL) {
+                fill_line(&out[n], i, r, s, opts, SCALE_ROW, albedo);
+            }
+            n++;
+        }
+        for (j = 0; j < r->type->p; j++) {
+            if (r->type->param[j].fitted) {
+                if (out != NULL) {
+                    fill_line(&out[n], i, r, s, opts, j, albedo);
+                }
+                n++;
+            }
+        }
+        if (n == before) {
+            if (out != NULL) {
+                fill_line(&out[n], i, r, s, opts, SIZE_MAX, albedo);
+            }
+            n++;
+        }
+    }
+    return n;
+}
+
+/* Writes an integer field, or an empty one for a negative value. */
+static void csv_int(FILE *fp, long v)
+{
+    if (v >= 0) {
+        fprintf(fp, ",%ld", v);
+    } else {
+        fputc(',', fp);
+    }
+}
+
+/* Writes text as a field after a comma (NULL: empty). */
+static void csv_text(FILE *fp, const char *text)
+{
+    fputc(',', fp);
+    bf__csv_field(fp, text != NULL ? text : "");
+}
+
+/* Writes line l of fits.csv. */
+static void write_line(FILE *fp, const bf_study_spec *spec,
+                       const bf_study_row *rows, const bf_fits_line *l)
+{
+    size_t a;
+    bf__csv_target(fp, spec, rows[l->row].target);
+    csv_text(fp, l->model);
+    csv_text(fp, l->parameter);
+    csv_text(fp, l->unit);
+    if (l->kind == BF_FITS_PARAM) {
+        fprintf(fp, ",%.10g", l->value);
+    } else {
+        bf__csv_num(fp, l->value);
+    }
+    fprintf(fp, ",%.10g,%d,%zu,%s,%s", l->lse, l->bound_hit, l->k,
+            l->objective, l->fit);
+    if (!l->analysed) {
+        fputs(",,,,,,,,,,,,,,,", fp);
+    } else {
+        bf__csv_num(fp, l->grid_value);
+        bf__csv_num(fp, l->grid_lse);
+        bf__csv_num(fp, l->refined_value);
+        bf__csv_num(fp, l->refined_lse);
+        bf__csv_num(fp, l->ci_low);
+        bf__csv_num(fp, l->ci_high);
+        fprintf(fp, ",%s", l->ci_method != NULL ? l->ci_method : "");
+        csv_int(fp, l->ci_open);
+        bf__csv_num(fp, l->boot_low);
+        bf__csv_num(fp, l->boot_high);
+        csv_int(fp, l->n_params);
+        bf__csv_num(fp, l->aic);
+        bf__csv_num(fp, l->bic);
+        bf__csv_num(fp, l->cv);
+        csv_text(fp, l->flags);
+    }
+    if (l->albedo_over_1 < 0) {
+        fputs(",,,,,,,,", fp);
+    } else {
+        csv_text(fp, l->ndf);
+        csv_text(fp, l->masking);
+        csv_text(fp, l->fresnel);
+        for (a = 0; a < 4; a++) {
+            bf__csv_num(fp, l->albedo[a]);
+        }
+        fprintf(fp, ",%d", l->albedo_over_1);
+    }
+    fputc('\n', fp);
+}
+
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts)
 {
     size_t i;
+    size_t n;
+    bf_fits_line *lines;
     int rc = bf__csv_check(fp, spec, rows, stats, 0);
     if (rc != BF_OK) {
         return rc;
     }
+    n = bf_fits_lines(spec, rows, stats, opts, NULL);
+    lines = malloc((n + 1) * sizeof *lines);
+    if (lines == NULL) {
+        return BF_ENOMEM;
+    }
+    (void)bf_fits_lines(spec, rows, stats, opts, lines);
     fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
           "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
           "ci_low,ci_high,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
           "bic,cv,flags,ndf,masking,fresnel,albedo_0,albedo_30,albedo_60,"
           "albedo_80,albedo_over_1\n",
           fp);
-    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
-        const bf_study_row *r = &rows[i];
-        const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
-        size_t j;
-        int any = 0;
-        double albedo[4];
-        if (r->status != BF_OK) {
-            continue;
-        }
-        row_albedo(r, albedo);
-        if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)
-            && r->type->kind != BF_MODEL_SPECULAR) {
-            /* SPEC §9.4: rho_d, a parameter of the fit (a specular
-             * model's scales are its own parameters) */
-            any = 1;
-            bf__csv_target(fp, spec, r->target);
-            fputc(',', fp);
-            bf__csv_field(fp, r->type->name);
-            fputs(",rho_d,1", fp);
-            bf__csv_num(fp, s->scale);
-            fprintf(fp, ",%.10g,%d,%zu", r->fit.lse, s->scale == 0.0,
-                    r->k);
-            analysis_cols(fp, r, s, opts, SCALE_ROW);
-            specular_cols(fp, r, albedo);
-            fputc('\n', fp);
-        }
-        for (j = 0; j < r->type->p; j++) {
-            if (!r->type->param[j].fitted) {
-                continue;
-            }
-            any = 1;
-            bf__csv_target(fp, spec, r->target);
-            fputc(',', fp);
-            bf__csv_field(fp, r->type->name);
-            fprintf(fp, ",%s,%s,%.10g,%.10g,%d,%zu", r->type->param[j].name,
-                    r->type->param[j].unit, r->fit.param[j], r->fit.lse,
-                    (r->fit.bound_hit & (1u << j)) ? 1 : 0, r->k);
-            analysis_cols(fp, r, s, opts, j);
-            specular_cols(fp, r, albedo);
-            fputc('\n', fp);
-        }
-        if (!any) {
-            bf__csv_target(fp, spec, r->target);
-            fputc(',', fp);
-            bf__csv_field(fp, r->type->name);
-            fprintf(fp, ",,,,%.10g,0,%zu", r->fit.lse, r->k);
-            analysis_cols(fp, r, s, opts, SIZE_MAX);
-            specular_cols(fp, r, albedo);
-            fputc('\n', fp);
-        }
+    for (i = 0; i < n; i++) {
+        write_line(fp, spec, rows, &lines[i]);
     }
+    free(lines);
     return bf__csv_status(fp);
 }

@@ -92,84 +92,32 @@ static int resolve_samples(const char *hint, const bf_report_inputs *in,
     return BF_REPORT_OK;
 }
 
-static int select_models(const char *hint, const bf_report_options *o, const bf_model_type ***out,
-                         size_t *n)
+/* The models of --models (bf_study_models), the message prefixed with
+ * the option's name. */
+static int select_models(const char *hint, const bf_report_options *o,
+                         const bf_model_type ***out, size_t *n)
 {
-    const bf_model_type **list;
     size_t cap = bf_model_count() + 1;
-    size_t i;
+    bf_error err;
+    int rc;
     *n = 0;
-    list = calloc(cap, sizeof *list);
-    *out = list;
-    if (list == NULL) {
+    *out = calloc(cap, sizeof **out);
+    if (*out == NULL) {
         bf_rep_err("out of memory");
         return BF_REPORT_SOFTWARE;
     }
-    if (o->models != NULL && strcmp(o->models, "all") == 0) {
-        for (i = 0; i < bf_model_count(); i++) {
-            if (bf_model_get(i)->kind == BF_MODEL_DIFFUSE) {
-                list[(*n)++] = bf_model_get(i); /* the study's models */
-            }
-        }
-    } else {
-        const char *p = o->models != NULL
-                            ? o->models
-                            : bf_model_set_names(o->default_models);
-        while (*p != '\0') {
-            char name[64];
-            size_t len = strcspn(p, ",");
-            const bf_model_type *t;
-            const char *why;
-            size_t j;
-            if (len == 0 || len >= sizeof name) {
-                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                         "--models: bad list "
-                                          "'%s'", o->models);
-            }
-            memcpy(name, p, len);
-            name[len] = '\0';
-            t = bf_model_find_why(name, &why);
-            if (t == NULL && strchr(name, '+') != NULL) { /* SPEC §9.4 */
-                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                         "--models: '%s': %s", name, why);
-            }
-            if (t == NULL) {
-                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                         "--models: unknown "
-                                          "model '%s' (see 'brdffit models')",
-                                          name);
-            }
-            if (t->kind == BF_MODEL_SPECULAR &&
-                !bf_objective_keeps_scale(o->objective)) {
-                /* SPEC §9, §10: the other objectives max-normalise */
-                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                         "%s gives absolute BRDF values "
-                                         "(SPEC §9); fit it with --fit exact "
-                                         "--objective ngan, cuberoot or "
-                                         "log1p", t->name);
-            }
-            for (j = 0; j < *n; j++) {
-                if (list[j] == t) {
-                    return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                             "--models: '%s' "
-                                              "listed twice", name);
-                }
-            }
-            if (*n + 1 >= cap) {
-                return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                         "--models: too many");
-            }
-            list[(*n)++] = t;
-            p += len;
-            if (*p == ',') {
-                p++;
-                if (*p == '\0') {
-                    return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                             "--models: trailing "
-                                              "comma");
-                }
-            }
-        }
+    rc = bf_study_models(o->models, o->default_models, o->objective, *out,
+                         cap, n, &err);
+    if (rc == BF_EDOM) { /* SPEC §9, §10: the others max-normalise */
+        return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
+                                 "%s; fit it with --fit exact --objective "
+                                 "ngan, cuberoot or log1p", err.msg);
+    }
+    if (rc != BF_OK) {
+        return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint, "--models: %s%s",
+                                 err.msg, rc == BF_ENOTFOUND
+                                              ? " (see 'brdffit models')"
+                                              : "");
     }
     return BF_REPORT_OK;
 }
@@ -242,65 +190,54 @@ static int select_configs(const char *hint, bf_rep_study *st)
 }
 
 /* The models the study fits: with --fit exact, the library's exact-fit
- * variants (its inputs with an exact-fit range freed, n kept when the user
- * gave it; doc/methods.md §6); every --range applied (bf_model_variant_range).
- * A --range that names no parameter of any model is a usage error. */
+ * variants (n kept when the user gave it; doc/methods.md §6), every
+ * --range applied (bf_study_variants). A --range that names no parameter
+ * of any model is a usage error. */
 static int make_variants(const char *hint, bf_rep_study *st)
 {
     const bf_report_options *o = &st->opts;
     unsigned keep = (o->n_given || o->n_file != NULL)
                         ? 1u << BF_INPUT_INDEX
                         : 0u;
-    unsigned used = 0;
-    size_t m;
+    bf_param_range ranges[BF_REPORT_MAX_RANGES];
+    char names[BF_REPORT_MAX_RANGES][32];
+    size_t bad_range = 0;
+    size_t bad_model = 0;
     size_t r;
+    int rc;
     if (!o->exact && o->n_range == 0) {
         return BF_REPORT_OK;
+    }
+    for (r = 0; r < o->n_range; r++) {
+        char msg[128];
+        bf_rep_parse_range(o->range[r], names[r], sizeof names[r],
+                           &ranges[r].lo, &ranges[r].hi, msg, sizeof msg);
+        ranges[r].name = names[r];
     }
     st->variants = calloc(st->n_models + 1, sizeof *st->variants);
     if (st->variants == NULL) {
         bf_rep_err("out of memory");
         return BF_REPORT_SOFTWARE;
     }
-    for (m = 0; m < st->n_models; m++) {
-        bf_model_variant *v = &st->variants[m];
-        bf_model_variant_init(v, st->models[m]);
-        if (o->exact) {
-            bf_model_variant_exact(v, keep);
-        }
-        for (r = 0; r < o->n_range; r++) {
-            char name[32];
-            char msg[128];
-            double lo;
-            double hi;
-            int rc;
-            bf_rep_parse_range(o->range[r], name, sizeof name, &lo, &hi, msg,
-                               sizeof msg);
-            rc = bf_model_variant_range(v, name, lo, hi);
-            if (rc == BF_ENOTFOUND) {
-                continue;
-            }
-            used |= 1u << r;
-            if (rc != BF_OK) {
-                const bf_param *pj =
-                    &v->param[bf_model_param_index(&v->type, name)];
-                return bf_rep_usage_fail(
-                    BF_REPORT_BADVALUE, hint,
-                    "--range %s: %s's %s must stay in [%g, %g] with at most "
-                    "%d grid points",
-                    o->range[r], v->type.name, name, pj->min, pj->max,
-                    BF_VARIANT_MAX_GRID);
-            }
-        }
-        st->models[m] = &v->type;
+    rc = bf_study_variants(st->models, st->n_models, o->exact, keep, ranges,
+                           o->n_range, st->variants, st->models, &bad_range,
+                           &bad_model);
+    if (rc == BF_ENOTFOUND) {
+        return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
+                                 "--range %s: no selected model has "
+                                 "that parameter",
+                                 o->range[bad_range]);
     }
-    for (r = 0; r < o->n_range; r++) {
-        if (!((used >> r) & 1u)) {
-            return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
-                                     "--range %s: no selected model has "
-                                     "that parameter",
-                                     o->range[r]);
-        }
+    if (rc != BF_OK) {
+        const bf_model_type *t = st->models[bad_model];
+        const bf_param *pj =
+            &t->param[bf_model_param_index(t, names[bad_range])];
+        return bf_rep_usage_fail(
+            BF_REPORT_BADVALUE, hint,
+            "--range %s: %s's %s must stay in [%g, %g] with at most "
+            "%d grid points",
+            o->range[bad_range], t->name, names[bad_range], pj->min,
+            pj->max, BF_VARIANT_MAX_GRID);
     }
     return BF_REPORT_OK;
 }
@@ -448,25 +385,22 @@ int bf_rep_target_data(const bf_rep_study *st, size_t s, size_t *sel,
  * tables; a missing per-sample input (BF_ENOTFOUND) is a noted gap. */
 static int check_rows(const bf_rep_study *st)
 {
-    size_t i;
-    for (i = 0; i < st->n_samples * st->n_models; i++) {
-        const bf_study_row *r = &st->rows[i];
-        if (r->status == BF_OK || r->status == BF_ENOTFOUND) {
-            continue;
-        }
-        if (r->status == BF_ENOMEM) {
-            bf_rep_err("out of memory");
-            return BF_REPORT_SOFTWARE;
-        }
-        bf_rep_err("%s cannot be fitted to sample %d: the model is "
-                   "undefined at some of the K = %zu used configurations or "
-                   "zero at all of them, so it cannot be normalised (SPEC "
-                   "§2); leave configurations out with --exclude, "
-                   "--exclude-specular or --max-theta",
-                   r->type->name, r->sample, r->k);
-        return BF_REPORT_DATAERR;
+    size_t i = 0;
+    int rc = bf_study_rows_check(st->rows, st->n_samples * st->n_models, &i);
+    if (rc == BF_OK) {
+        return BF_REPORT_OK;
     }
-    return BF_REPORT_OK;
+    if (rc == BF_ENOMEM) {
+        bf_rep_err("out of memory");
+        return BF_REPORT_SOFTWARE;
+    }
+    bf_rep_err("%s cannot be fitted to sample %d: the model is "
+               "undefined at some of the K = %zu used configurations or "
+               "zero at all of them, so it cannot be normalised (SPEC "
+               "§2); leave configurations out with --exclude, "
+               "--exclude-specular or --max-theta",
+               st->rows[i].type->name, st->rows[i].sample, st->rows[i].k);
+    return BF_REPORT_DATAERR;
 }
 
 int bf_rep_study_error(const bf_error *err)

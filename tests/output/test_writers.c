@@ -212,6 +212,51 @@ Test(writers, fits_csv_has_a_line_per_fitted_parameter_with_its_analysis)
     free_study(&s);
 }
 
+/* bf_fits_lines: the structs behind fits.csv, one per line, the values
+ * the study's rows and stats hold (not read back from text). */
+Test(writers, fits_lines_are_the_lines_of_fits_csv)
+{
+    study s;
+    bf_fits_line lines[16];
+    char *text;
+    size_t n;
+    size_t i;
+    run_study(&s);
+    text = written(bf_fits_csv_write, &s);
+    n = bf_fits_lines(&s.spec, s.rows, s.stats, &s.opts, NULL);
+    cr_assert_eq(n, count_lines(text) - 1);
+    cr_assert_eq(bf_fits_lines(&s.spec, s.rows, s.stats, &s.opts, lines), n);
+    cr_assert_eq(bf_fits_lines(NULL, s.rows, NULL, NULL, NULL), 0);
+    for (i = 0; i < n; i++) {
+        const bf_fits_line *l = &lines[i];
+        const bf_study_row *r = &s.rows[l->row];
+        const bf_fit_stats *st = &s.stats[l->row];
+        cr_assert_str_eq(l->model, r->type->name);
+        cr_assert_str_eq(l->fit, "exact");
+        cr_assert(l->analysed);
+        cr_assert_eq(l->lse, r->fit.lse);
+        cr_assert_eq(l->refined_lse, st->refined.lse);
+        cr_assert_eq(l->n_params, (long)st->k);
+        cr_assert_eq(l->albedo_over_1, -1); /* diffuse: empty */
+        cr_assert(isnan(l->albedo[0]) && l->ndf == NULL);
+        if (l->kind == BF_FITS_PARAM) {
+            int j = bf_model_param_index(r->type, l->parameter);
+            cr_assert(j >= 0 && r->type->param[j].fitted);
+            cr_assert_eq(l->value, r->fit.param[j]);
+            cr_assert_eq(l->ci_high, st->ci_high[j]);
+            cr_assert_not_null(l->ci_method);
+        } else {
+            cr_assert_eq(l->kind, BF_FITS_NONE);
+            cr_assert_str_eq(r->type->name, "LAMBERT");
+            cr_assert(l->parameter == NULL && isnan(l->value));
+            cr_assert(l->ci_method == NULL && l->ci_open == -1);
+        }
+    }
+    cr_assert_eq(lines[n - 1].row, 5); /* the last row, LAMBERT on 26 */
+    free(text);
+    free_study(&s);
+}
+
 Test(writers, ranking_csv_has_ranks_best_models_and_parameters)
 {
     study s;

@@ -1,0 +1,163 @@
+/* study_setup.c: the parts of a study's specification every caller makes
+ * the same way (the CLI's compare, rank, report, calibrate and Python's
+ * compare, rank, fit): the model list, the models' variants (the exact
+ * fit's freed inputs, the user's search ranges) and the check of the rows
+ * a study wrote (SPEC §2, §7, §9; doc/methods.md §6). Callers word the
+ * messages with their own option names.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+/* Appends t to out (room for cap), refusing a model listed twice and, under
+ * an objective that max-normalises, a specular model (SPEC §9, §10). */
+static int add_model(const bf_model_type *t, bf_objective objective,
+                     const bf_model_type **out, size_t cap, size_t *n,
+                     bf_error *err)
+{
+    size_t j;
+    if (t->kind == BF_MODEL_SPECULAR && !bf_objective_keeps_scale(objective)) {
+        return bf__error_set(err, BF_EDOM, 0,
+                             "%s gives absolute BRDF values (SPEC §9)",
+                             t->name);
+    }
+    for (j = 0; j < *n; j++) {
+        if (out[j] == t) {
+            return bf__error_set(err, BF_EINVAL, 0, "'%s' listed twice",
+                                 t->name);
+        }
+    }
+    if (*n >= cap) {
+        return bf__error_set(err, BF_EINVAL, 0, "too many");
+    }
+    out[(*n)++] = t;
+    return BF_OK;
+}
+
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err)
+{
+    const char *p;
+    size_t i;
+    bf__error_clear(err, "study");
+    if (out == NULL || n == NULL) {
+        return bf__error_set(err, BF_EINVAL, 0, "no output");
+    }
+    *n = 0;
+    if (list != NULL && strcmp(list, "all") == 0) {
+        for (i = 0; i < bf_model_count(); i++) {
+            const bf_model_type *t = bf_model_get(i);
+            int rc = t->kind == BF_MODEL_DIFFUSE /* the study's models */
+                         ? add_model(t, objective, out, cap, n, err)
+                         : BF_OK;
+            if (rc != BF_OK) {
+                return rc;
+            }
+        }
+        return BF_OK;
+    }
+    p = list != NULL ? list : bf_model_set_names(defaults);
+    if (p == NULL || *p == '\0') {
+        return bf__error_set(err, BF_EINVAL, 0, "bad list '%s'",
+                             p != NULL ? p : "");
+    }
+    while (*p != '\0') {
+        char name[64];
+        size_t len = strcspn(p, ",");
+        const bf_model_type *t;
+        const char *why;
+        int rc;
+        if (len == 0 || len >= sizeof name) {
+            return bf__error_set(err, BF_EINVAL, 0, "bad list '%s'", list);
+        }
+        memcpy(name, p, len);
+        name[len] = '\0';
+        t = bf_model_find_why(name, &why);
+        if (t == NULL && strchr(name, '+') != NULL) { /* SPEC §9.4 */
+            return bf__error_set(err, BF_ENOTFOUND, 0, "'%s': %s", name,
+                                 why);
+        }
+        if (t == NULL) {
+            return bf__error_set(err, BF_ENOTFOUND, 0,
+                                 "unknown model '%s'", name);
+        }
+        rc = add_model(t, objective, out, cap, n, err);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        p += len;
+        if (*p == ',' && *++p == '\0') {
+            return bf__error_set(err, BF_EINVAL, 0, "trailing comma");
+        }
+    }
+    return BF_OK;
+}
+
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model)
+{
+    unsigned char used[BF_STUDY_MAX_RANGES] = {0};
+    size_t m;
+    size_t r;
+    if (n_ranges > BF_STUDY_MAX_RANGES || models == NULL || out == NULL ||
+        (n_ranges > 0 && ranges == NULL) ||
+        ((exact || n_ranges > 0) && variants == NULL)) {
+        return BF_EINVAL;
+    }
+    for (m = 0; m < n_models; m++) {
+        bf_model_variant *v = &variants[m];
+        out[m] = models[m];
+        if (!exact && n_ranges == 0) {
+            continue;
+        }
+        bf_model_variant_init(v, models[m]);
+        if (exact) {
+            bf_model_variant_exact(v, keep);
+        }
+        for (r = 0; r < n_ranges; r++) {
+            int rc = bf_model_variant_range(v, ranges[r].name, ranges[r].lo,
+                                            ranges[r].hi);
+            if (rc == BF_ENOTFOUND) {
+                continue;
+            }
+            used[r] = 1;
+            if (rc != BF_OK) {
+                if (bad_range != NULL) {
+                    *bad_range = r;
+                }
+                if (bad_model != NULL) {
+                    *bad_model = m;
+                }
+                return rc;
+            }
+        }
+        out[m] = &v->type;
+    }
+    for (r = 0; r < n_ranges; r++) {
+        if (!used[r]) {
+            if (bad_range != NULL) {
+                *bad_range = r;
+            }
+            return BF_ENOTFOUND;
+        }
+    }
+    return BF_OK;
+}
+
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad)
+{
+    size_t i;
+    for (i = 0; rows != NULL && i < n; i++) {
+        if (rows[i].status != BF_OK && rows[i].status != BF_ENOTFOUND) {
+            if (bad != NULL) {
+                *bad = i;
+            }
+            return rows[i].status;
+        }
+    }
+    return BF_OK;
+}

@@ -1,0 +1,135 @@
+/* test_study_setup.c: the study setup every caller shares (bf_study_models,
+ * bf_study_variants, bf_study_rows_check): the model list's defaults,
+ * "all" and its errors; the variants' exact-fit freeing, ranges and their
+ * errors; the first failed row. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "support.h"
+
+#define CAP 64
+
+Test(study_models, defaults_all_and_a_list)
+{
+    const bf_model_type *m[CAP];
+    size_t n = 0;
+    size_t i;
+    bf_error err;
+    cr_assert_eq(bf_study_models(NULL, BF_MODELS_PAPER, BF_OBJ_MAX, m, CAP,
+                                 &n, &err), BF_OK);
+    cr_assert_eq(n, 6);
+    cr_assert_str_eq(m[0]->name, "VH-G");
+    cr_assert_str_eq(m[5]->name, "LFTG");
+    cr_assert_eq(bf_study_models(NULL, BF_MODELS_RANKING, BF_OBJ_MAX, m, CAP,
+                                 &n, &err), BF_OK);
+    cr_assert_eq(n, 9);
+    cr_assert_eq(bf_study_models("all", BF_MODELS_PAPER, BF_OBJ_MAX, m, CAP,
+                                 &n, &err), BF_OK);
+    cr_assert_gt(n, 6);
+    for (i = 0; i < n; i++) {
+        cr_assert_eq(m[i]->kind, BF_MODEL_DIFFUSE, "%s", m[i]->name);
+    }
+    cr_assert_eq(bf_study_models("fc-e,ON", BF_MODELS_PAPER, BF_OBJ_MAX, m,
+                                 CAP, &n, &err), BF_OK);
+    cr_assert_eq(n, 2);
+    cr_assert_eq(m[0], bf_model_find("FC-E"));
+    cr_assert_eq(bf_study_models("GGX", BF_MODELS_PAPER, BF_OBJ_NGAN, m, CAP,
+                                 &n, &err), BF_OK);
+    cr_assert_eq(n, 1);
+}
+
+Test(study_models, errors_say_what)
+{
+    static const struct {
+        const char *list;
+        bf_objective obj;
+        int code;
+        const char *msg;
+    } bad[] = {
+        {"VH-G,XX", BF_OBJ_MAX, BF_ENOTFOUND, "unknown model 'XX'"},
+        {"ON,ON", BF_OBJ_MAX, BF_EINVAL, "'ON' listed twice"},
+        {"ON,", BF_OBJ_MAX, BF_EINVAL, "trailing comma"},
+        {",ON", BF_OBJ_MAX, BF_EINVAL, "bad list"},
+        {"", BF_OBJ_MAX, BF_EINVAL, "bad list"},
+        {"GGX", BF_OBJ_MAX, BF_EDOM, "GGX gives absolute BRDF values"},
+        {"FOO+GGX", BF_OBJ_NGAN, BF_ENOTFOUND, "'FOO+GGX': "},
+        {"VH-G,VH-E", BF_OBJ_MAX, BF_EINVAL, "too many"}, /* cap 1 */
+    };
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const bf_model_type *m[CAP];
+        size_t n = 0;
+        bf_error err;
+        size_t cap = strcmp(bad[i].msg, "too many") == 0 ? 1 : CAP;
+        cr_assert_eq(bf_study_models(bad[i].list, BF_MODELS_PAPER,
+                                     bad[i].obj, m, cap, &n, &err),
+                     bad[i].code, "%s", bad[i].list);
+        cr_assert_not_null(strstr(err.msg, bad[i].msg), "%s: %s",
+                           bad[i].list, err.msg);
+    }
+}
+
+Test(study_variants, none_exact_and_ranges)
+{
+    const bf_model_type *base[2];
+    const bf_model_type *out[2];
+    bf_model_variant v[2];
+    bf_param_range r = {"m", 0.01, 1.0};
+    size_t br = 99;
+    size_t bm = 99;
+    int j;
+    base[0] = bf_model_find("FC-E");
+    base[1] = bf_model_find("ON");
+    cr_assert_eq(bf_study_variants(base, 2, 0, 0, NULL, 0, NULL, out, &br,
+                                   &bm), BF_OK);
+    cr_assert(out[0] == base[0] && out[1] == base[1]);
+    /* exact: FC-E's n freed, unless kept */
+    cr_assert_eq(bf_study_variants(base, 2, 1, 0, NULL, 0, v, out, &br, &bm),
+                 BF_OK);
+    cr_assert_eq(out[0], &v[0].type);
+    cr_assert_eq(out[1], &v[1].type);
+    j = bf_model_param_index(out[0], "n");
+    cr_assert(j >= 0 && out[0]->param[j].fitted);
+    cr_assert(!base[0]->param[j].fitted);
+    cr_assert_eq(bf_study_variants(base, 2, 1, 1u << BF_INPUT_INDEX, NULL, 0,
+                                   v, out, &br, &bm), BF_OK);
+    cr_assert(!out[0]->param[j].fitted);
+    /* a range applies to the model that has the parameter */
+    cr_assert_eq(bf_study_variants(base, 2, 0, 0, &r, 1, v, out, &br, &bm),
+                 BF_OK);
+    j = bf_model_param_index(out[0], "m");
+    cr_assert_float_eq(out[0]->param[j].grid_lo, 0.01, 1e-12);
+    cr_assert_gt(out[0]->param[j].grid_n, 1);
+    cr_assert_float_eq(out[0]->param[j].grid_lo +
+                           out[0]->param[j].grid_step *
+                               (double)(out[0]->param[j].grid_n - 1),
+                       1.0, 1e-9);
+    cr_assert_eq(memcmp(out[1]->param, base[1]->param,
+                        base[1]->p * sizeof *base[1]->param), 0); /* no m */
+    /* no model has q; m outside its limits */
+    r.name = "q";
+    cr_assert_eq(bf_study_variants(base, 2, 0, 0, &r, 1, v, out, &br, &bm),
+                 BF_ENOTFOUND);
+    cr_assert_eq(br, 0);
+    r.name = "m";
+    r.hi = 1e9;
+    cr_assert_eq(bf_study_variants(base, 2, 0, 0, &r, 1, v, out, &br, &bm),
+                 BF_EINVAL);
+    cr_assert(br == 0 && bm == 0);
+}
+
+Test(study_rows_check, the_first_failed_row)
+{
+    bf_study_row rows[4];
+    size_t bad = 99;
+    memset(rows, 0, sizeof rows);
+    rows[1].status = BF_ENOTFOUND; /* a gap, not a failure */
+    cr_assert_eq(bf_study_rows_check(rows, 4, &bad), BF_OK);
+    cr_assert_eq(bad, 99);
+    rows[2].status = BF_EDOM;
+    rows[3].status = BF_ENOMEM;
+    cr_assert_eq(bf_study_rows_check(rows, 4, &bad), BF_EDOM);
+    cr_assert_eq(bad, 2);
+    cr_assert_eq(bf_study_rows_check(rows, 2, &bad), BF_OK);
+}
