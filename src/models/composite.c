@@ -349,8 +349,12 @@ static void make_types(void)
         snprintf(titles[i], sizeof titles[i], "%s diffuse + %s specular",
                  d->name, s->name);
         params[i][0] = rho_d_param;
-        memcpy(&params[i][1], d->param, d->p * sizeof *d->param);
-        memcpy(&params[i][1 + d->p], s->param, s->p * sizeof *s->param);
+        if (d->p > 0) { /* LAMBERT has no parameters: param NULL */
+            memcpy(&params[i][1], d->param, d->p * sizeof *d->param);
+        }
+        if (s->p > 0) {
+            memcpy(&params[i][1 + d->p], s->param, s->p * sizeof *s->param);
+        }
         t->name = names[i];
         t->title = titles[i];
         t->reference = "SPEC §9.4";
