@@ -235,6 +235,30 @@ static const char *table3_label(bf_objective obj)
                                 : "objective S";
 }
 
+/* Table 3's title, in table3.md (file) and as printed: the value it holds
+ * and the configurations it sums over. */
+static void table3_title(const bf_rep_study *st, int file, FILE *fp)
+{
+    const char *label = table3_label(st->opts.objective);
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        fprintf(fp, "Table 3: %s (over each sample's used configurations "
+                    "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
+                    "SPEC §10)\n\n",
+                label);
+    } else if (file) {
+        fprintf(fp, "Table 3: %s (sum over the K used configurations)\n\n",
+                label);
+    } else if (st->n_sel > 0) {
+        fprintf(fp, "Table 3: %s (sum over the K = %zu used configurations)"
+                    "\n\n",
+                label, st->n_sel);
+    } else {
+        fprintf(fp, "Table 3: %s (sum over each sample's K used "
+                    "configurations)\n\n",
+                label);
+    }
+}
+
 /* The fit, objective, interval and selection lines of the description. */
 static void describe_fit(const bf_rep_study *st, FILE *fp)
 {
@@ -481,16 +505,7 @@ static int write_outputs(const bf_rep_study *st, const bf_tt *t2,
                      "bound)\n\n",
           f[1].fp);
     bf_tt_print(t2, f[1].fp);
-    if (bf_objective_keeps_scale(o->objective)) { /* as printed */
-        fprintf(f[2].fp, "Table 3: %s (over each sample's used "
-                         "configurations with theta_i, theta_o <= 80 deg: K "
-                         "in fits.csv's k, SPEC §10)\n\n",
-                table3_label(o->objective));
-    } else {
-        fprintf(f[2].fp, "Table 3: %s (sum over the K used "
-                         "configurations)\n\n",
-                table3_label(o->objective));
-    }
+    table3_title(st, 1, f[2].fp);
     bf_tt_print(t3, f[2].fp);
     for (i = 0; i < 3; i++) {
         rc = bf_out_commit(&f[i]);
@@ -595,20 +610,8 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
                                  : "; * on a grid bound")
                : "");
     bf_tt_print(t2, fp);
-    if (bf_objective_keeps_scale(st->opts.objective)) {
-        fprintf(fp, "\nTable 3: %s (over each sample's used configurations "
-               "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
-               "SPEC §10)\n\n",
-               table3_label(st->opts.objective));
-    } else if (st->n_sel > 0) {
-        fprintf(fp, "\nTable 3: %s (sum over the K = %zu used configurations)"
-               "\n\n",
-               table3_label(st->opts.objective), st->n_sel);
-    } else {
-        fprintf(fp, "\nTable 3: %s (sum over each sample's K used "
-               "configurations)\n\n",
-               table3_label(st->opts.objective));
-    }
+    fputc('\n', fp);
+    table3_title(st, 0, fp);
     bf_tt_print(t3, fp);
     on_compare(st, fp);
     fprintf(fp, "\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
