@@ -67,24 +67,35 @@ static void problem(bf_model_variant *v, const bf_model_type *base,
     }
 }
 
+/* REPS simulations of base at CURET's geometry (every STRIDE-th
+ * configuration) under noise power p (sd sd at the maximum), fitted under
+ * obj, with n_boot bootstrap replicates each (0: none), into *cal; *v and
+ * *pb the problem simulated. Nearly all simulations must fit. */
+static void calibrated(const bf_model_type *base, double p, double sd,
+                       bf_objective obj, size_t n_boot, bf_model_variant *v,
+                       bf_problem *pb, bf_calibration *cal)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    size_t n = bf_test_curet_geometry(geom, STRIDE);
+    double truth[BF_MAX_PARAMS];
+    problem(v, base, n, geom, obj, pb, truth);
+    cr_assert_eq(bf_calibrate(pb, truth, p, sd, BF_NOISE_AUTO, REPS, n_boot,
+                              SEED, LEVEL, cal),
+                 BF_OK);
+    cr_assert_geq(cal->n_sim, REPS - REPS / 50, "%s: %zu fitted", base->name,
+                  cal->n_sim);
+}
+
 /* Coverage and width of the default intervals of base under noise power
  * p (sd sd at the maximum) and objective obj. */
 static void check(const bf_model_type *base, double p, double sd,
                   bf_objective obj)
 {
-    static bf_geom geom[BF_CURET_NCONF];
-    size_t n = bf_test_curet_geometry(geom, STRIDE);
     bf_model_variant v;
     bf_problem pb;
     bf_calibration cal;
-    double truth[BF_MAX_PARAMS];
     size_t j;
-    problem(&v, base, n, geom, obj, &pb, truth);
-    cr_assert_eq(bf_calibrate(&pb, truth, p, sd, BF_NOISE_AUTO, REPS, 0,
-                              SEED, LEVEL, &cal),
-                 BF_OK);
-    cr_assert_geq(cal.n_sim, REPS - REPS / 50, "%s: %zu fitted", base->name,
-                  cal.n_sim);
+    calibrated(base, p, sd, obj, 0, &v, &pb, &cal);
     for (j = 0; j < v.type.p; j++) {
         double ratio;
         if (!((pb.free_mask >> j) & 1u)) {
@@ -173,19 +184,11 @@ Test(intervals, the_objectives_own_profile_undercovers_under_max,
 static void boot_check(const bf_model_type *base, double p, double sd,
                        bf_objective obj)
 {
-    static bf_geom geom[BF_CURET_NCONF];
-    size_t n = bf_test_curet_geometry(geom, STRIDE);
     bf_model_variant v;
     bf_problem pb;
     bf_calibration cal;
-    double truth[BF_MAX_PARAMS];
     size_t j;
-    problem(&v, base, n, geom, obj, &pb, truth);
-    cr_assert_eq(bf_calibrate(&pb, truth, p, sd, BF_NOISE_AUTO, REPS, BOOT_B,
-                              SEED, LEVEL, &cal),
-                 BF_OK);
-    cr_assert_geq(cal.n_sim, REPS - REPS / 50, "%s: %zu fitted", base->name,
-                  cal.n_sim);
+    calibrated(base, p, sd, obj, BOOT_B, &v, &pb, &cal);
     for (j = 0; j < v.type.p; j++) {
         if (!((pb.free_mask >> j) & 1u)) {
             cr_assert(isnan(cal.boot_coverage[j]));
