@@ -365,11 +365,6 @@ typedef struct {
  * per configuration for all models (bf__cset). */
 void bf__geom_trig(const bf_geom *g, bf__trig_t *tr);
 
-/* The 4-point Gauss-Legendre abscissae and weights WNO-R's rule uses on
- * each panel (src/models/wno_r.c; 2 positive abscissae, GSL's layout);
- * exposed for the test that they are GSL's. */
-void bf__wnor_gl4(const double **x, const double **w);
-
 /* ======================================================================
  * --- fitting (src/fit) ---
  * ====================================================================== */

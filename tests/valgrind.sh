@@ -15,9 +15,14 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
-# WNO-R's quadrature (1152 facets per value) makes the two runs over every
-# fitted model on real data (grid/..._61_samples, test_refine) the slowest;
-# WNO-R itself runs under valgrind in test_wno_r and test_cli.
+# WNO-R's quadrature (about 15 600 facets per value, 150 us plain) makes the
+# runs over every fitted model on real data (grid/..._61_samples,
+# grid/round_trip_recovers_every_model..., whose WNO-R grid is the rule at
+# 448 points, test_refine) the slowest, and wno_r/the_engines_tables...
+# compares 40 of the rule's curves with three of the engine's tables; the
+# rule and the tables run under valgrind in test_wno_r's other tests (its
+# round trip builds and reads a table) and in test_cli; the other models'
+# grid round trips in grid/round_trip_with_fixed_seed_noise... and test_cli.
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
@@ -105,6 +110,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     intervals/the_bootstrap_covers_under_absolute_noise_and_max
     cli_analysis/results_do_not_depend_on_the_thread_count
     grid/study_path_finds_the_plain_optimum_on_all_61_samples
+    grid/round_trip_recovers_every_model_exactly_at_grid_values
+    wno_r/the_engines_tables_interpolate_the_rule_to_2e_10
     test_refine
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
