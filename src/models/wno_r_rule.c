@@ -12,8 +12,13 @@
  *     pi/2 - theta_i and pi/2 - theta_s, where a circle touches the ring of
  *     tilt theta_a (above it the ring's integral has a (theta - theta0)^
  *     {3/2} term), and at the tilts where two circles cross;
- *   - phi_a: each ring at its crossings with the circles, and no piece
- *     wider than pi/2.
+ *   - phi_a: each ring at its crossings with the circles (the fifth, the
+ *     crossing of G's two terms, only where they are below 1: elsewhere
+ *     G = 1 on both sides), and no piece wider than pi/2. Pieces unlit or
+ *     unseen throughout are left out (their facets give 0). A ring that
+ *     crosses no circle (the rings near the normal) is periodic and
+ *     analytic in phi_a: the trapezoid rule on it, with as many points as
+ *     its strip of analyticity needs (smooth_ring).
  * WNOR_Q-point Gauss-Legendre on every piece; a theta piece that starts at
  * a tangency ts, or less than its width above one, is mapped theta = ts +
  * u^2, which turns the half-integer powers into odd powers of u, so that
@@ -61,6 +66,7 @@ void bf__wnor_kinks(const double l[3], const double v[3], wnor_kinks *kc)
                        (v[2] * l[1]) - (l[2] * v[1]), 0.0}};
     size_t i;
     kc->nc = 0;
+    kc->cross = 5;
     for (i = 0; i < 5; i++) {
         /* the fifth vanishes in the plane of incidence's backscatter
          * (l = v: masking and shadowing are one term) */
@@ -68,6 +74,7 @@ void bf__wnor_kinks(const double l[3], const double v[3], wnor_kinks *kc)
             memcpy(kc->m[kc->nc], m[i], sizeof m[i]);
             kc->r[kc->nc] = hypot(m[i][0], m[i][1]);
             kc->psi[kc->nc] = atan2(m[i][1], m[i][0]);
+            kc->cross = i == 4 ? kc->nc : kc->cross;
             kc->nc++;
         }
     }
@@ -258,6 +265,88 @@ static inline void ring_piece(double a, double b, double st, double ct,
     rg->m += WNOR_Q;
 }
 
+/* Whether the facet at azimuth ph of the ring (st, ct) is lit and seen
+ * (<a,l> > 0 and <a,v> > 0; kc->m[0] = l, kc->m[1] = v: never left out).
+ * The ring's pieces end at the circles <a,l> = 0 and <a,v> = 0, so a
+ * piece's midpoint tells for the whole piece. */
+static int piece_visible(const wnor_kinks *kc, double ph, double st,
+                         double ct)
+{
+    double ax = st * cos(ph);
+    double ay = st * sin(ph);
+    int q;
+    for (q = 0; q < 2; q++) {
+        const double *m = kc->m[q];
+        if (!((ax * m[0]) + (ay * m[1]) + (ct * m[2]) > 0.0)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The kinks of the ring (st, ct) on the circle kc->cross (its pole
+ * horizontal: the azimuths psi +- pi/2, in [0, 2 pi)) into k: those where
+ * the masking term 2 <a,n><v,n>/<a,v> (there equal to the shadowing term)
+ * is below 1, so that G switches between them; elsewhere G = 1 on both
+ * sides. Returns how many. */
+static size_t cross_kinks(const wnor_kinks *kc, double st, double ct,
+                          double *k)
+{
+    const double *v = kc->m[1];
+    size_t nk = 0;
+    int s;
+    for (s = -1; s <= 1; s += 2) {
+        double ph = kc->psi[kc->cross] + (s * BF__PI_2);
+        double av;
+        ph = ph < 0.0 ? ph + 2.0 * BF__PI
+                      : (ph >= 2.0 * BF__PI ? ph - 2.0 * BF__PI : ph);
+        av = (st * ((cos(ph) * v[0]) + (sin(ph) * v[1]))) + (ct * v[2]);
+        if (!(2.0 * ct * v[2] >= av)) { /* masking below 1 (or unseen) */
+            k[nk++] = ph;
+        }
+    }
+    return nk;
+}
+
+/* A ring that crosses no kink circle: its integrand is periodic and
+ * analytic in ph on the strip |Im ph| < ln rho (rho from the nearest
+ * circle's complex crossing cos(ph - psi) = q, |q| >= 1, rho = |q| +
+ * sqrt(q^2 - 1): a conservative bound, as the circles of <a,l>, <a,v> = 0
+ * and of G's branches are kinks on the real ring only, and the Fresnel
+ * factors' branch points <a,l>^2 = 1 - n^2 lie farther out), so the
+ * M-point trapezoid rule errs by O(rho^-M) [Trefethen & Weideman, SIAM
+ * Review 56(3), 2014, Thm 3.2]: M = 8 j points with rho^-M <= 1e-17,
+ * at most WNOR_SMOOTH_MAX; 0 (the Gauss-Legendre pieces then) above. */
+#define WNOR_SMOOTH_MAX 48
+static int smooth_ring(const wnor_kinks *kc, double rho, double st,
+                       double ct, wnor_ring *rg)
+{
+    double need = rho > 1.0 ? 39.2 / log(rho) : HUGE_VAL; /* 17 ln 10 */
+    size_t m = 8;
+    size_t j;
+    while ((double)m < need && m < WNOR_SMOOTH_MAX) {
+        m += 8;
+    }
+    if ((double)m < need) {
+        return 0;
+    }
+    rg->m = 0;
+    if (!piece_visible(kc, 0.0, st, ct)) {
+        return 1; /* unlit or unseen all round */
+    }
+    for (j = 0; j < m; j++) {
+        double sp;
+        double cp;
+        sincos_any(2.0 * BF__PI * (double)j / (double)m, &sp, &cp);
+        rg->ax[j] = st * cp;
+        rg->ay[j] = st * sp;
+        rg->az[j] = ct;
+        rg->wp[j] = 2.0 * BF__PI / (double)m;
+    }
+    rg->m = m;
+    return 1;
+}
+
 BF__CLONES
 void bf__wnor_ring(const wnor_kinks *kc, double t, wnor_ring *rg)
 {
@@ -266,11 +355,20 @@ void bf__wnor_ring(const wnor_kinks *kc, double t, wnor_ring *rg)
     double ct = cos(t);
     size_t nk = 0;
     size_t i;
+    double rho = HUGE_VAL; /* the smooth ring's strip of analyticity */
     for (i = 0; i < kc->nc; i++) {
         /* sin t (mx cos ph + my sin ph) + cos t mz = 0 */
         double q = kc->r[i] > 0.0 ? -(ct * kc->m[i][2]) / (st * kc->r[i])
-                                  : 2.0;
-        if (fabs(q) < 1.0) {
+                                  : HUGE_VAL;
+        if (i == kc->cross) {
+            /* through the normal (q = 0): G's terms cross at ph = psi +-
+             * pi/2, a kink only where they are below 1 */
+            nk += cross_kinks(kc, st, ct, k + nk);
+        } else if (fabs(q) >= 1.0) {
+            /* crossed at complex ph, Im ph = acosh |q| */
+            double e = fabs(q) + sqrt((fabs(q) - 1.0) * (fabs(q) + 1.0));
+            rho = e < rho ? e : rho;
+        } else {
             double d = acos(q);
             double k1 = kc->psi[i] + d; /* in [-pi, 2 pi] */
             double k2 = kc->psi[i] - d; /* in [-2 pi, pi] */
@@ -288,6 +386,9 @@ void bf__wnor_ring(const wnor_kinks *kc, double t, wnor_ring *rg)
         }
         k[j] = ki;
     }
+    if (nk == 0 && smooth_ring(kc, rho, st, ct, rg)) {
+        return;
+    }
     if (nk == 0) {
         k[nk++] = 0.0;
     }
@@ -300,6 +401,9 @@ void bf__wnor_ring(const wnor_kinks *kc, double t, wnor_ring *rg)
         size_t q;
         if (!(b > a)) {
             continue; /* two kinks at one azimuth */
+        }
+        if (!piece_visible(kc, 0.5 * (a + b), st, ct)) {
+            continue; /* unlit or unseen throughout: its facets give 0 */
         }
         parts = parts < 1 ? 1 : parts;
         for (q = 0; q < parts; q++) {

@@ -40,9 +40,12 @@ typedef struct {
 
 /* The kink circles of a configuration (l, v unit vectors in the rule's
  * frame, l[2] > 0): their poles, nc of them (degenerate ones left out),
- * and the length and azimuth of each pole's horizontal part. */
+ * and the length and azimuth of each pole's horizontal part; cross names
+ * the circle where G's two terms cross (a kink only where they are below
+ * 1, bf__wnor_ring). */
 typedef struct {
     size_t nc;
+    size_t cross; /* the index of <v,n> l - <l,n> v, or nc: none */
     double m[5][3];
     double r[5];
     double psi[5];
