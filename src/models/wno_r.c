@@ -40,8 +40,9 @@
  * sigma -> 0 tends to WNO; sigma = 0 is WNO exactly. Within 2e-9 of
  * GSL's adaptive quadrature relative to the value on CURET's 205
  * configurations (doc/methods.md §7; tested against 1e-8). bf_model_eval runs the rule;
- * the engine's kernel interpolates its values in (sigma, n) from tables
- * built once per configuration set (below).
+ * the engine's kernel interpolates its values in (sigma, n) from tables of
+ * a configuration set, each n-panel's built the first time it is needed
+ * (below).
  *
  * Limits: the value vanishes at theta_i = pi/2 (the shadowing term 2
  * <a,n><l,n>/<a,l> = 0). n = 1 gives the direct Oren-Nayar surface with
@@ -173,21 +174,44 @@ static void wnor_terms(const bf_kernel *kr, const bf__cset *cs, double *terms)
 
 /* Each configuration's value is analytic in n > 1 and in sigma > 0, and in
  * sigma^2 near 0 (the rule's nodes do not move with either): on each
- * panel of (sigma, n) it is its two-dimensional Chebyshev series. n-panels
- * [1.1, 1.3], [1.3, 1.9], [1.9, 3.7], [3.7, 10.1] (distance from n = 1
- * tripling), degree 22; sigma-panels [0, s1] in the variable sigma^2 (s1
- * = pi/2^9: within it the value is a polynomial in sigma^2 to rounding)
- * and [s1 2^(p-1), s1 2^p] for p = 1..8 in sigma, 16 nodes each. A table
+ * panel of (sigma, n) it is its two-dimensional Chebyshev series. In n
+ * the singularities are the Fresnel factors' branch points n = +-sin x
+ * (x a facet's angle, SPEC §4.1), all in [-1, 1]: in the variable w =
+ * ln(n - 1) they lie on Im w = +-pi, so a panel [w0 - h, w0 + h] has
+ * Bernstein ellipses up to rho = pi/h + sqrt(pi^2/h^2 + 1) and its
+ * degree-d series errs by O(rho^-d). Two n-panels: [1.1, 2.6] (the fit's
+ * grid and box, rho = 4.7) and [2.6, 10.1] (rho = 7.3), degree 24
+ * (4.7^-24 = 6e-17); sigma-panels [0, s1] in the variable sigma^2 (s1 =
+ * pi/2^9: within it the value is a polynomial in sigma^2 to rounding) and
+ * [s1 2^(p-1), s1 2^p] for p = 1..8 in sigma, 16 nodes each. A table
  * holds the coefficients of one n-panel for every sigma-panel and
- * configuration, built the first time an n in it is needed. Below n = 1.1
- * the values at the sigma-nodes come from the rule directly. */
-#define WNOR_NQ 4
-#define WNOR_ND 23 /* n-nodes per panel: degree 22 */
+ * configuration, built the first time an n in it is needed: a fit inside
+ * the grid's box builds one. Below n = 1.1 the values at the sigma-nodes
+ * come from the rule directly. */
+#define WNOR_NQ 2
+#define WNOR_ND 25 /* n-nodes per panel: degree 24 */
 #define WNOR_NPS 9 /* sigma-panels */
 #define WNOR_NS 16 /* sigma-nodes per panel */
 #define WNOR_S1 (BF__PI_2 / 256.0)
 #define WNOR_NSN (WNOR_NPS * WNOR_NS)
-static const double n_edge[WNOR_NQ + 1] = {1.1, 1.3, 1.9, 3.7, 10.1};
+static const double n_edge[WNOR_NQ + 1] = {1.1, 2.6, 10.1};
+
+/* The position of n in n-panel q in the variable ln(n - 1), in [-1, 1]
+ * inside. */
+static double n_pos(int q, double n)
+{
+    double a = log(n_edge[q] - 1.0);
+    double b = log(n_edge[q + 1] - 1.0);
+    return (2.0 * log(n - 1.0) - a - b) / (b - a);
+}
+
+/* The n of position y in panel q (n_pos inverted). */
+static double n_node(int q, double y)
+{
+    double a = log(n_edge[q] - 1.0);
+    double b = log(n_edge[q + 1] - 1.0);
+    return 1.0 + exp((0.5 * (a + b)) + (0.5 * (b - a) * y));
+}
 
 /* The n-panel of n and its position y in [-1, 1], or -1 outside. */
 static int n_panel(double n, double *y)
@@ -195,8 +219,7 @@ static int n_panel(double n, double *y)
     int q;
     for (q = 0; q < WNOR_NQ; q++) {
         if (n >= n_edge[q] && n < n_edge[q + 1]) {
-            *y = (2.0 * n - n_edge[q] - n_edge[q + 1]) /
-                 (n_edge[q + 1] - n_edge[q]);
+            *y = n_pos(q, n);
             return q;
         }
     }
@@ -277,7 +300,7 @@ static void cheb_t(double y, size_t m, double *t)
 
 typedef struct {
     int built[WNOR_NQ];    /* published with an atomic write */
-    double *coef[WNOR_NQ]; /* [((p NS + js) ND + d) K + k] */
+    double *coef[WNOR_NQ]; /* [((k NPS + p) NS + js) ND + d] */
 } wnor_tables;
 
 static int wnor_prepare(bf__prep *pm)
@@ -325,10 +348,10 @@ typedef struct {
 
 /* Configuration k's part of n-panel q's table: its values at every
  * (sigma-node, n-node), then their two-dimensional coefficients. */
+BF__CLONES
 static void build_config(const bf__prep *pm, size_t k, int q, wnor_build *s,
                          double *coef)
 {
-    size_t K = pm->n;
     double l[3];
     double v[3];
     size_t i;
@@ -337,8 +360,9 @@ static void build_config(const bf__prep *pm, size_t k, int q, wnor_build *s,
     size_t p;
     size_t d;
     term_dirs(pm, k, l, v);
-    if (!(l[2] > 0.0)) {
-        return; /* theta_i = pi/2: L = 0 (the table is zeroed) */
+    if (!(l[2] > 0.0)) { /* theta_i = pi/2: L = 0 */
+        memset(coef, 0, WNOR_NSN * WNOR_ND * sizeof *coef);
+        return;
     }
     bf__wnor_kinks(l, v, &s->d.kc);
     bf__wnor_theta(&s->d.kc, l[2], v[2], &s->d.th);
@@ -360,8 +384,7 @@ static void build_config(const bf__prep *pm, size_t k, int q, wnor_build *s,
         }
     }
     for (i = 0; i < WNOR_ND; i++) {
-        double n = 0.5 * (n_edge[q] + n_edge[q + 1]) +
-                   0.5 * (n_edge[q + 1] - n_edge[q]) * cheb_node(i, WNOR_ND);
+        double n = n_node(q, cheb_node(i, WNOR_ND));
         double *val = s->val[i];
         for (j = 0; j < WNOR_NSN; j++) {
             val[j] = 0.0;
@@ -390,7 +413,7 @@ static void build_config(const bf__prep *pm, size_t k, int q, wnor_build *s,
             }
             cheb_coef(s->cm_s, f, WNOR_NS, 1, c);
             for (j = 0; j < WNOR_NS; j++) {
-                coef[(((p * WNOR_NS + j) * WNOR_ND) + d) * K + k] = c[j];
+                coef[((p * WNOR_NS + j) * WNOR_ND) + d] = c[j];
             }
         }
     }
@@ -400,7 +423,7 @@ static void build_config(const bf__prep *pm, size_t k, int q, wnor_build *s,
 static double *build_panel(const bf__prep *pm, int q)
 {
     size_t cap = (size_t)WNOR_MAX_RINGS * WNOR_MAX_RF;
-    double *coef = calloc((size_t)WNOR_NSN * WNOR_ND * pm->n, sizeof *coef);
+    double *coef = malloc((size_t)WNOR_NSN * WNOR_ND * pm->n * sizeof *coef);
     wnor_build *s = malloc(sizeof *s);
     double *facets = malloc(4 * cap * sizeof *facets);
     size_t k;
@@ -417,7 +440,7 @@ static double *build_panel(const bf__prep *pm, int q)
     cheb_matrix(WNOR_ND, s->cm_n);
     cheb_matrix(WNOR_NS, s->cm_s);
     for (k = 0; k < pm->n; k++) {
-        build_config(pm, k, q, s, coef);
+        build_config(pm, k, q, s, coef + k * WNOR_NSN * WNOR_ND);
     }
     free(s);
     free(facets);
@@ -503,18 +526,28 @@ static inline void weighted_rows(const double *restrict rows, size_t m,
 }
 
 /* The sigma-series of every configuration at n on sigma-panel p from n's
- * table: the series in n of each coefficient, summed from degree 0 up. */
+ * table: the series in n of each coefficient, summed from degree 0 up
+ * (each configuration's block of the table is contiguous). */
 BF__CLONES
 static void series_slot(const double *restrict c, size_t K, int p, double y,
                         double *restrict b)
 {
     double tn[WNOR_ND];
     size_t js;
+    size_t k;
+    size_t d;
     cheb_t(y, WNOR_ND, tn);
-    for (js = 0; js < WNOR_NS; js++) {
-        const double *restrict cj =
-            c + ((size_t)p * WNOR_NS + js) * WNOR_ND * K;
-        weighted_rows(cj, WNOR_ND, tn, K, b + js * K);
+    for (k = 0; k < K; k++) {
+        const double *restrict ck =
+            c + ((k * WNOR_NPS + (size_t)p) * WNOR_NS) * WNOR_ND;
+        for (js = 0; js < WNOR_NS; js++) {
+            const double *restrict cj = ck + js * WNOR_ND;
+            double acc = 0.0;
+            for (d = 0; d < WNOR_ND; d++) {
+                acc += tn[d] * cj[d];
+            }
+            b[js * K + k] = acc;
+        }
     }
 }
 

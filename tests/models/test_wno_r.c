@@ -383,8 +383,8 @@ Test(wno_r, the_engines_tables_interpolate_the_rule_to_2e_10)
      * the rule itself (bf_model_eval) to 2e-10 relative to each value
      * (measured 9e-11 over the fit's grids and their midpoints) at 40
      * random (sigma, n): sigma over (0, 1.5), a quarter of them below
-     * 0.01 (the panel in sigma^2), n over three panels and below them
-     * (1.05: the rule itself). */
+     * 0.01 (the panel in sigma^2), n over both n-panels (1.15 to 4.15)
+     * and below them (1.05: the rule itself). */
     bf_table *t = bf_test_load_table();
     size_t sel[BF_CURET_NCONF];
     bf_geom g[BF_CURET_NCONF];
