@@ -226,7 +226,7 @@ static inline void sincos_small(double u, double *su, double *cu)
 
 /* sin c and cos c for c in [-pi, 5 pi]: reduced to |r| <= pi/4 by the
  * nearest multiple q of pi/2, then turned by q quarter turns. */
-static void sincos_any(double c, double *sc, double *cc)
+static inline void sincos_any(double c, double *sc, double *cc)
 {
     double q = floor((c / BF__PI_2) + 0.5);
     double su;
@@ -272,9 +272,14 @@ static inline void ring_piece(double a, double b, double st, double ct,
 static int piece_visible(const wnor_kinks *kc, double ph, double st,
                          double ct)
 {
-    double ax = st * cos(ph);
-    double ay = st * sin(ph);
+    double sp;
+    double cp;
+    double ax;
+    double ay;
     int q;
+    sincos_any(ph, &sp, &cp);
+    ax = st * cp;
+    ay = st * sp;
     for (q = 0; q < 2; q++) {
         const double *m = kc->m[q];
         if (!((ax * m[0]) + (ay * m[1]) + (ct * m[2]) > 0.0)) {
@@ -297,10 +302,13 @@ static size_t cross_kinks(const wnor_kinks *kc, double st, double ct,
     int s;
     for (s = -1; s <= 1; s += 2) {
         double ph = kc->psi[kc->cross] + (s * BF__PI_2);
+        double sp;
+        double cp;
         double av;
         ph = ph < 0.0 ? ph + 2.0 * BF__PI
                       : (ph >= 2.0 * BF__PI ? ph - 2.0 * BF__PI : ph);
-        av = (st * ((cos(ph) * v[0]) + (sin(ph) * v[1]))) + (ct * v[2]);
+        sincos_any(ph, &sp, &cp);
+        av = (st * ((cp * v[0]) + (sp * v[1]))) + (ct * v[2]);
         if (!(2.0 * ct * v[2] >= av)) { /* masking below 1 (or unseen) */
             k[nk++] = ph;
         }
@@ -334,12 +342,21 @@ static int smooth_ring(const wnor_kinks *kc, double rho, double st,
     if (!piece_visible(kc, 0.0, st, ct)) {
         return 1; /* unlit or unseen all round */
     }
+    for (j = 0; j < m / 4; j++) { /* the first quarter, ph in [0, pi/2) */
+        size_t i = j <= m / 8 ? j : (m / 4) - j; /* from the nearer axis */
+        double su;
+        double cu;
+        sincos_small(2.0 * BF__PI * (double)i / (double)m, &su, &cu);
+        rg->ax[j] = j <= m / 8 ? cu : su;
+        rg->ay[j] = j <= m / 8 ? su : cu;
+    }
+    for (j = m / 4; j < m; j++) { /* a quarter turn on: (x, y) -> (-y, x) */
+        rg->ax[j] = -rg->ay[j - (m / 4)];
+        rg->ay[j] = rg->ax[j - (m / 4)];
+    }
     for (j = 0; j < m; j++) {
-        double sp;
-        double cp;
-        sincos_any(2.0 * BF__PI * (double)j / (double)m, &sp, &cp);
-        rg->ax[j] = st * cp;
-        rg->ay[j] = st * sp;
+        rg->ax[j] *= st;
+        rg->ay[j] *= st;
         rg->az[j] = ct;
         rg->wp[j] = 2.0 * BF__PI / (double)m;
     }
