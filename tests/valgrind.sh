@@ -15,11 +15,11 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
-# WNO-R's quadrature (about 15 600 facets per value, 150 us plain) makes the
+# WNO-R's quadrature (about 6 400 facets per value, plain) makes the
 # runs over every fitted model on real data (grid/..._61_samples,
 # grid/round_trip_recovers_every_model..., whose WNO-R grid is the rule at
 # 448 points, test_refine) the slowest, and wno_r/the_engines_tables...
-# compares 40 of the rule's curves with three of the engine's tables; the
+# compares 40 of the rule's curves with both of the engine's tables; the
 # rule and the tables run under valgrind in test_wno_r's other tests (its
 # round trip builds and reads a table) and in test_cli; the other models'
 # grid round trips in grid/round_trip_with_fixed_seed_noise... and test_cli.

@@ -145,7 +145,7 @@ Test(grid, round_trip_recovers_every_model_exactly_at_grid_values)
                          are fitted under SPEC §10, not on grids */
         }
         fitted_models++;
-        /* WNO-R's plain grid is its quadrature rule at 448 points (13 s):
+        /* WNO-R's plain grid is its quadrature rule at 448 points:
          * one pick */
         for (q = 0; q < (type == bf_model_wno_r ? 1u : 3u); q++) {
             double param[BF_MAX_PARAMS];
@@ -473,9 +473,9 @@ Test(grid, study_path_finds_the_plain_optimum_on_all_61_samples)
             double bound;
             if (models[i] == bf_model_wno_r &&
                 s % (BF_TEST_SANITIZED ? 60 : 30) != 0) {
-                /* WNO-R's plain path is its quadrature rule (about 150 us
-                 * a value, 448 grid points): samples 1, 31 and 61 (1 and
-                 * 61 in the sanitizer build) */
+                /* WNO-R's plain path is its quadrature rule (about 6 400
+                 * facets a value, 448 grid points): samples 1, 31 and 61
+                 * (1 and 61 in the sanitizer build) */
                 continue;
             }
             defaults(models[i], param);
