@@ -315,11 +315,13 @@ typedef enum {
 #define BF_SPECULAR_VARIANTS 6
 #define BF_VARIANT_INDEX(f, s) (((size_t)(f) - 1) * 2 + ((size_t)(s) - 1))
 
-/* The variant of base (a registry model, one of its variants or a
- * bf_model_variant copy of either) with
+/* The variant of base (a registry model, one of its variants, a
+ * composite D+S of either, or a bf_model_variant copy of any of them) with
  * Fresnel term f and masking s: a type object of static storage with the
  * same name (GGX stays "GGX") and the parameters of the option (rho_s,
- * alpha, n for GGX with BF_FRESNEL_DIELECTRIC; rho_s, alpha without F0).
+ * alpha, n for GGX with BF_FRESNEL_DIELECTRIC; rho_s, alpha without F0; a
+ * composite's are rho_d, D's, then those of S's variant, which
+ * bf_model_specular_part returns).
  * The options apply as SPEC §9.2 says: --fresnel to GGX, BECKMANN and CT,
  * --smith to GGX and BECKMANN. Returns NULL where an option does not
  * apply, with *why (when why is not NULL) a sentence saying so (static
