@@ -68,6 +68,43 @@ static const char *synthetic_csv(void)
     return csv;
 }
 
+/* A composite's variants (bf_model_specular_variant on D+S): named as the
+ * composite, parameters rho_d, D's, then S's variant's, value rho_d d + S's
+ * variant (SPEC §9.4), and back to the registry's composite. */
+Test(specular_options, composite_variants)
+{
+    static const bf_geom g[3] = {{0.2, 3.14159265358979, 0.25, 0.1},
+                                 {0.7, 3.14159265358979, 0.5, 2.0},
+                                 {1.1, 3.14159265358979, 1.0, 0.3}};
+    static const double p[4] = {0.3, 0.8, 0.25, 1.6};
+    const bf_model_type *c = bf_model_find("LAMBERT+GGX");
+    const bf_model_type *s = bf_model_specular_variant(
+        bf_model_find("GGX"), BF_FRESNEL_DIELECTRIC, BF_SMITH_SEPARABLE,
+        NULL);
+    const bf_model_type *v = bf_model_specular_variant(
+        c, BF_FRESNEL_DIELECTRIC, BF_SMITH_SEPARABLE, NULL);
+    const bf_model_type *on = bf_model_specular_variant(
+        bf_model_find("ON+BECKMANN"), BF_FRESNEL_NONE, 0, NULL);
+    double vv[3];
+    double sv[3];
+    size_t k;
+    cr_assert(s != NULL && v != NULL && on != NULL);
+    cr_assert_str_eq(v->name, "LAMBERT+GGX");
+    cr_assert_eq(v->p, 4);
+    cr_assert_str_eq(v->param[3].name, "n");
+    cr_assert_str_eq(v->masking, s->masking);
+    cr_assert_eq(bf_model_specular_part(v, NULL), s);
+    cr_assert_eq(on->p, 5); /* rho_d, rho, sigma, rho_s, alpha */
+    cr_assert_str_eq(on->param[4].name, "alpha");
+    cr_assert_eq(bf_model_specular_variant(v, BF_FRESNEL_SCHLICK,
+                                           BF_SMITH_HEIGHT, NULL), c);
+    cr_assert_eq(bf_model_eval(v, p, 3, g, vv), BF_OK);
+    cr_assert_eq(bf_model_eval(s, p + 1, 3, g, sv), BF_OK);
+    for (k = 0; k < 3; k++) {
+        bf_assert_rel(vv[k], p[0] / 3.14159265358979323846 + sv[k], 1e-14);
+    }
+}
+
 /* brdffit compare of sample (1-based) of csv with model under the options
  * (NULL: not given), fits.csv loaded; fails the test on an error. Returns
  * fits.csv's number of lines. */
