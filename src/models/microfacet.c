@@ -155,7 +155,7 @@ double bf__mf_d_ggx(const bf__mf_t *m, double alpha)
 double bf__mf_d_beckmann(const bf__mf_t *m, double alpha)
 {
     double a2 = alpha * alpha;
-    return exp(-m->t2h / a2) / (BF__PI * a2 * (m->c2h * m->c2h));
+    return bf__mf_exp_neg(-m->t2h / a2) / (BF__PI * a2 * (m->c2h * m->c2h));
 }
 
 /* cos theta Lambda of Walter et al. eq. 34 (SPEC §9.2), microfacet.h. */
@@ -167,7 +167,7 @@ double bf__mf_clambda_ggx(double c, double s, double alpha)
 
 /* cos theta Lambda of SPEC §9.2's exact Beckmann form (Walter et al.
  * eq. 26 before its rational approximation, eq. 27), microfacet.h. */
-double bf__mf_clambda_beckmann(double c, double s, double alpha)
+static double clambda_beckmann(double c, double s, double alpha)
 {
     double as = alpha * s;
     double a;
@@ -175,8 +175,42 @@ double bf__mf_clambda_beckmann(double c, double s, double alpha)
         return 0.0; /* the normal: Lambda = 0 */
     }
     a = c / as;
-    return fmax(0.0, 0.5 * ((as * exp(-(a * a)) * MF_1_SQRTPI)
+    if (a >= 28.0) {
+        return 0.0; /* erfc(a) and exp(-a^2) are +0 in double there */
+    }
+    return fmax(0.0, 0.5 * ((as * bf__mf_exp_neg(-(a * a)) * MF_1_SQRTPI)
                             - (c * erfc(a))));
+}
+
+/* The last two (c, s, alpha) of this thread and their values, the one
+ * used longer ago replaced: a lobe asks for Lambda(i) and Lambda(o) in
+ * turn, and both recur -- the albedo's quadrature over phi_s at fixed
+ * zeniths (albedo.c), measured data sorted by theta_i. The same bits as
+ * computing them (a pure function, its arguments compared bit for bit). */
+typedef struct {
+    double key[2][3];
+    double val[2];
+    int older;
+} lambda_memo_t;
+static _Thread_local lambda_memo_t lambda_memo = {
+    {{NAN, NAN, NAN}, {NAN, NAN, NAN}}, {0.0, 0.0}, 0};
+
+double bf__mf_clambda_beckmann(double c, double s, double alpha)
+{
+    lambda_memo_t *z = &lambda_memo;
+    const double key[3] = {c, s, alpha};
+    int e;
+    for (e = 0; e < 2; e++) {
+        if (memcmp(z->key[e], key, sizeof key) == 0) {
+            z->older = 1 - e;
+            return z->val[e];
+        }
+    }
+    e = z->older;
+    memcpy(z->key[e], key, sizeof key);
+    z->val[e] = clambda_beckmann(c, s, alpha);
+    z->older = 1 - e;
+    return z->val[e];
 }
 
 double bf__mf_lambda_ggx(double theta, double alpha)
