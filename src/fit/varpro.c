@@ -47,6 +47,8 @@
  * the domain), where no vertex leads anywhere. */
 #define NM_FLAT 10
 #define NM_SIZE 1e-7
+/* The one-sided step of the bound test, a fraction of the span. */
+#define KKT_STEP 1e-6
 #define UNDEFINED 1e300
 
 /* Grid points per parameter by the number of gridded parameters (log-
@@ -395,8 +397,9 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
 }
 
 /* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
- * from x in the search coordinates; x is replaced when it ends lower. */
-static int levenberg(space_t *sp, double *x, double *f)
+ * from x in the search coordinates; x is replaced when it ends lower.
+ * *done (when not NULL): 1 when the driver met its tolerances. */
+static int levenberg(space_t *sp, double *x, double *f, int *done)
 {
     gsl_multifit_nlinear_parameters prm =
         gsl_multifit_nlinear_default_parameters();
@@ -407,6 +410,9 @@ static int levenberg(space_t *sp, double *x, double *f)
     double fy;
     int info;
     size_t a;
+    if (done != NULL) {
+        *done = 0;
+    }
     if (sp->m == 0 || sp->fc->pb->n <= sp->m) {
         return BF_OK;
     }
@@ -435,8 +441,11 @@ static int levenberg(space_t *sp, double *x, double *f)
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        (void)gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14, NULL,
-                                          NULL, &info, w);
+        int st = gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14,
+                                             NULL, NULL, &info, w);
+        if (done != NULL) {
+            *done = st == GSL_SUCCESS;
+        }
         memcpy(y, x, sizeof y);
         for (a = 0; a < sp->m; a++) {
             y[sp->idx[a]] =
@@ -591,22 +600,56 @@ static void grid_steps(const space_t *sp, double *step)
     }
 }
 
-/* 1 when a moving parameter of x lies on a bound of its domain (within
- * 1e-6 of the search coordinate's span). */
+/* -1 (+1) when moving parameter a of x lies on the lower (upper) bound of
+ * its domain (within 1e-6 of the search coordinate's span), else 0. */
+static int bound_side(const space_t *sp, const double *x, size_t a)
+{
+    double u = to_u(sp, a, x[sp->idx[a]]);
+    double lo = to_u(sp, a, sp->lo[a]);
+    double hi = to_u(sp, a, sp->hi[a]);
+    double tol = 1e-6 * (hi - lo);
+    if (u <= lo + tol || x[sp->idx[a]] <= sp->lo[a]) {
+        return -1;
+    }
+    return u >= hi - tol ? 1 : 0;
+}
+
+/* 1 when a moving parameter of x lies on a bound of its domain. */
 static int on_bound(const space_t *sp, const double *x)
 {
     size_t a;
     for (a = 0; a < sp->m; a++) {
-        double u = to_u(sp, a, x[sp->idx[a]]);
-        double lo = to_u(sp, a, sp->lo[a]);
-        double hi = to_u(sp, a, sp->hi[a]);
-        double tol = 1e-6 * (hi - lo);
-        if (u <= lo + tol || u >= hi - tol ||
-            x[sp->idx[a]] <= sp->lo[a]) {
+        if (bound_side(sp, x, a) != 0) {
             return 1;
         }
     }
     return 0;
+}
+
+/* 1 when x (f its value) on a bound is a Karush-Kuhn-Tucker point as far
+ * as one-sided differences tell: every coordinate on a bound, moved
+ * KKT_STEP of its span into the domain, gives a value >= f (a converged
+ * LM has minimised over the others: the clamp leaves them free), so
+ * Nelder-Mead has nothing to take off the bound. */
+static int bound_kkt(const space_t *sp, const double *x, double f)
+{
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        int side = bound_side(sp, x, a);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double y[BF_MAX_PARAMS];
+        if (side == 0) {
+            continue;
+        }
+        memcpy(y, x, sizeof y);
+        y[sp->idx[a]] = from_u(sp, a, side < 0 ? lo + KKT_STEP * (hi - lo)
+                                               : hi - KKT_STEP * (hi - lo));
+        if (value_at(sp->fc, y) < f) {
+            return 0;
+        }
+    }
+    return 1;
 }
 
 /* The separable ngan fit on fc (fc->pb's objective ngan). */
@@ -659,19 +702,21 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
         double x[BF_MAX_PARAMS];
         double f;
         double fl;
+        int done;
         point_of(&sp, best[g].idx, x);
         f = value_at(fc, x);
         /* Levenberg-Marquardt to the basin's minimum; where it ends on a
          * bound (the clamped coordinates' Jacobian vanishes there)
          * Nelder-Mead, without derivatives, takes it off, and LM
          * finishes */
-        rc = levenberg(&sp, x, &f);
+        rc = levenberg(&sp, x, &f, &done);
         fl = f;
-        if (rc == BF_OK && on_bound(&sp, x)) {
+        if (rc == BF_OK && on_bound(&sp, x) &&
+            !(done && bound_kkt(&sp, x, f))) {
             rc = polish(&sp, x, step, &f);
         }
         if (rc == BF_OK && f < fl) {
-            rc = levenberg(&sp, x, &f);
+            rc = levenberg(&sp, x, &f, NULL);
         }
         if (rc == BF_OK && f < fbest) {
             fbest = f;
