@@ -652,6 +652,26 @@ static int bound_kkt(const space_t *sp, const double *x, double f)
     return 1;
 }
 
+/* From x (f its value; both replaced when it ends lower) to its basin's
+ * minimum: Levenberg-Marquardt; where it ends on a bound (the clamped
+ * coordinates' Jacobian vanishes there) and is not plainly the minimum
+ * there, Nelder-Mead, without derivatives, takes it off, and LM
+ * finishes. */
+static int descend(space_t *sp, const double *step, double *x, double *f)
+{
+    double fl;
+    int done;
+    int rc = levenberg(sp, x, f, &done);
+    fl = *f;
+    if (rc == BF_OK && on_bound(sp, x) && !(done && bound_kkt(sp, x, *f))) {
+        rc = polish(sp, x, step, f);
+    }
+    if (rc == BF_OK && *f < fl) {
+        rc = levenberg(sp, x, f, NULL);
+    }
+    return rc;
+}
+
 /* The separable ngan fit on fc (fc->pb's objective ngan). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
                        bf_fit_result *result)
@@ -701,23 +721,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
-        double fl;
-        int done;
         point_of(&sp, best[g].idx, x);
         f = value_at(fc, x);
-        /* Levenberg-Marquardt to the basin's minimum; where it ends on a
-         * bound (the clamped coordinates' Jacobian vanishes there)
-         * Nelder-Mead, without derivatives, takes it off, and LM
-         * finishes */
-        rc = levenberg(&sp, x, &f, &done);
-        fl = f;
-        if (rc == BF_OK && on_bound(&sp, x) &&
-            !(done && bound_kkt(&sp, x, f))) {
-            rc = polish(&sp, x, step, &f);
-        }
-        if (rc == BF_OK && f < fl) {
-            rc = levenberg(&sp, x, &f, NULL);
-        }
+        rc = descend(&sp, step, x, &f);
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);
@@ -726,6 +732,94 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     fill_scales(fc, xbest);
     memcpy(result->param, xbest, sizeof xbest);
     result->lse = fbest;
+    fc->lin_mask = 0;
+    return rc;
+}
+
+/* ==== dense data ========================================================= */
+
+/* Above DENSE_K configurations (every cell of a MERL table, issue 17
+ * item 10) the grid and the descents from its minima run on about
+ * DENSE_SUB of them, every s-th in index order, and only their best end
+ * descends again on all of them: the grid and the starts only pick the
+ * basin, which a regular subsample of dense data shows as well, at 1/s
+ * of the cost. The grid's reported value is the full data's at its
+ * point. */
+#define DENSE_K 65536
+#define DENSE_SUB 16384
+
+/* varpro_ngan of fc's problem on its configurations 0, s, 2s, ... */
+static int ngan_subsample(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
+                          bf_fit_result *result)
+{
+    const bf_problem *pb = fc->pb;
+    size_t stride = (pb->n + DENSE_SUB - 1) / DENSE_SUB;
+    size_t n = (pb->n + stride - 1) / stride;
+    bf_geom *geom = malloc(n * sizeof *geom);
+    double *data = malloc(2 * n * sizeof *data);
+    bf_problem sub = *pb;
+    bf__cset cs;
+    bf__prep pm;
+    bf__fitctx sfc;
+    size_t i;
+    int rc = BF_ENOMEM;
+    if (geom != NULL && data != NULL) {
+        for (i = 0; i < n; i++) {
+            geom[i] = pb->geom[i * stride];
+            data[i] = pb->data[i * stride];
+            data[n + i] = pb->weight != NULL ? pb->weight[i * stride] : 1.0;
+        }
+        sub.n = n;
+        sub.geom = geom;
+        sub.data = data;
+        sub.weight = pb->weight != NULL ? data + n : NULL;
+        rc = bf__cset_init(&cs, n, geom);
+    }
+    if (rc == BF_OK) {
+        rc = bf__prep_init(&pm, pb->type, &cs);
+        if (rc == BF_OK) {
+            rc = bf__fitctx_init(&sfc, &pm);
+            if (rc == BF_OK) {
+                bf__fitctx_use(&sfc, &sub);
+                rc = varpro_ngan(&sfc, lin, grid, result);
+                fc->n_eval += sfc.n_eval;
+                bf__fitctx_free(&sfc);
+            }
+            bf__prep_free(&pm);
+        }
+        bf__cset_free(&cs);
+    }
+    free(geom);
+    free(data);
+    return rc;
+}
+
+/* The separable ngan fit of dense data: the subsample's, then one descent
+ * on every configuration. */
+static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
+                        bf_fit_result *result)
+{
+    space_t sp;
+    double step[BF_MAX_PARAMS];
+    double x[BF_MAX_PARAMS];
+    double f;
+    int rc = ngan_subsample(fc, lin, grid, result);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    fc->lin_mask = lin;
+    space_init(&sp, fc, fc->pb->free_mask & ~lin);
+    grid_steps(&sp, step);
+    if (grid != NULL) {
+        fill_scales(fc, grid->param);
+        grid->lse = value_at(fc, grid->param);
+    }
+    memcpy(x, result->param, sizeof x);
+    f = value_at(fc, x);
+    rc = descend(&sp, step, x, &f);
+    fill_scales(fc, x);
+    memcpy(result->param, x, sizeof x);
+    result->lse = f;
     fc->lin_mask = 0;
     return rc;
 }
@@ -757,7 +851,8 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
     ngan = *pb;
     ngan.objective = BF_OBJ_NGAN;
     bf__fitctx_use(fc, &ngan);
-    rc = varpro_ngan(fc, lin, grid, result);
+    rc = (pb->n > DENSE_K ? varpro_dense : varpro_ngan)(fc, lin, grid,
+                                                        result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */
