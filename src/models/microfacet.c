@@ -12,6 +12,7 @@
  *   [3] R. L. Cook, K. E. Torrance, ACM TOG 1(1), 1982 (V-cavity G).
  */
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "models/smith_lobe.h"
@@ -46,10 +47,39 @@ static void zeniths(const bf_geom *g, bf__mf_t *m)
     m->co = z->co;
 }
 
+/* sin(phi_s / 2), cos(phi_s / 2) and cos phi_s of the last PHI_MEMO
+ * azimuths of this thread, direct-mapped by a hash of phi_s's bits: the
+ * albedo's inner quadratures (albedo.c) evaluate the same Gauss-Kronrod
+ * nodes in phi_s at every theta_o. The same bits as computing them. */
+#define PHI_MEMO 2048u
+typedef struct {
+    uint64_t tag; /* the bits of phi_s plus 1; 0: empty */
+    double hs, hc, c;
+} phi_memo_t;
+static _Thread_local phi_memo_t phi_memo[PHI_MEMO];
+
+static void azimuth(double phi, double *hs, double *hc, double *c)
+{
+    uint64_t bits;
+    phi_memo_t *e;
+    memcpy(&bits, &phi, sizeof bits);
+    e = &phi_memo[(bits * UINT64_C(0x9E3779B97F4A7C15)) >> 53];
+    if (e->tag != bits + 1u) {
+        e->tag = bits + 1u;
+        e->hs = sin(0.5 * phi);
+        e->hc = cos(0.5 * phi);
+        e->c = cos(phi);
+    }
+    *hs = e->hs;
+    *hc = e->hc;
+    *c = e->c;
+}
+
 void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
 {
-    double hs = sin(0.5 * g->phi_s);
-    double hc = cos(0.5 * g->phi_s);
+    double hs;
+    double hc;
+    double cp;
     double dso;
     double hxy2;
     double hz;
@@ -57,7 +87,8 @@ void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
     double dz;
     double dxy2;
     zeniths(g, m);
-    m->dxy = -(m->si * m->so) * cos(g->phi_s); /* ix ox + iy oy */
+    azimuth(g->phi_s, &hs, &hc, &cp);
+    m->dxy = -(m->si * m->so) * cp; /* ix ox + iy oy */
     dso = m->so - m->si;
     hz = m->ci + m->co; /* H = i + o */
     if (hz == 0.0) {
