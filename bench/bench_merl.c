@@ -105,7 +105,11 @@ static void write_table(const char *path, const bf_model_type *model,
         die("the model on the cell centres", NULL);
     }
     for (k = 0; k < n; k++) {
-        double brdf = f[k] / fmax(cos(g[k].theta_i), 1e-300); /* SPEC §2 */
+        /* SPEC §2: a diffuse model's value is BRDF cos theta_i; a
+         * specular model's is the BRDF (sr^-1, SPEC §9) */
+        double brdf = model->kind == BF_MODEL_SPECULAR
+                          ? f[k]
+                          : f[k] / fmax(cos(g[k].theta_i), 1e-300);
         for (j = 0; j < 3; j++) {
             raw[j * N_CELLS + at[k]] = brdf / scale[j];
         }
