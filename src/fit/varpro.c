@@ -23,11 +23,14 @@
  *   ngan: S = sum w (rho_hat - rho)^2, reported E = sqrt(S / K) (SPEC §10)
  * The other free parameters: a product grid over their domains (log-spaced
  * where the domain is positive and spans a factor 50 or more: alpha in
- * [1e-3, 2], the exponents), then Nelder-Mead from the grid's best local
- * minima in the same coordinates (ln x where the grid is log-spaced), the
- * scales re-solved at every trial point; every trial point clamped into
- * the domain. cuberoot, log1p: the ngan solution starts Nelder-Mead over
- * every free parameter, scales included.
+ * [1e-3, 2], the exponents), then Levenberg-Marquardt from the grid's
+ * best local minima in the same coordinates (ln x where the grid is
+ * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
+ * the scales re-solved at every trial point; every trial point clamped
+ * into the domain. Dense data: the grid and those descents on a regular
+ * subsample, one descent on all (doc/methods.md). cuberoot, log1p: the
+ * ngan solution starts Nelder-Mead over every free parameter, scales
+ * included.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
