@@ -135,83 +135,21 @@ static const truth_t truths[] = {
 };
 #define N_TRUTHS (sizeof truths / sizeof truths[0])
 
-/* The configurations (measurement frame, radians): theta_i 5..75 deg by
- * 10; at each, 25 directions within 4 deg and 6 deg of azimuth of the
- * mirror direction (theta_i, phi_i + pi) and 25 spread over the
- * hemisphere: half near the mirror direction, all with theta <= 80 deg
- * (SPEC §10 uses every one). */
-#define N_PER 50
-#define N_INC 8
-#define N_CONF (N_PER * N_INC)
+#define N_CONF BF_TEST_GLOSSY_NCONF
 
-static void configs(double *at)
-{
-    size_t n = 0;
-    int a;
-    for (a = 0; a < N_INC; a++) {
-        double ti = (5.0 + 10.0 * a) * DEG;
-        int u;
-        int w;
-        for (u = -2; u <= 2; u++) {
-            for (w = -2; w <= 2; w++) {
-                at[4 * n + 0] = ti;
-                at[4 * n + 1] = 0.0;
-                at[4 * n + 2] = fabs(ti + 2.0 * u * DEG);
-                at[4 * n + 3] = PI + 3.0 * w * DEG;
-                n++;
-            }
-        }
-        for (u = 0; u < 5; u++) {
-            for (w = 0; w < 5; w++) {
-                at[4 * n + 0] = ti;
-                at[4 * n + 1] = 0.0;
-                at[4 * n + 2] = (5.0 + 15.0 * u) * DEG;
-                at[4 * n + 3] = (72.0 * w + 10.0) * DEG;
-                n++;
-            }
-        }
-    }
-    cr_assert_eq(n, N_CONF);
-}
-
-/* Writes every truth's BRDF (bf_model_eval, sr^-1) at the configurations
- * as one dataset, through the library's tidy CSV writer. */
+/* Writes every truth's BRDF at bf_test_glossy_configs as one dataset,
+ * each material named by its model. */
 static void write_csv(const char *path)
 {
-    static double at[4 * N_CONF];
-    static double v[N_TRUTHS][N_CONF];
-    bf_geom g[N_CONF];
-    bf_dataset *ds = bf_dataset_alloc();
-    size_t set;
+    bf_test_material mat[N_TRUTHS];
     size_t i;
-    size_t k;
-    FILE *fp;
-    cr_assert_not_null(ds);
-    configs(at);
-    cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
-    for (k = 0; k < N_CONF; k++) {
-        g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
-                                        at[4 * k + 2], at[4 * k + 3]);
-    }
     for (i = 0; i < N_TRUTHS; i++) {
-        bf_material_desc d;
-        const bf_model_type *t = bf_model_find(truths[i].model);
-        cr_assert_not_null(t, "%s", truths[i].model);
-        cr_assert_eq(bf_model_eval(t, truths[i].param, N_CONF, g, v[i]),
-                     BF_OK, "%s", truths[i].model);
-        memset(&d, 0, sizeof d);
-        d.name = truths[i].model;
-        d.format = BF_FORMAT_MEMORY;
-        d.set = set;
-        d.n_channels = 1;
-        d.values = v[i];
-        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+        mat[i].name = truths[i].model;
+        mat[i].type = bf_model_find(truths[i].model);
+        mat[i].param = truths[i].param;
+        cr_assert_not_null(mat[i].type, "%s", truths[i].model);
     }
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_glossy_csv(path, N_TRUTHS, mat);
 }
 
 Test(composite, recovery_ngan_through_csv_and_cli, .timeout = 300)
@@ -254,6 +192,94 @@ Test(composite, recovery_ngan_through_csv_and_cli, .timeout = 300)
                       tr->model, bf_test_csv_num(q, "lse"));
             bf_assert_rel(bf_test_csv_num(q, "value"), tr->param[j], 1e-5);
         }
+    }
+}
+
+/* ==== dense data: the subsample's grid (varpro.c, above 65536) ========== */
+
+/* theta_i, theta_o on 30 and 40 zeniths below 80 deg, phi_o on 60
+ * azimuths: K = 72,000, above the separable fit's dense threshold, so the
+ * grid and its starts run on a subsample and one descent on all of them.
+ * Noise-free LAMBERT+GGX must come back as exactly as the small set's. */
+#define DENSE_TI 30
+#define DENSE_TO 40
+#define DENSE_PHI 60
+#define DENSE_N (DENSE_TI * DENSE_TO * DENSE_PHI)
+
+Test(composite, dense_recovery_through_the_subsample, .timeout = 300)
+{
+    static const double truth[4] = {0.3, 0.8, 0.15, 0.05};
+    static const char *const name[4] = {"rho_d", "rho_s", "alpha", "F0"};
+    const bf_model_type *t = bf_model_find("LAMBERT+GGX");
+    const char *dir = bf_test_tmpdir();
+    double *at = malloc(4 * DENSE_N * sizeof *at);
+    double *v = malloc(DENSE_N * sizeof *v);
+    bf_geom *g = malloc(DENSE_N * sizeof *g);
+    bf_dataset *ds = bf_dataset_alloc();
+    bf_material_desc d;
+    const char *err = NULL;
+    char csv[512];
+    char out[512];
+    size_t set;
+    size_t n = 0;
+    size_t j;
+    int a;
+    int b;
+    int c;
+    int rc;
+    FILE *fp;
+    cr_assert(at != NULL && v != NULL && g != NULL && ds != NULL && t);
+    for (a = 0; a < DENSE_TI; a++) {
+        for (b = 0; b < DENSE_TO; b++) {
+            for (c = 0; c < DENSE_PHI; c++) {
+                at[4 * n + 0] = (1.0 + 78.0 * a / (DENSE_TI - 1)) * DEG;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = (1.0 + 78.0 * b / (DENSE_TO - 1)) * DEG;
+                at[4 * n + 3] = 0.5 * DEG + 2.0 * PI * c / DENSE_PHI;
+                g[n] = bf_geom_from_measurement(at[4 * n], at[4 * n + 1],
+                                                at[4 * n + 2],
+                                                at[4 * n + 3]);
+                n++;
+            }
+        }
+    }
+    cr_assert_eq(bf_model_eval(t, truth, DENSE_N, g, v), BF_OK);
+    cr_assert_eq(bf_dataset_add_configs(ds, DENSE_N, at, &set, NULL), BF_OK);
+    memset(&d, 0, sizeof d);
+    d.name = "dense";
+    d.format = BF_FORMAT_MEMORY;
+    d.set = set;
+    d.n_channels = 1;
+    d.values = v;
+    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+    snprintf(csv, sizeof csv, "%s/dense.csv", dir);
+    snprintf(out, sizeof out, "%s/dense", dir);
+    fp = fopen(csv, "w");
+    cr_assert_not_null(fp);
+    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
+    cr_assert_eq(fclose(fp), 0);
+    bf_dataset_free(ds);
+    free(at);
+    free(v);
+    free(g);
+    {
+        const char *argv[] = {"compare", "--input", csv, "--models",
+                              "LAMBERT+GGX", "--fit", "exact",
+                              "--objective", "ngan", "--folds", "0",
+                              "--out", out, "--quiet", NULL};
+        rc = bf_test_run_cli(argv, NULL, &err);
+    }
+    cr_assert_eq(rc, 0, "brdffit compare: %s", err);
+    bf_test_csv_load(out, "fits.csv");
+    for (j = 0; j < 4; j++) {
+        size_t q = bf_test_csv_find("1", "LAMBERT+GGX", name[j]);
+        cr_assert_eq((size_t)bf_test_csv_num(q, "k"), DENSE_N);
+        cr_assert(bf_test_csv_num(q, "lse") < 1e-9, "E %g",
+                  bf_test_csv_num(q, "lse"));
+        /* the grid's value is the whole data's at its point */
+        cr_assert(bf_test_csv_num(q, "grid_lse") >=
+                  bf_test_csv_num(q, "lse"));
+        bf_assert_rel(bf_test_csv_num(q, "value"), truth[j], 1e-5);
     }
 }
 
