@@ -1393,12 +1393,20 @@ size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
 typedef struct {
     size_t material; /* index in the dataset */
     size_t channel;  /* channel index, or BF_CHANNEL_MEAN */
+    int joint;       /* 1: fitted jointly with the material's other joint
+                        targets (--channel joint, SPEC §9.4): the targets
+                        of one material with joint set, consecutive, share
+                        the shape parameters and each has its own scales
+                        (bf_param.linear) */
 } bf_target;
 
 /* Expands materials (n_materials indices; materials = NULL: every material
  * in order) and a channel request into targets, material-major: NULL or
  * "mean": one target per material on BF_CHANNEL_MEAN; "each": one per
- * channel of each material, in channel order; any other text: that channel
+ * channel of each material, in channel order; "joint": the same targets
+ * as "each" with joint set (SPEC §9.4: one shape for all channels, scales
+ * per channel; every channel's data on the configurations valid on all
+ * of them, as the mean's); any other text: that channel
  * of every material (bf_dataset_channel_find; BF_ENOTFOUND with err->msg
  * naming the first material that lacks it). *out (n_out targets) is
  * allocated with malloc; the caller frees it with free(). */
@@ -1731,6 +1739,10 @@ typedef enum {
 typedef struct {
     size_t row;              /* index into the study's rows */
     bf_fits_kind kind;
+    int joint;               /* 1: a shape parameter shared by the
+                                channels of a joint fit (--channel joint,
+                                SPEC §9.4): channel "joint", written once,
+                                at the fit's first channel's row */
     const char *model;       /* rows[row].type->name */
     const char *parameter;   /* NULL for BF_FITS_NONE */
     const char *unit;

@@ -188,7 +188,7 @@ void bf_test_model_brdf(const bf_model_type *type, const double *param,
 bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
                               const bf_model_type *type, size_t *k)
 {
-    bf_target t = {m, BF_CHANNEL_MEAN};
+    bf_target t = {m, BF_CHANNEL_MEAN, 0};
     bf_study_row row;
     bf_study_spec spec;
     bf_error err;
@@ -270,4 +270,39 @@ FILE *bf_test_membuf(const void *buf, size_t len)
     }
     cr_assert_not_null(fp, "cannot open an in-memory stream");
     return fp;
+}
+
+void bf_test_glossy_configs(double *at, bf_geom *geom)
+{
+    const double deg = M_PI / 180.0;
+    size_t n = 0;
+    int a;
+    for (a = 0; a < 8; a++) {
+        double ti = (5.0 + 10.0 * a) * deg;
+        int u;
+        int w;
+        for (u = -2; u <= 2; u++) {
+            for (w = -2; w <= 2; w++) {
+                at[4 * n + 0] = ti;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = fabs(ti + 2.0 * u * deg);
+                at[4 * n + 3] = M_PI + 3.0 * w * deg;
+                n++;
+            }
+        }
+        for (u = 0; u < 5; u++) {
+            for (w = 0; w < 5; w++) {
+                at[4 * n + 0] = ti;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = (5.0 + 15.0 * u) * deg;
+                at[4 * n + 3] = (72.0 * w + 10.0) * deg;
+                n++;
+            }
+        }
+    }
+    cr_assert_eq(n, BF_TEST_GLOSSY_NCONF);
+    for (n = 0; n < BF_TEST_GLOSSY_NCONF; n++) {
+        geom[n] = bf_geom_from_measurement(at[4 * n], at[4 * n + 1],
+                                           at[4 * n + 2], at[4 * n + 3]);
+    }
 }

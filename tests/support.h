@@ -103,6 +103,15 @@ bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
                               const bf_model_type *type, size_t *k);
 
 /* Path of a fixture in tests/fixtures (static buffer). */
+/* The configurations of the glossy recovery tests (measurement frame,
+ * radians, 4 per configuration into at): theta_i 5..75 deg by 10; at
+ * each, 25 directions within 4 deg and 6 deg of azimuth of the mirror
+ * direction (theta_i, phi_i + pi) and 25 spread over the hemisphere --
+ * half near the mirror direction, all with theta <= 80 deg (SPEC §10 uses
+ * every one); geom gets them in Beckmann's frame. */
+#define BF_TEST_GLOSSY_NCONF 400
+void bf_test_glossy_configs(double *at, bf_geom *geom);
+
 const char *bf_test_fixture_path(const char *file);
 
 /* Loads CURET's table.txt and abrdf.dat, failing the test loudly. */

@@ -324,7 +324,14 @@ int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
                     "by its maximum over the K used configurations (SPEC "
                     "§2)\n");
     }
-    if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
+    if (o->channel != NULL && strcmp(o->channel, "joint") == 0) {
+        fprintf(fp, "Channel: joint (SPEC §9.4) -- one shape (every "
+                    "parameter but the scales) for all channels, the "
+                    "scales (rho_d, rho_s, A, Rd) per channel; one E = "
+                    "sqrt(S / (K C)) over the K configurations of all C "
+                    "channels, S summed over them; fits.csv: the shape on "
+                    "channel 'joint', the scales on each channel's name\n");
+    } else if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
         fprintf(fp, "Channel: %s\n", o->channel);
     }
     if (!o->exact) {
