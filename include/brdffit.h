@@ -1621,7 +1621,14 @@ typedef struct {
  * the targets' data are rho as measured on the configurations with
  * theta_i, theta_o <= 80 degrees (K counts those), and the lse of the
  * stats' grid and refined optima and of the rows is the value SPEC §10
- * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S. */
+ * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S.
+ * Joint targets (bf_target.joint, SPEC §9.4) are fitted together: one
+ * shape, each channel's scales solved exactly (ngan only), S summed over
+ * the channels, each channel's row and stats holding the shape and its
+ * own scales, lse E = sqrt(S / (K C)), stats' n = K C; BF_EINVAL (err->msg
+ * why) under another objective or for a model without a free scale
+ * (bf_param.linear). bf_study_run refuses joint targets (BF_EINVAL): the
+ * paper's protocol max-normalises the scales away. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
@@ -1782,7 +1789,13 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
  * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
  * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
  * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
- * lines of bf_fits_lines. rows: from
+ * lines of bf_fits_lines. A joint fit (bf_target.joint, SPEC §9.4) writes
+ * its shape parameters once, on channel "joint", at its first channel's
+ * row, and each channel's scales (bf_param.linear) on the channel's name;
+ * every line's lse is the fit's E = sqrt(S / (K C)) over the K
+ * configurations of all C channels (SPEC §10), k is K, n_params, aic and
+ * bic those of the whole fit (K C values, the shape and C sets of
+ * scales). rows: from
  * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
  * (the analysis columns empty); opts: the analysis's, or NULL (objective
  * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields
