@@ -240,7 +240,13 @@ static const char *table3_label(bf_objective obj)
 static void table3_title(const bf_rep_study *st, int file, FILE *fp)
 {
     const char *label = table3_label(st->opts.objective);
-    if (bf_objective_keeps_scale(st->opts.objective)) {
+    if (st->opts.channel != NULL && strcmp(st->opts.channel, "joint") == 0) {
+        /* SPEC §9.4: one E per joint fit, the same on its channels' rows */
+        fprintf(fp, "Table 3: E = sqrt(S / (K C)) of the ngan objective "
+                    "of each joint fit, S over the K used configurations "
+                    "(theta_i, theta_o <= 80 deg) of all C channels; the "
+                    "same on every channel's row (SPEC §9.4, §10)\n\n");
+    } else if (bf_objective_keeps_scale(st->opts.objective)) {
         fprintf(fp, "Table 3: %s (over each sample's used configurations "
                     "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
                     "SPEC §10)\n\n",

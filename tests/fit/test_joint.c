@@ -251,3 +251,45 @@ Test(joint, errors_where_joint_cannot_apply, .timeout = 120)
                   err);
     }
 }
+
+Test(joint, report_draws_every_channel_from_the_shared_shape, .timeout = 300)
+{
+    /* the report's figures of a joint fit: one plane-of-incidence figure
+     * per channel (its curve the shared shape with its scales), fits.csv
+     * with the shape on "joint" */
+    static const char *const fig[] = {"plane_sample1_R.png",
+                                      "plane_sample1_G.png",
+                                      "plane_sample1_B.png"};
+    const char *dir = bf_test_tmpdir();
+    char csv[512];
+    char out[512];
+    char path[700];
+    const char *err = NULL;
+    size_t lines;
+    size_t i;
+    snprintf(csv, sizeof csv, "%s/joint.csv", dir);
+    snprintf(out, sizeof out, "%s/report", dir);
+    write_csv(csv, truth);
+    {
+        const char *argv[] = {"report",    "--input",     csv,
+                              "--models",  "LAMBERT+GGX", "--channel",
+                              "joint",     "--fit",       "exact",
+                              "--objective", "ngan",      "--format",
+                              "png",       "--out",       out,
+                              "--quiet",   NULL};
+        cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "%s", err);
+    }
+    for (i = 0; i < sizeof fig / sizeof fig[0]; i++) {
+        size_t len = 0;
+        snprintf(path, sizeof path, "%s/figures/%s", out, fig[i]);
+        cr_assert_not_null(bf_test_slurp(path, &len), "%s", fig[i]);
+        cr_assert(len > 1000, "%s: %zu bytes", fig[i], len);
+    }
+    lines = bf_test_csv_load(out, "fits.csv");
+    bf_assert_rel(bf_test_csv_num(row_of("joint", "alpha", lines), "value"),
+                  truth[0][2], 1e-5);
+    snprintf(path, sizeof path, "%s/report.html", out);
+    cr_assert(bf_test_slurp(path, NULL) != NULL &&
+                  strstr(bf_test_slurp(path, NULL), "joint") != NULL,
+              "the page names the joint fit");
+}
