@@ -1638,7 +1638,8 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
  * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
  * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
- * not be estimated); BF_EINVAL for a pair that was not analysed. */
+ * not be estimated); BF_EINVAL for a pair that was not analysed or
+ * that is a joint fit's (bf_target.joint). */
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
                        const bf_study_row *rows, const bf_fit_stats *stats,
