@@ -205,6 +205,10 @@ Test(joint, reported_e_is_over_every_channel_value, .timeout = 300)
     cr_assert(e > 1e-4, "the channels disagree: E %g", e);
     /* the parameters are written with 10 digits */
     bf_assert_rel(e, sqrt(sum / (N_CONF * N_CH)), 1e-6);
+    /* AIC on the K C values with the shape's 2 and every channel's 2
+     * scales: n ln(S / n) + 2 k, S / n = E^2 */
+    bf_assert_rel(bf_test_csv_num(row_of("B", "rho_s", lines), "aic"),
+                  N_CONF * N_CH * log(e * e) + 2.0 * (2 + 2 * N_CH), 1e-8);
 }
 
 Test(joint, errors_where_joint_cannot_apply, .timeout = 120)
