@@ -137,39 +137,19 @@ static const truth_t truths[] = {
 
 #define N_CONF BF_TEST_GLOSSY_NCONF
 
-/* Writes every truth's BRDF (bf_model_eval, sr^-1) at the configurations
- * as one dataset, through the library's tidy CSV writer. */
+/* Writes every truth's BRDF at bf_test_glossy_configs as one dataset,
+ * each material named by its model. */
 static void write_csv(const char *path)
 {
-    static double at[4 * N_CONF];
-    static double v[N_TRUTHS][N_CONF];
-    bf_geom g[N_CONF];
-    bf_dataset *ds = bf_dataset_alloc();
-    size_t set;
+    bf_test_material mat[N_TRUTHS];
     size_t i;
-    FILE *fp;
-    cr_assert_not_null(ds);
-    bf_test_glossy_configs(at, g);
-    cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
     for (i = 0; i < N_TRUTHS; i++) {
-        bf_material_desc d;
-        const bf_model_type *t = bf_model_find(truths[i].model);
-        cr_assert_not_null(t, "%s", truths[i].model);
-        cr_assert_eq(bf_model_eval(t, truths[i].param, N_CONF, g, v[i]),
-                     BF_OK, "%s", truths[i].model);
-        memset(&d, 0, sizeof d);
-        d.name = truths[i].model;
-        d.format = BF_FORMAT_MEMORY;
-        d.set = set;
-        d.n_channels = 1;
-        d.values = v[i];
-        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+        mat[i].name = truths[i].model;
+        mat[i].type = bf_model_find(truths[i].model);
+        mat[i].param = truths[i].param;
+        cr_assert_not_null(mat[i].type, "%s", truths[i].model);
     }
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_glossy_csv(path, N_TRUTHS, mat);
 }
 
 Test(composite, recovery_ngan_through_csv_and_cli, .timeout = 300)

@@ -53,7 +53,11 @@ static void write_csv(const char *path, const double (*p)[4])
     FILE *fp;
     cr_assert_not_null(ds);
     cr_assert_not_null(t);
-    bf_test_glossy_configs(at, geom);
+    bf_test_glossy_configs(at);
+    for (k = 0; k < N_CONF; k++) {
+        geom[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
+                                           at[4 * k + 2], at[4 * k + 3]);
+    }
     cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
     for (c = 0; c < N_CH; c++) {
         cr_assert_eq(bf_model_eval(t, p[c], N_CONF, geom, v), BF_OK);
