@@ -180,7 +180,7 @@ static double time_study(const bf_dataset *ds,
                          const bf_model_type *const *models, size_t n_models,
                          int threads, int reps, bf_study_row *rows)
 {
-    bf_target t = {0, BF_CHANNEL_MEAN};
+    bf_target t = {0, BF_CHANNEL_MEAN, 0};
     bf_study_spec spec;
     double *tm = malloc((size_t)reps * sizeof *tm);
     double med;
@@ -234,7 +234,7 @@ static bf_dataset *subset(const bf_merl *m, const bf_dataset *ds, size_t step,
  * numpy_cells.py. */
 static void dump_cells(const bf_dataset *ds, const char *path)
 {
-    bf_target t = {0, BF_CHANNEL_MEAN};
+    bf_target t = {0, BF_CHANNEL_MEAN, 0};
     bf_study_spec spec;
     size_t n = bf_dataset_nconf(ds, 0);
     size_t *sel = malloc(n * sizeof *sel);

@@ -70,6 +70,8 @@
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
+# joint/report_draws... draws every figure of a joint fit's report; the
+# joint fit itself runs under valgrind in joint's other tests.
 # plane_abs/description_under_ngan runs the report through the CLI on a
 # Cornell file (1439 configurations, every figure); the figure data it
 # describes are checked under valgrind by plane_abs's library tests.
@@ -158,6 +160,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     test_stream
     cli_calibrate/writes_coverage_and_bias_of_every_fitted_parameter
     plane_abs/description_under_ngan
+    joint/report_draws_every_channel_from_the_shared_shape
     report/writes_every_figure_valid_and_sized_as_the_page_says"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to

@@ -21,6 +21,10 @@
  *      normal equations when it is >= 0, else the better of the two
  *      one-column solutions clamped at 0 -- the four active sets)
  *   ngan: S = sum w (rho_hat - rho)^2, reported E = sqrt(S / K) (SPEC §10)
+ *   joint (--channel joint, SPEC §9.4; Ngan et al. 2005): C channels'
+ *     rho^(c) on the same K configurations, one shape, the scales
+ *     theta^(c) solved per channel on the shared columns c_j,
+ *     S = sum_c sum_k w (rho_hat^(c) - rho^(c))^2, E = sqrt(S / (K C))
  * The other free parameters: a product grid over their domains (log-spaced
  * where the domain is positive and spans a factor 50 or more: alpha in
  * [1e-3, 2], the exponents), then Levenberg-Marquardt from the grid's
@@ -144,6 +148,7 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
     size_t n_l = 0;
     size_t j;
     size_t q;
+    size_t b;
     double t[MAX_LIN] = {0.0, 0.0};
     int rc;
     for (j = 0; j < pb->type->p; j++) {
@@ -177,22 +182,32 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
             }
         }
     }
-    nnls(pb, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
-    {
+    /* per block (a joint fit's channel, SPEC §9.4; one block otherwise):
+     * its scales by NNLS on the shared columns, its curve, its S; the
+     * blocks' S summed */
+    *value = 0.0;
+    for (b = 0; b < fc->blocks; b++) {
+        bf_problem sub = *pb;
+        double *curve = fc->curve + b * n;
         size_t k;
+        sub.data = pb->data + b * n;
+        nnls(&sub, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
         for (k = 0; k < n; k++) { /* the curve at the solved scales */
             double v = col[0][k];
             for (q = 0; q < n_l; q++) {
                 v += t[q] * col[q + 1][k];
             }
-            fc->curve[k] = v;
+            curve[k] = v;
         }
+        for (q = 0; q < n_l; q++) {
+            fc->block_lin[b * BF_MAX_PARAMS + lj[q]] = t[q];
+            if (b == 0) {
+                fc->lin[lj[q]] = t[q];
+            }
+        }
+        *value += bf__objective(&sub, fc->pm->cs->cti, NULL, curve,
+                                fc->scratch);
     }
-    for (q = 0; q < n_l; q++) {
-        fc->lin[lj[q]] = t[q];
-    }
-    *value = bf__objective(pb, fc->pm->cs->cti, NULL, fc->curve,
-                           fc->scratch);
     return isfinite(*value) ? BF_OK : BF_EDOM;
 }
 
@@ -392,8 +407,8 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     if (bf__fit_value(sp->fc, x, &v) != BF_OK || !isfinite(v)) {
         return GSL_EDOM;
     }
-    for (k = 0; k < pb->n; k++) {
-        double w = pb->weight != NULL ? sqrt(pb->weight[k]) : 1.0;
+    for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
+        double w = pb->weight != NULL ? sqrt(pb->weight[k % pb->n]) : 1.0;
         gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
     }
     return GSL_SUCCESS;
@@ -413,14 +428,15 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     double fy;
     int info;
     size_t a;
+    size_t n_res = sp->fc->pb->n * sp->fc->blocks;
     if (done != NULL) {
         *done = 0;
     }
-    if (sp->m == 0 || sp->fc->pb->n <= sp->m) {
+    if (sp->m == 0 || n_res <= sp->m) {
         return BF_OK;
     }
-    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm,
-                                   sp->fc->pb->n, sp->m);
+    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n_res,
+                                   sp->m);
     u = gsl_vector_alloc(sp->m);
     if (w == NULL || u == NULL) {
         gsl_multifit_nlinear_free(w);
@@ -440,7 +456,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     }
     memset(&fdf, 0, sizeof fdf);
     fdf.f = f_lm;
-    fdf.n = sp->fc->pb->n;
+    fdf.n = n_res;
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
@@ -739,6 +755,49 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     return rc;
 }
 
+/* The free scales of pb (bf_param.linear) as a mask; *n_lin their number. */
+static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
+{
+    unsigned lin = 0;
+    size_t j;
+    *n_lin = 0;
+    for (j = 0; j < pb->type->p; j++) {
+        if (((pb->free_mask >> j) & 1u) && pb->type->param[j].linear) {
+            lin |= 1u << j;
+            (*n_lin)++;
+        }
+    }
+    return lin;
+}
+
+int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
+{
+    const bf_problem *pb = fc->pb;
+    size_t n_lin;
+    unsigned lin = lin_of(pb, &n_lin);
+    unsigned keep = fc->lin_mask;
+    size_t b;
+    size_t j;
+    double v;
+    int rc;
+    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
+        n_lin > MAX_LIN || n_lin == 0) {
+        return BF_EINVAL;
+    }
+    fc->lin_mask = lin;
+    rc = bf__varpro_value(fc, param, &v);
+    fc->lin_mask = keep;
+    for (b = 0; rc == BF_OK && b < fc->blocks; b++) {
+        for (j = 0; j < BF_MAX_PARAMS; j++) {
+            out[b * BF_MAX_PARAMS + j] =
+                j < pb->type->p && ((lin >> j) & 1u)
+                    ? fc->block_lin[b * BF_MAX_PARAMS + j]
+                    : param[j];
+        }
+    }
+    return rc;
+}
+
 /* ==== dense data ========================================================= */
 
 /* Above DENSE_K configurations (every cell of a MERL table, issue 17
@@ -832,8 +891,8 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
 {
     const bf_problem *pb = fc->pb;
     bf_problem ngan;
-    unsigned lin = 0;
-    size_t n_lin = 0;
+    size_t n_lin;
+    unsigned lin = lin_of(pb, &n_lin);
     size_t eval0 = fc->n_eval;
     size_t j;
     int rc;
@@ -842,20 +901,18 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
         !bf_objective_keeps_scale(pb->objective)) {
         return BF_EINVAL;
     }
-    for (j = 0; j < pb->type->p; j++) {
-        if (((pb->free_mask >> j) & 1u) && pb->type->param[j].linear) {
-            lin |= 1u << j;
-            n_lin++;
-        }
-    }
-    if (n_lin > MAX_LIN) {
+    if (n_lin > MAX_LIN ||
+        (fc->blocks > 1 && (n_lin == 0 || pb->objective != BF_OBJ_NGAN))) {
+        /* a joint fit solves each channel's scales by least squares */
         return BF_EINVAL;
     }
     ngan = *pb;
     ngan.objective = BF_OBJ_NGAN;
     bf__fitctx_use(fc, &ngan);
-    rc = (pb->n > DENSE_K ? varpro_dense : varpro_ngan)(fc, lin, grid,
-                                                        result);
+    /* dense data on a subsample; a joint fit's channels always whole
+     * (the subsample holds one channel) */
+    rc = (pb->n > DENSE_K && fc->blocks == 1 ? varpro_dense : varpro_ngan)(
+        fc, lin, grid, result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */

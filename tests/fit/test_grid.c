@@ -624,7 +624,7 @@ Test(grid, study_reports_a_missing_sample_and_missing_on_parameters)
     bf_brdf *b = bf_test_load_abrdf();
     bf_dataset *ds = NULL;
     const bf_model_type *models[1] = {bf_model_on};
-    bf_target targets[1] = {{61, BF_CHANNEL_MEAN}}; /* 61 materials: 0-60 */
+    bf_target targets[1] = {{61, BF_CHANNEL_MEAN, 0}}; /* 61 materials: 0-60 */
     bf_study_row rows[1];
     bf_study_spec spec;
     bf_error err;
