@@ -96,7 +96,7 @@ typedef struct {
 } bf_geom;
 
 /* Wraps an angle to (-pi, pi]. */
-double bf_wrap_angle(double a);
+double bf_geom_wrap_angle(double a);
 
 /* Converts a configuration in CURET's sample frame (view theta_v, phi_v;
  * illumination theta_i, phi_i) to Beckmann's frame (SPEC §1.3):
@@ -404,83 +404,6 @@ int bf_model_eval_work(const bf_model_type *type, const double *param,
 /* The number of configurations in CURET's table.txt. */
 #define BF_CURET_NCONF 205
 
-/* A configuration table: rows "index theta_v phi_v theta_i phi_i" in CURET's
- * sample frame (SPEC §1.3). Opaque; owns memory. */
-typedef struct bf_table bf_table;
-
-/* Reads a configuration table from fp (name is used in messages). Indices
- * must run 1..N in order. Returns BF_OK and *out (free with bf_table_free),
- * or BF_EPARSE/BF_EIO/BF_ENOMEM with err filled. Each row has exactly 5
- * numbers; zeniths must lie in [0, pi/2] and azimuths in [-2 pi, 2 pi], up
- * to 1e-9 rad (a zenith within that tolerance outside [0, pi/2] is clamped
- * onto it). An empty file is BF_EPARSE "empty file" at line 0. */
-int bf_table_read(FILE *fp, const char *name, bf_table **out, bf_error *err);
-
-/* Opens path and calls bf_table_read. */
-int bf_table_load(const char *path, bf_table **out, bf_error *err);
-
-/* Frees t; NULL does nothing. */
-void bf_table_free(bf_table *t);
-
-/* Number of configurations. */
-size_t bf_table_size(const bf_table *t);
-
-/* Configuration k (0-based) in Beckmann's frame (bf_geom_from_curet).
- * All fields are NaN when k >= bf_table_size(t). */
-bf_geom bf_table_geom(const bf_table *t, size_t k);
-
-/* Configuration k's raw CURET angles: theta_v, phi_v, theta_i, phi_i (NaN
- * when k is out of range). */
-void bf_table_raw(const bf_table *t, size_t k, double raw[4]);
-
-/* Writes the 0-based indices of the configurations that are used by the
- * study into sel (capacity bf_table_size(t)): every configuration that is
- * not specular (SPEC §1.4) and whose theta_i and theta_v are both
- * <= max_theta (pass a value >= pi/2 to keep all). Returns the count. */
-size_t bf_table_select(const bf_table *t, double max_theta, size_t *sel);
-
-/* A BRDF file with rows "sample v1 ... vN" (CURET abrdf/rbrdf/gbrdf/bbrdf
- * layout). Opaque; owns memory. */
-typedef struct bf_brdf bf_brdf;
-
-/* Reads BRDF rows with exactly n_conf values each (n_conf = 0: as many as
- * the first row has, at least one). Sample numbers must be
- * positive, unique and run 1, 2, 3, ... without gaps. Values must be finite.
- * Returns BF_OK and *out (free with bf_brdf_free) or an error with err.
- * Rows may come in any order; they are stored sorted by sample number, so
- * row r holds sample r + 1. Negative values are kept as measured. Errors
- * (BF_EPARSE): wrong value count, bad number (field named), duplicate
- * sample (at its second line, naming the first), missing sample (line 0,
- * naming the smallest missing number), empty file. */
-int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
-                 bf_error *err);
-int bf_brdf_load(const char *path, size_t n_conf, bf_brdf **out,
-                 bf_error *err);
-void bf_brdf_free(bf_brdf *b);
-
-size_t bf_brdf_count(const bf_brdf *b);      /* number of samples */
-size_t bf_brdf_nconf(const bf_brdf *b);      /* values per sample */
-int bf_brdf_sample(const bf_brdf *b, size_t row);  /* sample number, -1 if
-                                                      row is out of range */
-/* Line of the file that row came from (0 if out of range). */
-long bf_brdf_line(const bf_brdf *b, size_t row);
-/* Values of a row (borrowed until bf_brdf_free); NULL if out of range. */
-const double *bf_brdf_values(const bf_brdf *b, size_t row);
-/* Row of sample number s, or -1. */
-long bf_brdf_find(const bf_brdf *b, int sample);
-
-/* Sample names: rows "sample name [flag]" of samples.tsv (tab-separated,
- * header line). Opaque; owns memory. Fields are split at tabs only (names
- * contain spaces), spaces around fields are trimmed; the first line is a
- * header when its first field is not an integer; flag, when present, is 0
- * or 1; sample numbers are unique, gaps allowed. */
-typedef struct bf_names bf_names;
-int bf_names_read(FILE *fp, const char *name, bf_names **out, bf_error *err);
-int bf_names_load(const char *path, bf_names **out, bf_error *err);
-void bf_names_free(bf_names *nm);
-/* Name of sample s (borrowed), or NULL when unknown or nm is NULL. */
-const char *bf_names_get(const bf_names *nm, int sample);
-
 /* A per-sample table of numbers: rows "sample x1 ... xk" with an optional
  * header line (first field not a number). Used for the Oren-Nayar parameter
  * file ("sample rho sigma", or CURET's op.dat "sample rho sigma kd") and the
@@ -696,13 +619,13 @@ typedef struct {
      * CURET numbers its 205) to leave out as well. */
     const size_t *exclude;
     size_t n_exclude;
-} bf_select;
+} bf_selection;
 
 #define BF_CONE_DEFAULT (-1.0)
 
 /* Fills s with the defaults: BF_CONE_DEFAULT, max_theta pi/2, nothing
  * excluded. */
-void bf_select_init(bf_select *s);
+void bf_selection_init(bf_selection *s);
 
 /* The used configurations of material m for channel c (or
  * BF_CHANNEL_MEAN): valid for that channel, outside the cone, within
@@ -712,7 +635,7 @@ void bf_select_init(bf_select *s);
  * (or CURET's specular test). BF_EINVAL on bad arguments; BF_ENOTFOUND
  * when an excluded number exceeds the material's configuration count. */
 int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
-                      const bf_select *s, size_t *sel, size_t *n,
+                      const bf_selection *s, size_t *sel, size_t *n,
                       size_t *cone_out);
 
 /* Measured radiance of SPEC §2 for material m, channel c, on the n
@@ -763,15 +686,14 @@ int bf_dataset_summary(const bf_dataset *ds, size_t m,
  * error naming both files and both counts. */
 int bf_curet_load(const char *dir, const char *brdf_path, bf_dataset **out,
                   bf_error *err);
-/* CURET's configurations in the measurement frame (SPEC §1.3, §1.5):
- * angles (capacity 4 bf_table_size(t)) gets rows theta_i, phi_i,
- * theta_o = theta_v, phi_o = phi_v. Also MERL's default sampling. */
-void bf_table_angles(const bf_table *t, double *angles);
-
-/* The same from tables already read (names may be NULL); copies them. */
-int bf_curet_dataset(const bf_table *t, const bf_brdf *b,
-                     const bf_names *names, const char *source,
-                     const char *channel, bf_dataset **out, bf_error *err);
+/* CURET's table.txt (path) as a configuration list in the measurement
+ * frame (SPEC §1.3, §1.5): *angles gets n x 4 radians, rows theta_i,
+ * phi_i, theta_o = theta_v, phi_o = phi_v, allocated with malloc (the
+ * caller frees it with free()); the table's syntax and errors are
+ * bf_curet_load's. Also MERL's default sampling (bf_configs_load for a
+ * CSV list). */
+int bf_curet_configs_load(const char *path, double **angles, size_t *n,
+                          bf_error *err);
 
 /* pbrt-v2 / Cornell .brdf (SPEC §8): one material, W spectral channels
  * named by wavelength; name from the file's description comment, else the
@@ -878,12 +800,6 @@ int bf_dataset_load(const char *path, const bf_load_opts *opts,
  * the maximum is not positive or a value is not finite; BF_EINVAL if n = 0. */
 int bf_normalise(size_t n, const double *in, double *out);
 
-/* Measured radiance of SPEC §2: out[j] = v[sel[j]] * cos(theta_i of
- * configuration sel[j]), then normalised over the n selected values.
- * Returns BF_EDOM when the maximum is not positive. */
-int bf_data_radiance(const bf_table *t, const double *v, size_t n,
-                     const size_t *sel, double *out);
-
 /* The result of one fit. */
 typedef struct {
     double param[BF_MAX_PARAMS]; /* all parameters (fitted and fixed) */
@@ -918,27 +834,6 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
                 unsigned free_mask, size_t n, const bf_geom *geom,
                 const double *data, bf_fit_workspace *w,
                 bf_fit_result *result);
-
-/* Precomputed normalised model curves at every point of a parameter grid on
- * one set of configurations. Model curves do not depend on the sample, so a
- * study computes them once and fits every sample against them. The
- * optimum is bf_fit_grid's; for the BK family and LFTG the curves come from
- * vectorised kernels that rearrange the math (no division or pow in the
- * inner loop, libmvec's exp), so the LSE agrees with bf_fit_grid's to a few
- * units in the last place times sqrt(n LSE) (see src/fit/kernels.c).
- * Opaque; owns memory. */
-typedef struct bf_grid bf_grid;
-
-/* Builds the grid (arguments as bf_fit_grid). geom is read here and not
- * kept. Returns NULL with *status set on failure. */
-bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
-                       unsigned free_mask, size_t n, const bf_geom *geom,
-                       int *status);
-void bf_grid_free(bf_grid *gr);
-/* Number of grid points. */
-size_t bf_grid_points(const bf_grid *gr);
-/* Best grid point against normalised data of the grid's n configurations. */
-int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result);
 
 /* ======================================================================
  * --- beyond the paper: objectives, exact refinement, uncertainty and
@@ -1163,7 +1058,7 @@ typedef struct {
     double noise_power;       /* p used (NaN for BF_NOISE_OBJECTIVE) */
     double sigma;             /* noise sd at the fitted curve's maximum,
                                  relative to it: sqrt(RSS_v / (n - k)) /
-                                 scale (bf_calibrate's sigma) */
+                                 scale (bf_fit_calibrate's sigma) */
     double scale;             /* maximum-likelihood scale s */
     bf_fit_result ml;         /* the estimate the intervals are about: the
                                  maximum-likelihood one (BF_NOISE_OBJECTIVE:
@@ -1187,7 +1082,7 @@ int bf_fit_intervals(const bf_problem *pb, const bf_fit_result *best,
                      bf_noise noise, double level, bf_interval *out);
 
 /* What simulated measurements say about a fit's intervals
- * (bf_calibrate, `brdffit calibrate`, doc/methods.md §3). */
+ * (bf_fit_calibrate, `brdffit calibrate`, doc/methods.md §3). */
 typedef struct {
     size_t n_sim;                    /* simulations fitted */
     size_t n_failed;                 /* simulations that could not be */
@@ -1206,7 +1101,7 @@ typedef struct {
     double boot_width[BF_MAX_PARAMS];    /* their median width */
 } bf_calibration;
 
-/* Fewest simulations bf_calibrate accepts. */
+/* Fewest simulations bf_fit_calibrate accepts. */
 #define BF_CALIBRATE_MIN_SIM 10
 
 /* Simulates n_sim measurements of pb's model at truth on pb's
@@ -1221,10 +1116,10 @@ typedef struct {
  * whose bootstrap fails counts as failed). BF_EINVAL for bad arguments or n_sim < 10,
  * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
  * BF_ENOMEM. */
-int bf_calibrate(const bf_problem *pb, const double *truth,
-                 double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, size_t n_boot, unsigned long seed,
-                 double level, bf_calibration *out);
+int bf_fit_calibrate(const bf_problem *pb, const double *truth,
+                     double noise_power, double sigma, bf_noise noise,
+                     size_t n_sim, size_t n_boot, unsigned long seed,
+                     double level, bf_calibration *out);
 
 /* The residual bootstrap under a fit's noise model (doc/methods.md §3,
  * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
@@ -1244,8 +1139,8 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
 /* Information criteria with Gaussian errors (doc/methods.md §4) for a
  * residual sum of squares rss > 0 on n points with k parameters:
  * AIC = n ln(rss/n) + 2k, BIC = n ln(rss/n) + k ln n. */
-double bf_aic(double rss, size_t n, size_t k);
-double bf_bic(double rss, size_t n, size_t k);
+double bf_criterion_aic(double rss, size_t n, size_t k);
+double bf_criterion_bic(double rss, size_t n, size_t k);
 
 /* Number of parameters counted by AIC/BIC for pb: its free parameters,
  * plus 1 for the fitted scale of BF_OBJ_SCALE (the max-normalisation of
@@ -1263,7 +1158,7 @@ int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d);
 /* Deterministic assignment of n configurations to folds (0..folds-1): a
  * fixed-seed (seed) shuffle of 0..n-1, position p in fold p mod folds, so
  * fold sizes differ by at most one. BF_EINVAL unless 2 <= folds <= n. */
-int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
+int bf_fit_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
 
 /* k-fold cross-validated error (doc/methods.md §5): for each fold the
  * model is fitted to the other folds (grid optimum on curves, then
@@ -1412,7 +1307,7 @@ typedef struct {
     const bf_dataset *data;       /* the measurements (borrowed) */
     const bf_target *targets;     /* what to fit */
     size_t n_targets;
-    bf_select select;             /* which configurations are used */
+    bf_selection select;             /* which configurations are used */
     const bf_model_type *const *models; /* models to fit */
     size_t n_models;
     double n_default;             /* refractive index for FC models */
@@ -1617,12 +1512,12 @@ typedef struct {
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
-/* bf_calibrate for pair u (target u / n_models, model u % n_models) of a
+/* bf_fit_calibrate for pair u (target u / n_models, model u % n_models) of a
  * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
  * target's configurations, the pair's refined parameters as the truth and
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
  * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
- * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
+ * bf_fit_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
  * not be estimated); BF_EINVAL for a pair that was not analysed. */
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
@@ -1675,17 +1570,17 @@ int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
  * rank), 0 when m has no value; *best = the model of rank 1 with the
  * fewest parameters (k), the first listed among equals, or SIZE_MAX when
  * none has a value. rank may be NULL (only *best wanted). */
-void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
-             size_t *rank, size_t *best);
+void bf_criterion_rank(const bf_fit_stats *stats, size_t n_models,
+                       bf_criterion c, size_t *rank, size_t *best);
 
 /* The name a win of model best counts for (static storage): the model's,
  * or the model it reduces to when its fit is on that face
  * (BF_STAT_REDUCED: ON at sigma = 0 wins for LAMBERT); NULL when best is
  * SIZE_MAX. models and stats: the target's n_models entries. */
-const char *bf_rank_winner(const bf_model_type *const *models,
-                           const bf_fit_stats *stats, size_t best);
+const char *bf_criterion_winner(const bf_model_type *const *models,
+                                const bf_fit_stats *stats, size_t best);
 
-/* bf_rank for every target of a study analysed with bf_study_analyse
+/* bf_criterion_rank for every target of a study analysed with bf_study_analyse
  * (stats: n_targets x n_models, target-major): rank (n_targets x
  * n_models) and best (n_targets; SIZE_MAX for a target no model could be
  * ranked on), either may be NULL. BF_EINVAL for a NULL spec or stats,
@@ -1695,7 +1590,7 @@ int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
 
 /* The wins of each model over the study's targets by criterion c (the
  * best model of each target, bf_study_rank; a win counts for the model
- * bf_rank_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
+ * bf_criterion_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
  * entries of names (static storage) and wins, most wins first, equal
  * counts in the order of the first win. names and wins need room for
  * 2 * spec->n_models entries. Targets without a best model are not
@@ -1780,18 +1675,54 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);
 
+/* One line of ranking.csv (below): the values of its columns after sample,
+ * name and channel (those of target rows[row].target). NaN and NULL stand
+ * for an empty field. */
+typedef struct {
+    size_t row;              /* index into the study's rows */
+    const char *model;       /* rows[row].type->name */
+    const char *objective;   /* bf_objective_name */
+    const char *fit;         /* "paper" or "exact" */
+    size_t k;                /* parameters counted */
+    size_t n;                /* configurations */
+    double objective_value;  /* the fit's objective */
+    double aic, bic, cv;
+    size_t rank[BF_NCRIT];   /* by bf_criterion (bf_study_rank) */
+    int best[BF_NCRIT];      /* 1 on the target's best model */
+    const char *counts_as;   /* bf_criterion_winner, NULL: none */
+    char flags[BF_FITS_FLAGS_MAX]; /* bf_fit_flags_format */
+    size_t n_params;         /* the model's fitted parameters: slots
+                                0 .. n_params - 1 below */
+    const char *param[BF_MAX_PARAMS];
+    double value[BF_MAX_PARAMS];
+    double ci_low[BF_MAX_PARAMS], ci_high[BF_MAX_PARAMS];
+    double boot_low[BF_MAX_PARAMS], boot_high[BF_MAX_PARAMS];
+} bf_ranking_line;
+
+/* The number P of parameter slots of ranking.csv for a study's rows: the
+ * most fitted parameters of any of its models. */
+size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows);
+
+/* The lines of ranking.csv (below) for an analysed study, in order, into
+ * out (NULL: only counted; otherwise room for the count), their number in
+ * *n. BF_EINVAL for NULL spec, rows, stats or n; BF_ENOMEM. */
+int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_ranking_line *out, size_t *n);
+
 /* Writes ranking.csv for an analysed study: a header line, then one line
  * per (target, model) that was analysed. Columns: sample, name, channel,
  * model, objective, fit, k (parameters counted), n (configurations),
  * objective_value (the fit's objective), aic, bic, cv, rank_aic, rank_bic,
  * rank_cv (bf_study_rank), best_aic, best_bic, best_cv (1 on the target's
  * best model after the tie-break), counts_as (the model its wins count for,
- * bf_rank_winner), flags (bf_fit_flags_format), then for each of the
+ * bf_criterion_winner), flags (bf_fit_flags_format), then for each of the
  * study's P fitted-parameter slots (P = the most fitted parameters of any
  * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_boot_low,
  * pJ_boot_high (J = 1..P: the model's J-th fitted parameter, its value,
- * profile and bootstrap interval; empty beyond the model's own). Formats
- * and errors as bf_fits_csv_write; stats is required. */
+ * profile and bootstrap interval; empty beyond the model's own): the
+ * lines of bf_ranking_lines, P of bf_ranking_slots. Formats and errors as
+ * bf_fits_csv_write; stats is required. */
 int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
                          const bf_study_row *rows, const bf_fit_stats *stats,
                          const bf_analysis_opts *opts);

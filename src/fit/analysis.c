@@ -30,7 +30,7 @@ typedef struct {
     size_t m;
     const double *fixed; /* BF_MAX_PARAMS values (a member's) */
     size_t prep;         /* index into preps */
-    bf_grid *gr;
+    bf__grid *gr;
     int status;          /* of building the grid */
 } group_t;
 
@@ -189,8 +189,8 @@ static int analyse_separable(bf__fitctx *fc, bf_fit_stats *st)
         return rc;
     }
     if (st->refined.lse > 0.0) {
-        st->aic = bf_aic(st->refined.lse, fc->pb->n, st->k);
-        st->bic = bf_bic(st->refined.lse, fc->pb->n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, fc->pb->n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, fc->pb->n, st->k);
     }
     st->done = 1;
     return BF_OK;
@@ -227,7 +227,7 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     /* the grid optima of the data and of every fold's training set: from
      * the group's pass (phase 2), else one pass for this unit */
     cv = opts->folds >= 2 && opts->folds <= pb.n && pb.free_mask != 0;
-    rc = cv ? bf_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
+    rc = cv ? bf_fit_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
     if (rc == BF_OK && r->have[u]) {
         memcpy(grids, r->grids + u * r->per, r->per * sizeof *grids);
     } else if (rc == BF_OK && cv) {
@@ -308,8 +308,8 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         }
     }
     if (st->refined.lse > 0.0) {
-        st->aic = bf_aic(st->refined.lse, pb.n, st->k);
-        st->bic = bf_bic(st->refined.lse, pb.n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, pb.n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, pb.n, st->k);
     }
     if (opts->folds >= 2 && opts->folds <= pb.n) {
         if (pb.free_mask == 0) {
@@ -348,7 +348,8 @@ static void group_optima(run_t *r, size_t g)
     size_t b;
     if (gp->gr == NULL || data == NULL || members == NULL || fold == NULL ||
         (opts->objective != BF_OBJ_MAX && opts->objective != BF_OBJ_COSW) ||
-        (folds > 0 && bf_cv_folds(cs->n, folds, opts->seed, fold) != BF_OK)) {
+        (folds > 0 &&
+         bf_fit_cv_folds(cs->n, folds, opts->seed, fold) != BF_OK)) {
         goto done; /* the units score themselves */
     }
     for (u = 0; u < n_units; u++) {
@@ -527,7 +528,7 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
         rc = r.status;
     }
     for (g = 0; g < r.n_groups; g++) {
-        bf_grid_free(r.groups[g].gr);
+        bf__grid_free(r.groups[g].gr);
     }
     for (s = 0; r.preps != NULL && s < job->n_sets * job->n_models; s++) {
         bf__prep_free(&r.preps[s]);
