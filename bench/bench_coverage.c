@@ -3,7 +3,7 @@
  * fittable registry model (the exact fit's freed inputs free too), at
  * CURET's 198 configurations and at 198 random ones, under relative (5%)
  * and absolute (2% of the maximum) noise, under the objectives max,
- * scale, log and cosw, R simulations each through bf_calibrate (data
+ * scale, log and cosw, R simulations each through bf_fit_calibrate (data
  * normalised by their own maximum, as measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "brdffit.h"
+#include "data/curet.h"
 #include "internal.h"
 
 #define NCONF 198
@@ -149,8 +150,8 @@ int main(int argc, char **argv)
                         }
                         pb.fixed[j] = truth[j];
                     }
-                    rc = bf_calibrate(&pb, truth, npow[q], nsd[q], noise,
-                                      reps, n_boot, seed0 + 10 * g + q, 0.95, &cal);
+                    rc = bf_fit_calibrate(&pb, truth, npow[q], nsd[q], noise,
+                                          reps, n_boot, seed0 + 10 * g + q, 0.95, &cal);
                     if (rc != BF_OK) {
                         printf("| %s | | %s | %s | %s | error %d | | | |\n",
                                v.type.name, gname[g], nname[q],

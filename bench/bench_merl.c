@@ -187,7 +187,7 @@ static double time_study(const bf_dataset *ds,
     int r;
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = &t;
     spec.n_targets = 1;
     spec.models = models;
@@ -247,7 +247,7 @@ static void dump_cells(const bf_dataset *ds, const char *path)
     FILE *fp;
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = &t;
     spec.n_targets = 1;
     if (sel == NULL || d == NULL ||
@@ -333,7 +333,7 @@ int main(int argc, char **argv)
     bf_study_row rows[N_PAPER];
     bf_merl *m = NULL;
     bf_dataset *all = NULL;
-    bf_table *t = NULL;
+    size_t n_curet = 0;
     bf_error err;
     double t_load;
     double t_all;
@@ -398,12 +398,11 @@ int main(int argc, char **argv)
     {
         char tp[4096];
         snprintf(tp, sizeof tp, "%s/table.txt", dir);
-        if (bf_table_load(tp, &t, &err) == BF_OK) {
-            double *at = malloc(4 * bf_table_size(t) * sizeof *at);
-            bf_table_angles(t, at);
-            t_curet = time_dataset(m, bf_table_size(t), at, reps_load, NULL);
-            free(at);
+        double *at = NULL;
+        if (bf_curet_configs_load(tp, &at, &n_curet, &err) == BF_OK) {
+            t_curet = time_dataset(m, n_curet, at, reps_load, NULL);
         }
+        free(at);
     }
     printf("## Loading and sampling\n\n| step | median | |\n|---|---|---|\n");
     printf("| `bf_merl_load` (one fread, then checks and scales) | %.1f ms "
@@ -415,7 +414,7 @@ int main(int argc, char **argv)
     if (t_curet >= 0.0) {
         printf("| `bf_merl_dataset` at CURET's %zu configurations | %.3f ms "
                "| |\n",
-               bf_table_size(t), 1e3 * t_curet);
+               n_curet, 1e3 * t_curet);
     }
 
     /* the study over every valid cell */
@@ -471,7 +470,6 @@ int main(int argc, char **argv)
 
     bf_dataset_free(all);
     bf_merl_free(m);
-    bf_table_free(t);
     if (keep != NULL) {
         if (rename(path, keep) != 0) {
             perror("bench_merl: --keep");

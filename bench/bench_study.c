@@ -3,7 +3,7 @@
  * figure the median of repeated runs:
  *   - the machine: cores, clock and 512-bit throughputs (bench/machine.c);
  *   - model evaluations per second, plain (bf_model_eval) and study path
- *     (bf_grid_alloc's kernels), for every model;
+ *     (bf__grid_alloc's kernels), for every model;
  *   - the paper protocol (24 samples x 6 models, tables only): fit compute
  *     on 1 and 2 threads, and the whole process `brdffit compare -q`;
  *   - the numpy baseline (bench/numpy_baseline.py), compute and process,
@@ -27,6 +27,8 @@
 #include <unistd.h>
 
 #include "brdffit.h"
+#include "data/curet.h"
+#include "fit/engine.h"
 #include "machine.h"
 #include "timing.h"
 
@@ -76,7 +78,7 @@ static void spec_init(const inputs_t *in, bf_study_spec *spec)
 {
     memset(spec, 0, sizeof *spec);
     spec->data = in->ds;
-    bf_select_init(&spec->select); /* SPEC §1.4: K = 198 */
+    bf_selection_init(&spec->select); /* SPEC §1.4: K = 198 */
     spec->targets = in->paper_t;
     spec->n_targets = BF_STUDY_NSAMPLES;
     spec->models = in->paper;
@@ -313,7 +315,7 @@ static void eval_rates(const inputs_t *in, int reps)
     printf("## Model evaluations per second (K = %zu configurations)\n\n",
            in->n_sel);
     printf("Plain: `bf_model_eval` at every point of the model's grid. "
-           "Study path: `bf_grid_alloc` (vector kernels, normalised "
+           "Study path: `bf__grid_alloc` (vector kernels, normalised "
            "curves of the whole grid). One evaluation = one model value "
            "at one configuration.\n\n");
     printf("| model | path | evaluations/s | ns/evaluation |\n");
@@ -354,16 +356,16 @@ static void eval_rates(const inputs_t *in, int reps)
             for (r = 0; r < reps; r++) {
                 int st;
                 double t0 = bf_bench_now();
-                bf_grid *gr;
+                bf__grid *gr;
                 defaults(type, param);
-                gr = bf_grid_alloc(type, param, 0, in->n_sel, in->geom, &st);
+                gr = bf__grid_alloc(type, param, 0, in->n_sel, in->geom, &st);
                 t[r] = bf_bench_now() - t0;
                 if (gr == NULL) {
                     die(type->name, NULL);
                 }
                 /* the whole grid: every fitted parameter (WNO-R has two) */
-                grid_points = bf_grid_points(gr);
-                bf_grid_free(gr);
+                grid_points = bf__grid_points(gr);
+                bf__grid_free(gr);
             }
             snprintf(label, sizeof label, "%s | study", type->name);
             print_rate(label, (double)(grid_points * in->n_sel),
@@ -479,18 +481,18 @@ static double bootstrap(const inputs_t *in)
             const bf_model_type *type = in->paper[m];
             double param[BF_MAX_PARAMS];
             bf_fit_result res;
-            bf_grid *gr;
+            bf__grid *gr;
             int st;
             defaults(type, param);
             if (type == bf_model_on) { /* evaluated, not fitted */
                 bf_fit_grid(type, on_param, 0, n, g, d, w, &res);
                 continue;
             }
-            gr = bf_grid_alloc(type, param, 0, n, g, &st);
-            if (gr == NULL || bf_grid_fit(gr, d, &res) != BF_OK) {
+            gr = bf__grid_alloc(type, param, 0, n, g, &st);
+            if (gr == NULL || bf__grid_fit(gr, d, &res) != BF_OK) {
                 die("bootstrap fit", NULL);
             }
-            bf_grid_free(gr);
+            bf__grid_free(gr);
         }
     }
     t0 = bf_bench_now() - t0;

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "brdffit.h"
+#include "data/curet.h"
 #include "fit/engine.h"
 #include "timing.h"
 #include "wnor_ref.h"

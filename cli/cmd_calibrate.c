@@ -16,7 +16,7 @@
 static const bf_cli_defaults calibrate_defaults = {NULL, BF_MODELS_PAPER, 1,
                                                    1};
 
-/* Fewest simulations (bf_calibrate's). */
+/* Fewest simulations (bf_fit_calibrate's). */
 #define MIN_SIMS BF_CALIBRATE_MIN_SIM
 
 static void usage(FILE *fp)

@@ -96,7 +96,6 @@ static int merl_configs(const bf_cli_source *src, bf_cli_inputs *in,
                         double **angles, size_t *n, int *all)
 {
     bf_error err;
-    bf_table *t = NULL;
     *angles = NULL;
     *n = 0;
     *all = 0;
@@ -123,18 +122,9 @@ static int merl_configs(const bf_cli_source *src, bf_cli_inputs *in,
                    in->configs_path);
         return BF_EXIT_NOINPUT;
     }
-    if (bf_table_load(in->configs_path, &t, &err) != BF_OK) {
+    if (bf_curet_configs_load(in->configs_path, angles, n, &err) != BF_OK) {
         return bf_cli_load_error(&err);
     }
-    *n = bf_table_size(t);
-    *angles = malloc(*n * 4 * sizeof **angles);
-    if (*angles == NULL) {
-        bf_table_free(t);
-        bf_cli_err("out of memory");
-        return BF_EXIT_SOFTWARE;
-    }
-    bf_table_angles(t, *angles);
-    bf_table_free(t);
     return BF_EXIT_OK;
 }
 

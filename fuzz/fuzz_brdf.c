@@ -10,6 +10,7 @@
  * n_conf finite values each, and bf_brdf_find inverts bf_brdf_sample. */
 #include <math.h>
 
+#include "data/curet.h"
 #include "fuzz.h"
 
 /* Fields of the first non-blank line, minus one (at least 1). */

@@ -6,6 +6,7 @@
  * no empty name for any sample number probed and no name for sample
  * numbers 0 and -1. */
 
+#include "data/curet.h"
 #include "fuzz.h"
 
 /* Largest sample number probed after a successful load. */

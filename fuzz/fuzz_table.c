@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "data/curet.h"
 #include "fuzz.h"
 
 /* Checks a loaded table: sizes, angle ranges and one model evaluation. */

@@ -16,6 +16,22 @@
  * the file name, line and a short message. The library never prints, never
  * exits and never reads argv.
  *
+ * Contents, in the order a user works:
+ *   basics   version and errors, geometry, Fresnel terms, the model
+ *            registry and model variants, the objectives of a fit;
+ *   load     datasets (bf_dataset, the one data model) and the readers of
+ *            every format, the per-sample inputs (bf_sample_table);
+ *   select   which configurations, targets and models a study uses
+ *            (bf_selection, bf_study_spec);
+ *   fit      one fit (bf_fit_grid, bf_problem, bf_fit_refine, bf_curves)
+ *            and the paper's study (bf_study_run);
+ *   analyse  intervals, information criteria, cross-validation, the
+ *            study's analysis (bf_study_analyse), ranking, and what the
+ *            figures draw;
+ *   write    fits.csv, ranking.csv and calibrate.csv and their lines as
+ *            structs, tidy CSV;
+ *   report   the report (libbrdffit_report).
+ *
  * References:
  *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann Model"
  *       (equations (P1)-(P7) in SPEC.md).
@@ -41,7 +57,7 @@ extern "C" {
 #endif
 
 /* ======================================================================
- * --- version and errors ---
+ * --- basics: version and errors ---
  * ====================================================================== */
 
 #define BF_VERSION_MAJOR 0
@@ -84,7 +100,7 @@ typedef struct {
 char *bf_error_format(const bf_error *err, char *buf, size_t len);
 
 /* ======================================================================
- * --- geometry (SPEC §1) ---
+ * --- basics: geometry (SPEC §1) ---
  * ====================================================================== */
 
 /* One illumination/viewing configuration in Beckmann's frame. */
@@ -96,7 +112,7 @@ typedef struct {
 } bf_geom;
 
 /* Wraps an angle to (-pi, pi]. */
-double bf_wrap_angle(double a);
+double bf_geom_wrap_angle(double a);
 
 /* Converts a configuration in CURET's sample frame (view theta_v, phi_v;
  * illumination theta_i, phi_i) to Beckmann's frame (SPEC §1.3):
@@ -124,7 +140,7 @@ bf_geom bf_geom_from_measurement(double theta_i, double phi_i,
 int bf_geom_is_specular(const bf_geom *g);
 
 /* ======================================================================
- * --- Fresnel terms (SPEC §4) ---
+ * --- basics: Fresnel terms (SPEC §4) ---
  * ====================================================================== */
 
 /* Unpolarised Fresnel reflectance f(alpha_i, r) for light arriving at angle
@@ -142,7 +158,7 @@ double bf_fresnel(double alpha_i, double r);
 double bf_fresnel_fc2(double theta_i, double theta_s, double n);
 
 /* ======================================================================
- * --- models (SPEC §3-6) ---
+ * --- basics: models and their variants (SPEC §3-6, §9) ---
  * ====================================================================== */
 
 #define BF_MAX_PARAMS 8
@@ -337,7 +353,7 @@ int bf_fresnel_find(const char *name, bf_fresnel_kind *out);
 int bf_smith_find(const char *name, bf_smith_kind *out);
 
 /* The directional albedo of type at param for light from theta_i (SPEC
- * §9; the white-furnace check of issue 17): the integral of the value
+ * §9; the white-furnace check): the integral of the value
  * times cos theta_o over the outgoing hemisphere, by adaptive quadrature
  * (GSL QAG over theta_o and phi_o, the inner integral split at the mirror
  * direction so narrow lobes are followed; relative error about 1e-8).
@@ -381,151 +397,119 @@ int bf_model_eval_work(const bf_model_type *type, const double *param,
                        size_t n, const bf_geom *geom, double *out,
                        void *work);
 
+/* ---- model variants: other parameters fitted, other search ranges ---- */
+
+/* A model type with some parameters' status or search range changed (n
+ * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise
+ * with bf_model_variant_init and use &v->type; v must not be moved or
+ * copied afterwards (type.param points into it). Owns no memory. */
+typedef struct {
+    bf_model_type type;
+    bf_param param[BF_MAX_PARAMS];
+} bf_model_variant;
+
+/* Copies base into v (every parameter as in base). */
+void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
+
+/* Makes parameter name fitted over the grid lo, lo + step, ... (the last
+ * point is hi, rounded to the step; at most BF_VARIANT_MAX_GRID points).
+ * BF_ENOTFOUND for an unknown name, BF_EINVAL when lo < min, hi > max,
+ * lo >= hi, step <= 0 or too many points. */
+#define BF_VARIANT_MAX_GRID 100001
+int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
+                         double hi, double step);
+
+/* Makes parameter name fitted over [lo, hi] with its own grid step (its
+ * paper grid's, or (hi - lo) / 100 for a parameter without a grid): the
+ * policy of a user's search range (--range NAME=LO:HI). BF_ENOTFOUND when
+ * v has no such parameter; BF_EINVAL as bf_model_variant_fit (outside
+ * [min, max], lo >= hi, more than BF_VARIANT_MAX_GRID points). */
+int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
+                           double hi);
+
+/* The exact fit's policy (doc/methods.md §6): frees every input parameter
+ * of v that has an exact-fit range (bf_param.free_lo < free_hi: FC's n
+ * over [BF_FREE_N_LO, BF_FREE_N_HI], ON's rho over [0.05, 1] and sigma over
+ * [0, 1.57]), fitted over the grid free_lo, free_lo + free_step, ...,
+ * except inputs of the kinds in keep (bit 1u << BF_INPUT_INDEX: the user
+ * gave n, so n stays the input). Returns the number of parameters freed. */
+size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
+
+/* Ranges that --fit exact frees by default (doc/methods.md §6). */
+#define BF_FREE_N_LO 1.2
+#define BF_FREE_N_HI 2.5
+#define BF_FREE_N_STEP 0.05
+
 /* ======================================================================
- * --- data: CURET configuration table and BRDF files (SPEC §2) ---
+ * --- basics: what a fit minimises (doc/methods.md §1, SPEC §10) ---
  * ====================================================================== */
 
-/* File syntax accepted by every reader below (src/data/lineio.c):
- *   - LF or CRLF line ends, the last line with or without one; a CR not
- *     followed by LF is an error (old Mac line ends are not supported);
- *   - a UTF-8 byte order mark at the start of the file is skipped;
- *   - blank lines (empty or only spaces/tabs) are skipped anywhere, but
- *     counted, so reported line numbers are an editor's line numbers;
- *   - trailing spaces and tabs are ignored;
- *   - NUL bytes and lines longer than 1 MiB are errors (BF_EPARSE);
- *   - numbers are decimal ([+-]digits[.digits][e[+-]digits]): hex floats,
- *     nan, inf, values overflowing a double and trailing characters
- *     ("1.5abc") are errors naming the field and quoting the text;
- *   - sample numbers and indices are integers in [1, INT_MAX] ("1.5" and
- *     "-3" are errors).
- * The _load functions open the path (BF_EIO with the system's reason at
- * line 0 when it cannot be opened; a directory, device or socket is also
- * BF_EIO) and accept regular files and FIFOs/pipes. On any error *out is
- * NULL and nothing leaks; err may be NULL. Readers never close fp. */
+/* What a fit minimises. Every objective is a weighted sum of squared
+ * residuals S = sum_k w_k r_k^2 between the model curve L (normalised by
+ * its maximum over the used configurations, SPEC §2) and the normalised
+ * data D (doc/methods.md §1):
+ *   BF_OBJ_MAX    r_k = L_k - D_k, the paper's LSE (SPEC §7.3; default);
+ *   BF_OBJ_SCALE  r_k = s* L_k - D_k with the least-squares optimal scale
+ *                 s* = sum w L D / sum w L^2 (closed form, per evaluation);
+ *   BF_OBJ_COSW   r_k = sqrt(cos theta_i,k) (L_k - D_k);
+ *   BF_OBJ_LOG    r_k = ln max(L_k, BF_LOG_FLOOR) - ln max(D_k, BF_LOG_FLOOR)
+ *                 (non-positive and tiny values are floored, never dropped).
+ */
+typedef enum {
+    BF_OBJ_MAX = 0,
+    BF_OBJ_SCALE,
+    BF_OBJ_COSW,
+    BF_OBJ_LOG,
+    /* The objectives that keep the scale (SPEC §10): pb->data holds
+     * rho_k = measured BRDF x cos theta_i as measured (not normalised) and
+     * the model's value is s L_k with its free scale s >= 0 solved exactly
+     * at every evaluation (for the paper's diffuse models s L_k =
+     * rho_d d_k cos theta_i, d scaled to 1/pi at normal incidence and
+     * view, SPEC §9.4; bf_fit_scale gives rho_d):
+     *   BF_OBJ_NGAN      r_k = s L_k - rho_k, s = max(0, sum w L rho /
+     *                    sum w L^2) (Ngan, Durand, Matusik 2005);
+     *   BF_OBJ_CUBEROOT  r_k = t cbrt(L_k) - cbrt(rho_k), t = cbrt(s) =
+     *                    max(0, sum w cbrt(L) cbrt(rho) / sum w cbrt(L)^2)
+     *                    (Fores, Ferwerda, Gu 2012);
+     *   BF_OBJ_LOG1P     r_k = ln(1 + s L_k) - ln(1 + rho_k), s >= 0 the
+     *                    minimiser (safeguarded Newton on the derivative)
+     *                    (Low et al. 2012, E2).
+     * S = sum w r^2 as for every objective; the value SPEC §10 reports is
+     * bf_objective_report's (ngan: sqrt(S / K)). SPEC §10 sums over the
+     * configurations with theta_i, theta_o <= 80 degrees: the study
+     * selects them (BF_KEEP_SCALE_THETA); a bf_problem holds what its
+     * caller chose. */
+    BF_OBJ_NGAN,
+    BF_OBJ_CUBEROOT,
+    BF_OBJ_LOG1P
+} bf_objective;
 
-/* The number of configurations in CURET's table.txt. */
-#define BF_CURET_NCONF 205
+/* 1 for the objectives that keep the scale (SPEC §10), else 0. */
+int bf_objective_keeps_scale(bf_objective obj);
 
-/* A configuration table: rows "index theta_v phi_v theta_i phi_i" in CURET's
- * sample frame (SPEC §1.3). Opaque; owns memory. */
-typedef struct bf_table bf_table;
+/* The value SPEC §10 reports for objective S of a fit on n configurations
+ * (sum of weights): sqrt(S / n) for BF_OBJ_NGAN, S for every other
+ * objective (NaN stays NaN). */
+double bf_objective_report(bf_objective obj, double s, double n);
 
-/* Reads a configuration table from fp (name is used in messages). Indices
- * must run 1..N in order. Returns BF_OK and *out (free with bf_table_free),
- * or BF_EPARSE/BF_EIO/BF_ENOMEM with err filled. Each row has exactly 5
- * numbers; zeniths must lie in [0, pi/2] and azimuths in [-2 pi, 2 pi], up
- * to 1e-9 rad (a zenith within that tolerance outside [0, pi/2] is clamped
- * onto it). An empty file is BF_EPARSE "empty file" at line 0. */
-int bf_table_read(FILE *fp, const char *name, bf_table **out, bf_error *err);
+/* The largest theta_i and theta_o (radians) of the configurations the
+ * scale-keeping objectives use (SPEC §10: 80 degrees, and 1e-9 rad for
+ * the rounding of angles read in degrees). */
+#define BF_KEEP_SCALE_THETA (80.0 * 3.14159265358979323846 / 180.0 + 1e-9)
 
-/* Opens path and calls bf_table_read. */
-int bf_table_load(const char *path, bf_table **out, bf_error *err);
+/* Floor of the log objective, in units of the normalised maximum. */
+#define BF_LOG_FLOOR 1e-3
 
-/* Frees t; NULL does nothing. */
-void bf_table_free(bf_table *t);
+/* Name of an objective ("max", "scale", "cosw", "log", "ngan",
+ * "cuberoot", "log1p"; static storage),
+ * or NULL for an unknown value. */
+const char *bf_objective_name(bf_objective obj);
 
-/* Number of configurations. */
-size_t bf_table_size(const bf_table *t);
-
-/* Configuration k (0-based) in Beckmann's frame (bf_geom_from_curet).
- * All fields are NaN when k >= bf_table_size(t). */
-bf_geom bf_table_geom(const bf_table *t, size_t k);
-
-/* Configuration k's raw CURET angles: theta_v, phi_v, theta_i, phi_i (NaN
- * when k is out of range). */
-void bf_table_raw(const bf_table *t, size_t k, double raw[4]);
-
-/* Writes the 0-based indices of the configurations that are used by the
- * study into sel (capacity bf_table_size(t)): every configuration that is
- * not specular (SPEC §1.4) and whose theta_i and theta_v are both
- * <= max_theta (pass a value >= pi/2 to keep all). Returns the count. */
-size_t bf_table_select(const bf_table *t, double max_theta, size_t *sel);
-
-/* A BRDF file with rows "sample v1 ... vN" (CURET abrdf/rbrdf/gbrdf/bbrdf
- * layout). Opaque; owns memory. */
-typedef struct bf_brdf bf_brdf;
-
-/* Reads BRDF rows with exactly n_conf values each (n_conf = 0: as many as
- * the first row has, at least one). Sample numbers must be
- * positive, unique and run 1, 2, 3, ... without gaps. Values must be finite.
- * Returns BF_OK and *out (free with bf_brdf_free) or an error with err.
- * Rows may come in any order; they are stored sorted by sample number, so
- * row r holds sample r + 1. Negative values are kept as measured. Errors
- * (BF_EPARSE): wrong value count, bad number (field named), duplicate
- * sample (at its second line, naming the first), missing sample (line 0,
- * naming the smallest missing number), empty file. */
-int bf_brdf_read(FILE *fp, const char *name, size_t n_conf, bf_brdf **out,
-                 bf_error *err);
-int bf_brdf_load(const char *path, size_t n_conf, bf_brdf **out,
-                 bf_error *err);
-void bf_brdf_free(bf_brdf *b);
-
-size_t bf_brdf_count(const bf_brdf *b);      /* number of samples */
-size_t bf_brdf_nconf(const bf_brdf *b);      /* values per sample */
-int bf_brdf_sample(const bf_brdf *b, size_t row);  /* sample number, -1 if
-                                                      row is out of range */
-/* Line of the file that row came from (0 if out of range). */
-long bf_brdf_line(const bf_brdf *b, size_t row);
-/* Values of a row (borrowed until bf_brdf_free); NULL if out of range. */
-const double *bf_brdf_values(const bf_brdf *b, size_t row);
-/* Row of sample number s, or -1. */
-long bf_brdf_find(const bf_brdf *b, int sample);
-
-/* Sample names: rows "sample name [flag]" of samples.tsv (tab-separated,
- * header line). Opaque; owns memory. Fields are split at tabs only (names
- * contain spaces), spaces around fields are trimmed; the first line is a
- * header when its first field is not an integer; flag, when present, is 0
- * or 1; sample numbers are unique, gaps allowed. */
-typedef struct bf_names bf_names;
-int bf_names_read(FILE *fp, const char *name, bf_names **out, bf_error *err);
-int bf_names_load(const char *path, bf_names **out, bf_error *err);
-void bf_names_free(bf_names *nm);
-/* Name of sample s (borrowed), or NULL when unknown or nm is NULL. */
-const char *bf_names_get(const bf_names *nm, int sample);
-
-/* A per-sample table of numbers: rows "sample x1 ... xk" with an optional
- * header line (first field not a number). Used for the Oren-Nayar parameter
- * file ("sample rho sigma", or CURET's op.dat "sample rho sigma kd") and the
- * per-sample refractive index file ("sample n"). Opaque; owns memory. */
-typedef struct bf_sample_table bf_sample_table;
-
-/* Reads rows with between min_cols and max_cols numbers after the sample
- * number; every value must be finite. Duplicate samples are errors. Every
- * row must have the same number of values. A header line with no rows is
- * BF_EPARSE "header line but no rows" (line 0). max_cols = 0 or
- * min_cols > max_cols: BF_EINVAL. */
-int bf_sample_table_read(FILE *fp, const char *name, size_t min_cols,
-                         size_t max_cols, bf_sample_table **out,
-                         bf_error *err);
-int bf_sample_table_load(const char *path, size_t min_cols, size_t max_cols,
-                         bf_sample_table **out, bf_error *err);
-void bf_sample_table_free(bf_sample_table *st);
-size_t bf_sample_table_count(const bf_sample_table *st);
-/* Value of column col (0-based, after the sample number) for sample s.
- * Returns BF_OK, or BF_ENOTFOUND when s is absent (BF_EINVAL when col >=
- * bf_sample_table_cols(st)). */
-int bf_sample_table_get(const bf_sample_table *st, int sample, size_t col,
-                        double *value);
-/* Number of values per row (the same for every row). */
-size_t bf_sample_table_cols(const bf_sample_table *st);
-/* Sample number of row r (file order), or -1 when out of range. */
-int bf_sample_table_sample(const bf_sample_table *st, size_t row);
-
-/* Loads an Oren-Nayar parameter file (SPEC §5) and checks rho in [0, 1] and
- * sigma in [0, pi/2] (BF_EPARSE with the line otherwise). */
-int bf_on_params_load(const char *path, bf_sample_table **out, bf_error *err);
-/* The same from a stream (name is used in messages). */
-int bf_on_params_read(FILE *fp, const char *name, bf_sample_table **out,
-                      bf_error *err);
-
-/* Loads a per-sample refractive index file ("sample n", n in (1, 10]). */
-int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err);
-/* The same from a stream (name is used in messages). */
-int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
-                   bf_error *err);
+/* Finds an objective by name; BF_ENOTFOUND when unknown. */
+int bf_objective_find(const char *name, bf_objective *obj);
 
 /* ======================================================================
- * --- datasets: measured BRDFs in any format (SPEC §1.5, §2, §8) ---
+ * --- load: datasets and their readers (SPEC §1.5, §2, §8) ---
  * ====================================================================== */
 
 /* A dataset holds materials. Each material has a name, a number, its own
@@ -664,8 +648,6 @@ const double *bf_dataset_values(const bf_dataset *ds, size_t m);
 /* Valid marks in the same layout, or NULL when every value is valid. */
 const unsigned char *bf_dataset_valid(const bf_dataset *ds, size_t m);
 
-/* ---- channels, configuration selection and radiance (SPEC §1.6, §2) ---- */
-
 /* The channel "mean": the mean over every channel (the default; CURET's
  * abrdf.dat is itself the mean of R, G, B). A configuration has a mean
  * only when every channel is valid there. For one channel the mean is the
@@ -682,48 +664,6 @@ int bf_dataset_channel_find(const bf_dataset *ds, size_t m,
  * into *value; returns 1 when valid, 0 when not. */
 int bf_dataset_value(const bf_dataset *ds, size_t m, size_t k, size_t c,
                      double *value);
-
-/* Which configurations of a material the study uses. */
-typedef struct {
-    /* Half-angle Delta (radians) of the specular cone left out: every
-     * configuration with bf_geom_mirror_angle < Delta (SPEC §1.6).
-     * BF_CONE_DEFAULT: the format's default -- for CURET the specular
-     * test of SPEC §1.4 (bf_geom_is_specular: its 7 configurations), for
-     * every other format none. 0: none. */
-    double cone;
-    /* Leave out configurations whose theta_i or theta_o exceeds it
-     * (radians); >= pi/2 keeps all. */
-    double max_theta;
-    /* Configuration numbers (1-based positions in the material's list, as
-     * CURET numbers its 205) to leave out as well. */
-    const size_t *exclude;
-    size_t n_exclude;
-} bf_select;
-
-#define BF_CONE_DEFAULT (-1.0)
-
-/* Fills s with the defaults: BF_CONE_DEFAULT, max_theta pi/2, nothing
- * excluded. */
-void bf_select_init(bf_select *s);
-
-/* The used configurations of material m for channel c (or
- * BF_CHANNEL_MEAN): valid for that channel, outside the cone, within
- * max_theta, not excluded. Writes their indices (0-based, increasing) into
- * sel (capacity bf_dataset_nconf(ds, m)) and the count K into *n (K may be
- * 0). *cone_out, when not NULL, gets how many were left out by the cone
- * (or CURET's specular test). BF_EINVAL on bad arguments; BF_ENOTFOUND
- * when an excluded number exceeds the material's configuration count. */
-int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
-                      const bf_select *s, size_t *sel, size_t *n,
-                      size_t *cone_out);
-
-/* Measured radiance of SPEC §2 for material m, channel c, on the n
- * configurations sel: out[j] = value[sel[j]] * cos(theta_i of sel[j]),
- * divided by its maximum over the n values (bf_normalise). BF_EDOM when
- * that maximum is not positive or a selected value is invalid; BF_EINVAL
- * on bad arguments or n = 0. */
-int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
-                        const size_t *sel, double *out);
 
 /* What one material holds, for `brdffit info` and for users checking
  * their data (all angles in radians, in the measurement frame). */
@@ -751,6 +691,27 @@ typedef struct {
 int bf_dataset_summary(const bf_dataset *ds, size_t m,
                        bf_material_summary *out);
 
+/* File syntax accepted by every reader below (src/data/lineio.c):
+ *   - LF or CRLF line ends, the last line with or without one; a CR not
+ *     followed by LF is an error (old Mac line ends are not supported);
+ *   - a UTF-8 byte order mark at the start of the file is skipped;
+ *   - blank lines (empty or only spaces/tabs) are skipped anywhere, but
+ *     counted, so reported line numbers are an editor's line numbers;
+ *   - trailing spaces and tabs are ignored;
+ *   - NUL bytes and lines longer than 1 MiB are errors (BF_EPARSE);
+ *   - numbers are decimal ([+-]digits[.digits][e[+-]digits]): hex floats,
+ *     nan, inf, values overflowing a double and trailing characters
+ *     ("1.5abc") are errors naming the field and quoting the text;
+ *   - sample numbers and indices are integers in [1, INT_MAX] ("1.5" and
+ *     "-3" are errors).
+ * The _load functions open the path (BF_EIO with the system's reason at
+ * line 0 when it cannot be opened; a directory, device or socket is also
+ * BF_EIO) and accept regular files and FIFOs/pipes. On any error *out is
+ * NULL and nothing leaks; err may be NULL. Readers never close fp. */
+
+/* The number of configurations in CURET's table.txt. */
+#define BF_CURET_NCONF 205
+
 /* ---- readers: each has a read-from-FILE form (name used in messages;
  *      fp is never closed) and a load-from-path form; on error *out is
  *      NULL and err names the file and the line (text formats) or the byte
@@ -765,15 +726,14 @@ int bf_dataset_summary(const bf_dataset *ds, size_t m,
  * error naming both files and both counts. */
 int bf_curet_load(const char *dir, const char *brdf_path, bf_dataset **out,
                   bf_error *err);
-/* CURET's configurations in the measurement frame (SPEC §1.3, §1.5):
- * angles (capacity 4 bf_table_size(t)) gets rows theta_i, phi_i,
- * theta_o = theta_v, phi_o = phi_v. Also MERL's default sampling. */
-void bf_table_angles(const bf_table *t, double *angles);
-
-/* The same from tables already read (names may be NULL); copies them. */
-int bf_curet_dataset(const bf_table *t, const bf_brdf *b,
-                     const bf_names *names, const char *source,
-                     const char *channel, bf_dataset **out, bf_error *err);
+/* CURET's table.txt (path) as a configuration list in the measurement
+ * frame (SPEC §1.3, §1.5): *angles gets n x 4 radians, rows theta_i,
+ * phi_i, theta_o = theta_v, phi_o = phi_v, allocated with malloc (the
+ * caller frees it with free()); the table's syntax and errors are
+ * bf_curet_load's. Also MERL's default sampling (bf_configs_load for a
+ * CSV list). */
+int bf_curet_configs_load(const char *path, double **angles, size_t *n,
+                          bf_error *err);
 
 /* pbrt-v2 / Cornell .brdf (SPEC §8): one material, W spectral channels
  * named by wavelength; name from the file's description comment, else the
@@ -798,20 +758,6 @@ int bf_astm_load(const char *path, bf_dataset **out, bf_error *err);
 int bf_csv_read(FILE *fp, const char *name, bf_dataset **out,
                 bf_error *err);
 int bf_csv_load(const char *path, bf_dataset **out, bf_error *err);
-
-/* Writes ds as tidy CSV (the `material` column always present; a material
- * without a name is written under its number). Angles are written in
- * degrees with as few digits as read back (bf_csv_read) into the same
- * radians bit for bit; values with the fewest of %.15g, %.16g, %.17g that
- * read back bit for bit; invalid values as empty fields; wavelength
- * channels as "<nm>nm". So bf_csv_read gives ds back. BF_EINVAL when it
- * could not: materials with different channels, two materials written
- * under one name, a line break in a name, a channel that would not read
- * back as itself (a wavelength channel not named by its wavelength, a
- * name ending in nm, or one of the CSV's own column names), or an angle
- * below 1e-200 degrees that no decimal reads back into. BF_EIO on a
- * write error. */
-int bf_csv_write(const bf_dataset *ds, FILE *fp);
 
 /* Reads a configuration list: a tidy CSV (bf_csv_read's syntax) whose
  * header names theta_i, phi_i, theta_o, phi_o (degrees, SPEC §1.5); any
@@ -872,19 +818,217 @@ typedef struct {
 int bf_dataset_load(const char *path, const bf_load_opts *opts,
                     bf_dataset **out, bf_error *err);
 
+/* ---- per-sample inputs: ON's parameters, refractive indices ---- */
+
+/* A per-sample table of numbers: rows "sample x1 ... xk" with an optional
+ * header line (first field not a number). Used for the Oren-Nayar parameter
+ * file ("sample rho sigma", or CURET's op.dat "sample rho sigma kd") and the
+ * per-sample refractive index file ("sample n"). Opaque; owns memory. */
+typedef struct bf_sample_table bf_sample_table;
+
+/* Reads rows with between min_cols and max_cols numbers after the sample
+ * number; every value must be finite. Duplicate samples are errors. Every
+ * row must have the same number of values. A header line with no rows is
+ * BF_EPARSE "header line but no rows" (line 0). max_cols = 0 or
+ * min_cols > max_cols: BF_EINVAL. */
+int bf_sample_table_read(FILE *fp, const char *name, size_t min_cols,
+                         size_t max_cols, bf_sample_table **out,
+                         bf_error *err);
+int bf_sample_table_load(const char *path, size_t min_cols, size_t max_cols,
+                         bf_sample_table **out, bf_error *err);
+void bf_sample_table_free(bf_sample_table *st);
+size_t bf_sample_table_count(const bf_sample_table *st);
+/* Value of column col (0-based, after the sample number) for sample s.
+ * Returns BF_OK, or BF_ENOTFOUND when s is absent (BF_EINVAL when col >=
+ * bf_sample_table_cols(st)). */
+int bf_sample_table_get(const bf_sample_table *st, int sample, size_t col,
+                        double *value);
+/* Number of values per row (the same for every row). */
+size_t bf_sample_table_cols(const bf_sample_table *st);
+/* Sample number of row r (file order), or -1 when out of range. */
+int bf_sample_table_sample(const bf_sample_table *st, size_t row);
+
+/* Loads an Oren-Nayar parameter file (SPEC §5) and checks rho in [0, 1] and
+ * sigma in [0, pi/2] (BF_EPARSE with the line otherwise). */
+int bf_on_params_load(const char *path, bf_sample_table **out, bf_error *err);
+/* The same from a stream (name is used in messages). */
+int bf_on_params_read(FILE *fp, const char *name, bf_sample_table **out,
+                      bf_error *err);
+
+/* Loads a per-sample refractive index file ("sample n", n in (1, 10]). */
+int bf_n_file_load(const char *path, bf_sample_table **out, bf_error *err);
+/* The same from a stream (name is used in messages). */
+int bf_n_file_read(FILE *fp, const char *name, bf_sample_table **out,
+                   bf_error *err);
+
 /* ======================================================================
- * --- fitting (SPEC §7) ---
+ * --- select: configurations, targets and models (SPEC §1.6, §7) ---
+ * ====================================================================== */
+
+/* ---- the configurations of a material (SPEC §1.6, §2) ---- */
+
+/* Which configurations of a material the study uses. */
+typedef struct {
+    /* Half-angle Delta (radians) of the specular cone left out: every
+     * configuration with bf_geom_mirror_angle < Delta (SPEC §1.6).
+     * BF_CONE_DEFAULT: the format's default -- for CURET the specular
+     * test of SPEC §1.4 (bf_geom_is_specular: its 7 configurations), for
+     * every other format none. 0: none. */
+    double cone;
+    /* Leave out configurations whose theta_i or theta_o exceeds it
+     * (radians); >= pi/2 keeps all. */
+    double max_theta;
+    /* Configuration numbers (1-based positions in the material's list, as
+     * CURET numbers its 205) to leave out as well. */
+    const size_t *exclude;
+    size_t n_exclude;
+} bf_selection;
+
+#define BF_CONE_DEFAULT (-1.0)
+
+/* Fills s with the defaults: BF_CONE_DEFAULT, max_theta pi/2, nothing
+ * excluded. */
+void bf_selection_init(bf_selection *s);
+
+/* The used configurations of material m for channel c (or
+ * BF_CHANNEL_MEAN): valid for that channel, outside the cone, within
+ * max_theta, not excluded. Writes their indices (0-based, increasing) into
+ * sel (capacity bf_dataset_nconf(ds, m)) and the count K into *n (K may be
+ * 0). *cone_out, when not NULL, gets how many were left out by the cone
+ * (or CURET's specular test). BF_EINVAL on bad arguments; BF_ENOTFOUND
+ * when an excluded number exceeds the material's configuration count. */
+int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
+                      const bf_selection *s, size_t *sel, size_t *n,
+                      size_t *cone_out);
+
+/* Measured radiance of SPEC §2 for material m, channel c, on the n
+ * configurations sel: out[j] = value[sel[j]] * cos(theta_i of sel[j]),
+ * divided by its maximum over the n values (bf_normalise). BF_EDOM when
+ * that maximum is not positive or a selected value is invalid; BF_EINVAL
+ * on bad arguments or n = 0. */
+int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
+                        const size_t *sel, double *out);
+
+/* ---- a study: its targets, samples, models and search ranges ---- */
+
+/* One thing the study fits: a material of the dataset on one channel, or
+ * on the mean over its channels (SPEC §2). */
+typedef struct {
+    size_t material; /* index in the dataset */
+    size_t channel;  /* channel index, or BF_CHANNEL_MEAN */
+    int joint;       /* 1: fitted jointly with the material's other joint
+                        targets (--channel joint, SPEC §9.4): the targets
+                        of one material with joint set, consecutive, share
+                        the shape parameters and each has its own scales
+                        (bf_param.linear) */
+} bf_target;
+
+/* Expands materials (n_materials indices; materials = NULL: every material
+ * in order) and a channel request into targets, material-major: NULL or
+ * "mean": one target per material on BF_CHANNEL_MEAN; "each": one per
+ * channel of each material, in channel order; "joint": the same targets
+ * as "each" with joint set (SPEC §9.4: one shape for all channels, scales
+ * per channel; every channel's data on the configurations valid on all
+ * of them, as the mean's); any other text: that channel
+ * of every material (bf_dataset_channel_find; BF_ENOTFOUND with err->msg
+ * naming the first material that lacks it). *out (n_out targets) is
+ * allocated with malloc; the caller frees it with free(). */
+int bf_study_targets(const bf_dataset *ds, const size_t *materials,
+                     size_t n_materials, const char *channel,
+                     bf_target **out, size_t *n_out, bf_error *err);
+
+/* The 24 CURET samples of Ragheb & Hancock's study, in increasing order. */
+#define BF_STUDY_NSAMPLES 24
+extern const int bf_study_samples[BF_STUDY_NSAMPLES];
+
+/* The models of a study from list, a comma-separated list of registry
+ * names (bf_model_find_why: composites D+S too), "all" (every diffuse
+ * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
+ * into out (room for cap; bf_model_count() + 1 is enough), under the
+ * options of SPEC §9.2: with fresnel or smith not DEFAULT, every specular
+ * model and the S part of every composite is its variant
+ * (bf_model_specular_variant: GGX under BF_FRESNEL_DIELECTRIC has rho_s,
+ * alpha, n; LAMBERT+GGX rho_d, rho_s, alpha, n); diffuse models are
+ * unaffected. Returns BF_OK; BF_ENOTFOUND for an unknown name; BF_EINVAL
+ * for a bad list (an empty name, a trailing comma), a model listed twice,
+ * more than cap, or fresnel or smith not a value of its enum; BF_EDOM for
+ * a specular model, or fresnel or smith given, under an objective that
+ * max-normalises (SPEC §9, §10: !bf_objective_keeps_scale), and -- under
+ * one that keeps the scale -- for a specular model that cannot take an
+ * option given or options that no listed model takes. err->msg says which
+ * ("unknown model 'XX'", "'ON' listed twice", "GGX gives absolute BRDF
+ * values (SPEC §9)", "WARD has no Fresnel term (SPEC §9.3): --fresnel
+ * applies to GGX, BECKMANN and CT"), for the caller to prefix with its own
+ * option's name. */
+int bf_study_models(const char *list, bf_model_set defaults,
+                    bf_objective objective, bf_fresnel_kind fresnel,
+                    bf_smith_kind smith, const bf_model_type **out,
+                    size_t cap, size_t *n, bf_error *err);
+
+/* A user's search range of the parameter called name (--range NAME=LO:HI). */
+typedef struct {
+    const char *name;
+    double lo, hi;
+} bf_param_range;
+#define BF_STUDY_MAX_RANGES 8
+
+/* The types a study fits for models (n_models registry types): with exact,
+ * the exact fit's variants (bf_model_variant_exact(v, keep)); each of the
+ * n_ranges ranges (at most BF_STUDY_MAX_RANGES) applied to every model
+ * that has the parameter (bf_model_variant_range). out[m] is models[m]
+ * when neither applies, else &variants[m].type (variants: room for
+ * n_models, not moved afterwards; unused when neither applies, may then be
+ * NULL). Returns BF_OK; BF_EINVAL when range *bad_range does not fit model
+ * *bad_model's parameter (bf_model_variant_range) or for bad arguments;
+ * BF_ENOTFOUND when range *bad_range names no parameter of any model. */
+int bf_study_variants(const bf_model_type *const *models, size_t n_models,
+                      int exact, unsigned keep, const bf_param_range *ranges,
+                      size_t n_ranges, bf_model_variant *variants,
+                      const bf_model_type **out, size_t *bad_range,
+                      size_t *bad_model);
+
+/* What to fit: targets x models, each target on its own configuration
+ * selection (bf_dataset_select with select, for the target's channel). */
+typedef struct {
+    const bf_dataset *data;       /* the measurements (borrowed) */
+    const bf_target *targets;     /* what to fit */
+    size_t n_targets;
+    bf_selection select;             /* which configurations are used */
+    const bf_model_type *const *models; /* models to fit */
+    size_t n_models;
+    double n_default;             /* refractive index for FC models */
+    const bf_sample_table *n_file;    /* n per material number (NULL:
+                                         n_default) */
+    const bf_sample_table *on_params; /* ON (rho, sigma) per material
+                                         number */
+    int n_threads;                /* OpenMP threads; 0 or 1: one. The
+                                     results do not depend on it. */
+} bf_study_spec;
+
+/* The used configurations and the normalised measured radiance (SPEC §2)
+ * of target t of spec, exactly as the study fits them: sel and data need
+ * the capacity bf_dataset_nconf of the target's material; *k gets K.
+ * BF_EDOM (err->msg naming the material) when K = 0 or the data cannot be
+ * normalised; BF_ENOTFOUND when an excluded number does not exist. */
+int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
+                         size_t *k, double *data, bf_error *err);
+
+/* The used configurations and measured data of target t exactly as the
+ * analysis fits them under objective obj: bf_study_target_data's for the
+ * max-normalised objectives; for those that keep the scale (SPEC §10)
+ * rho = BRDF x cos theta_i as measured, not normalised, on the
+ * configurations with theta_i, theta_o <= 80 degrees
+ * (BF_KEEP_SCALE_THETA). Same capacities and errors. */
+int bf_study_fit_data(const bf_study_spec *spec, bf_objective obj, size_t t,
+                      size_t *sel, size_t *k, double *data, bf_error *err);
+
+/* ======================================================================
+ * --- fit: one fit and the paper's study (SPEC §7) ---
  * ====================================================================== */
 
 /* Divides in[0..n) by its maximum into out (may alias). Returns BF_EDOM when
  * the maximum is not positive or a value is not finite; BF_EINVAL if n = 0. */
 int bf_normalise(size_t n, const double *in, double *out);
-
-/* Measured radiance of SPEC §2: out[j] = v[sel[j]] * cos(theta_i of
- * configuration sel[j]), then normalised over the n selected values.
- * Returns BF_EDOM when the maximum is not positive. */
-int bf_data_radiance(const bf_table *t, const double *v, size_t n,
-                     const size_t *sel, double *out);
 
 /* The result of one fit. */
 typedef struct {
@@ -921,95 +1065,7 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
                 const double *data, bf_fit_workspace *w,
                 bf_fit_result *result);
 
-/* Precomputed normalised model curves at every point of a parameter grid on
- * one set of configurations. Model curves do not depend on the sample, so a
- * study computes them once and fits every sample against them. The
- * optimum is bf_fit_grid's; for the BK family and LFTG the curves come from
- * vectorised kernels that rearrange the math (no division or pow in the
- * inner loop, libmvec's exp), so the LSE agrees with bf_fit_grid's to a few
- * units in the last place times sqrt(n LSE) (see src/fit/kernels.c).
- * Opaque; owns memory. */
-typedef struct bf_grid bf_grid;
-
-/* Builds the grid (arguments as bf_fit_grid). geom is read here and not
- * kept. Returns NULL with *status set on failure. */
-bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
-                       unsigned free_mask, size_t n, const bf_geom *geom,
-                       int *status);
-void bf_grid_free(bf_grid *gr);
-/* Number of grid points. */
-size_t bf_grid_points(const bf_grid *gr);
-/* Best grid point against normalised data of the grid's n configurations. */
-int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result);
-
-/* ======================================================================
- * --- beyond the paper: objectives, exact refinement, uncertainty and
- *     model selection (doc/methods.md) ---
- * ====================================================================== */
-
-/* What a fit minimises. Every objective is a weighted sum of squared
- * residuals S = sum_k w_k r_k^2 between the model curve L (normalised by
- * its maximum over the used configurations, SPEC §2) and the normalised
- * data D (doc/methods.md §1):
- *   BF_OBJ_MAX    r_k = L_k - D_k, the paper's LSE (SPEC §7.3; default);
- *   BF_OBJ_SCALE  r_k = s* L_k - D_k with the least-squares optimal scale
- *                 s* = sum w L D / sum w L^2 (closed form, per evaluation);
- *   BF_OBJ_COSW   r_k = sqrt(cos theta_i,k) (L_k - D_k);
- *   BF_OBJ_LOG    r_k = ln max(L_k, BF_LOG_FLOOR) - ln max(D_k, BF_LOG_FLOOR)
- *                 (non-positive and tiny values are floored, never dropped).
- */
-typedef enum {
-    BF_OBJ_MAX = 0,
-    BF_OBJ_SCALE,
-    BF_OBJ_COSW,
-    BF_OBJ_LOG,
-    /* The objectives that keep the scale (SPEC §10): pb->data holds
-     * rho_k = measured BRDF x cos theta_i as measured (not normalised) and
-     * the model's value is s L_k with its free scale s >= 0 solved exactly
-     * at every evaluation (for the paper's diffuse models s L_k =
-     * rho_d d_k cos theta_i, d scaled to 1/pi at normal incidence and
-     * view, SPEC §9.4; bf_fit_scale gives rho_d):
-     *   BF_OBJ_NGAN      r_k = s L_k - rho_k, s = max(0, sum w L rho /
-     *                    sum w L^2) (Ngan, Durand, Matusik 2005);
-     *   BF_OBJ_CUBEROOT  r_k = t cbrt(L_k) - cbrt(rho_k), t = cbrt(s) =
-     *                    max(0, sum w cbrt(L) cbrt(rho) / sum w cbrt(L)^2)
-     *                    (Fores, Ferwerda, Gu 2012);
-     *   BF_OBJ_LOG1P     r_k = ln(1 + s L_k) - ln(1 + rho_k), s >= 0 the
-     *                    minimiser (safeguarded Newton on the derivative)
-     *                    (Low et al. 2012, E2).
-     * S = sum w r^2 as for every objective; the value SPEC §10 reports is
-     * bf_objective_report's (ngan: sqrt(S / K)). SPEC §10 sums over the
-     * configurations with theta_i, theta_o <= 80 degrees: the study
-     * selects them (BF_KEEP_SCALE_THETA); a bf_problem holds what its
-     * caller chose. */
-    BF_OBJ_NGAN,
-    BF_OBJ_CUBEROOT,
-    BF_OBJ_LOG1P
-} bf_objective;
-
-/* 1 for the objectives that keep the scale (SPEC §10), else 0. */
-int bf_objective_keeps_scale(bf_objective obj);
-
-/* The value SPEC §10 reports for objective S of a fit on n configurations
- * (sum of weights): sqrt(S / n) for BF_OBJ_NGAN, S for every other
- * objective (NaN stays NaN). */
-double bf_objective_report(bf_objective obj, double s, double n);
-
-/* The largest theta_i and theta_o (radians) of the configurations the
- * scale-keeping objectives use (SPEC §10: 80 degrees, and 1e-9 rad for
- * the rounding of angles read in degrees). */
-#define BF_KEEP_SCALE_THETA (80.0 * 3.14159265358979323846 / 180.0 + 1e-9)
-
-/* Floor of the log objective, in units of the normalised maximum. */
-#define BF_LOG_FLOOR 1e-3
-
-/* Name of an objective ("max", "scale", "cosw", "log", "ngan",
- * "cuberoot", "log1p"; static storage),
- * or NULL for an unknown value. */
-const char *bf_objective_name(bf_objective obj);
-
-/* Finds an objective by name; BF_ENOTFOUND when unknown. */
-int bf_objective_find(const char *name, bf_objective *obj);
+/* ---- a fitting problem and its exact optimum (doc/methods.md §2) ---- */
 
 /* A fitting problem: one model on n configurations against normalised data,
  * under an objective, with optional per-configuration weights (NULL: all 1;
@@ -1105,6 +1161,56 @@ size_t bf_curves_points(const bf_curves *c);
 int bf_curves_best(const bf_curves *c, const bf_problem *pb,
                    bf_fit_result *result);
 
+/* The free scale of pb at param under an objective that keeps the scale
+ * (SPEC §9.4, §10): rho_d with the model's value rho_d d(i, o), d its shape
+ * scaled so that d = 1/pi at normal incidence and view (LAMBERT: rho_d is
+ * the albedo), into *rho_d. BF_EINVAL for another objective or bad
+ * arguments, BF_EDOM where the model is undefined or its value at normal
+ * incidence and view is not positive. */
+int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d);
+
+/* ---- the paper's study on a dataset (SPEC §7) ---- */
+
+/* The outcome of one (target, model) pair. */
+typedef struct {
+    size_t target;                /* index into spec->targets */
+    size_t material;              /* its material (dataset index) */
+    int sample;                   /* the material's number
+                                     (bf_dataset_number) */
+    size_t channel;               /* its channel, or BF_CHANNEL_MEAN */
+    size_t k;                     /* K, configurations used */
+    const bf_model_type *type;    /* model */
+    int status;                   /* BF_OK; BF_ENOTFOUND when an input is
+                                     missing (ON without parameters) */
+    bf_fit_result fit;            /* valid when status == BF_OK */
+} bf_study_row;
+
+/* Runs the paper's protocol (SPEC §7) for every target and model, writing
+ * n_targets * n_models rows (target-major) into rows. Targets that share a
+ * configuration set and selection share the model curves. A target whose
+ * data cannot be normalised, or that keeps no configuration, is an error
+ * (returned, with err->msg naming the material); a model that cannot be
+ * evaluated for a target for lack of inputs gets its row's status set and
+ * the study goes on. */
+int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
+                 bf_error *err);
+
+/* The check of the n rows a study wrote (bf_study_run, bf_study_analyse):
+ * BF_OK when every row is BF_OK or BF_ENOTFOUND (a missing input: a gap
+ * the tables leave and the caller notes); otherwise the first other row's
+ * status (BF_EDOM: the model cannot be normalised on the used
+ * configurations, SPEC §2; BF_ENOMEM), its index in *bad (may be NULL). */
+int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
+
+/* The paper's default refractive index for FC models (SPEC §4.2). */
+#define BF_DEFAULT_N 1.7
+
+/* ======================================================================
+ * --- analyse: intervals, criteria, ranking (doc/methods.md §3-5) ---
+ * ====================================================================== */
+
+/* ---- intervals and their calibration (doc/methods.md §3) ---- */
+
 /* Profile interval (doc/methods.md §3): the set of values theta_j for
  * which n ln(S_p(theta_j) / S_min) <= chi2_1(level), where S_p is the
  * objective minimised over the other free parameters and n the sum of the
@@ -1125,8 +1231,8 @@ int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
  *   BF_NOISE_RELATIVE  p = 2 (sd proportional to the value);
  *   BF_NOISE_OBJECTIVE the objective's own S as a constant-variance RSS
  *                      with the scale the objective gives it: the profile
- *                      intervals before issue 18, kept to compare with
- *                      earlier results (they undercover under max). */
+ *                      intervals of the objective alone, kept to compare
+ *                      with earlier results (they undercover under max). */
 typedef enum {
     BF_NOISE_AUTO = 0,
     BF_NOISE_ABSOLUTE,
@@ -1165,7 +1271,7 @@ typedef struct {
     double noise_power;       /* p used (NaN for BF_NOISE_OBJECTIVE) */
     double sigma;             /* noise sd at the fitted curve's maximum,
                                  relative to it: sqrt(RSS_v / (n - k)) /
-                                 scale (bf_calibrate's sigma) */
+                                 scale (bf_fit_calibrate's sigma) */
     double scale;             /* maximum-likelihood scale s */
     bf_fit_result ml;         /* the estimate the intervals are about: the
                                  maximum-likelihood one (BF_NOISE_OBJECTIVE:
@@ -1189,7 +1295,7 @@ int bf_fit_intervals(const bf_problem *pb, const bf_fit_result *best,
                      bf_noise noise, double level, bf_interval *out);
 
 /* What simulated measurements say about a fit's intervals
- * (bf_calibrate, `brdffit calibrate`, doc/methods.md §3). */
+ * (bf_fit_calibrate, `brdffit calibrate`, doc/methods.md §3). */
 typedef struct {
     size_t n_sim;                    /* simulations fitted */
     size_t n_failed;                 /* simulations that could not be */
@@ -1208,7 +1314,7 @@ typedef struct {
     double boot_width[BF_MAX_PARAMS];    /* their median width */
 } bf_calibration;
 
-/* Fewest simulations bf_calibrate accepts. */
+/* Fewest simulations bf_fit_calibrate accepts. */
 #define BF_CALIBRATE_MIN_SIM 10
 
 /* Simulates n_sim measurements of pb's model at truth on pb's
@@ -1223,10 +1329,10 @@ typedef struct {
  * whose bootstrap fails counts as failed). BF_EINVAL for bad arguments or n_sim < 10,
  * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
  * BF_ENOMEM. */
-int bf_calibrate(const bf_problem *pb, const double *truth,
-                 double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, size_t n_boot, unsigned long seed,
-                 double level, bf_calibration *out);
+int bf_fit_calibrate(const bf_problem *pb, const double *truth,
+                     double noise_power, double sigma, bf_noise noise,
+                     size_t n_sim, size_t n_boot, unsigned long seed,
+                     double level, bf_calibration *out);
 
 /* The residual bootstrap under a fit's noise model (doc/methods.md §3,
  * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
@@ -1243,29 +1349,23 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
                      size_t n_boot, unsigned long seed, double level,
                      double *low, double *high);
 
+/* ---- information criteria, cross-validation (doc/methods.md §4-5) ---- */
+
 /* Information criteria with Gaussian errors (doc/methods.md §4) for a
  * residual sum of squares rss > 0 on n points with k parameters:
  * AIC = n ln(rss/n) + 2k, BIC = n ln(rss/n) + k ln n. */
-double bf_aic(double rss, size_t n, size_t k);
-double bf_bic(double rss, size_t n, size_t k);
+double bf_criterion_aic(double rss, size_t n, size_t k);
+double bf_criterion_bic(double rss, size_t n, size_t k);
 
 /* Number of parameters counted by AIC/BIC for pb: its free parameters,
  * plus 1 for the fitted scale of BF_OBJ_SCALE (the max-normalisation of
  * the other objectives is not a parameter; doc/methods.md §4). */
 size_t bf_problem_nparams(const bf_problem *pb);
 
-/* The free scale of pb at param under an objective that keeps the scale
- * (SPEC §9.4, §10): rho_d with the model's value rho_d d(i, o), d its shape
- * scaled so that d = 1/pi at normal incidence and view (LAMBERT: rho_d is
- * the albedo), into *rho_d. BF_EINVAL for another objective or bad
- * arguments, BF_EDOM where the model is undefined or its value at normal
- * incidence and view is not positive. */
-int bf_fit_scale(const bf_problem *pb, const double *param, double *rho_d);
-
 /* Deterministic assignment of n configurations to folds (0..folds-1): a
  * fixed-seed (seed) shuffle of 0..n-1, position p in fold p mod folds, so
  * fold sizes differ by at most one. BF_EINVAL unless 2 <= folds <= n. */
-int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
+int bf_fit_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
 
 /* k-fold cross-validated error (doc/methods.md §5): for each fold the
  * model is fitted to the other folds (grid optimum on curves, then
@@ -1275,269 +1375,7 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold);
 int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
               unsigned long seed, double *cv);
 
-/* The profile of pb's objective along free parameter j as a curve
- * (doc/methods.md §3): dev[i] = n ln(S_p(theta[i]) / S_min) at the n
- * increasing values theta[i] within the search range [lo_j, hi_j], S_p
- * minimised over the other free parameters (warm-started outward from the
- * optimum), S_min the objective at best (the exact optimum,
- * bf_fit_refine), n the sum of the weights. The profile interval is where
- * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
- * undefined. BF_EINVAL on bad arguments or theta out of range or not
- * increasing; BF_ENOMEM. (src/fit/profile_curve.c) */
-int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
-                         size_t j, size_t n, const double *theta,
-                         double *dev);
-
-/* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
- * model at the n configurations at[], divided by its maximum over the
- * n_used configurations used[] the fit saw. work holds n_used doubles.
- * out[i] is NaN where the model is undefined at at[i]. BF_EDOM when the
- * model cannot be normalised on used[] (maximum not positive or
- * undefined); BF_EINVAL on bad arguments. (src/fit/plane.c) */
-int bf_fit_curve(const bf_model_type *type, const double *param,
-                 size_t n_used, const bf_geom *used, size_t n,
-                 const bf_geom *at, double *work, double *out);
-
-/* A fitted model drawn anywhere in absolute units under an objective
- * that keeps the scale (SPEC §10): its rho_hat = BRDF x cos theta_i at
- * the n configurations at[], the fitted scales included, never
- * normalised. A specular model or composite (SPEC §9.3, §9.4) carries its
- * scales in param: bf_model_eval x cos theta_i. A diffuse model's scale
- * is the fit's, solved on pb (its data rho, configurations, weights and
- * objective; bf_fit_scale's rho_d): rho_d v(at) / (pi v(normal)), v the
- * model's value (SPEC §9.4). out[i] is NaN where the model is undefined.
- * BF_EINVAL for another objective or bad arguments; bf_fit_scale's
- * errors. (src/fit/plane.c) */
-int bf_fit_rho_curve(const bf_problem *pb, const double *param, size_t n,
-                     const bf_geom *at, double *out);
-
-/* The radiance axis of a figure of fitted and measured rho (SPEC §10):
- * 1 when the positive finite values of v[0..n-1] span more than
- * BF_LOG_AXIS_DECADES decades (max / min > 10^2), so that a linear axis
- * would flatten the lower ones to the baseline (a gloss peak above a
- * diffuse floor): the figure then draws a logarithmic axis; else 0.
- * (src/fit/plane.c) */
-#define BF_LOG_AXIS_DECADES 2.0
-int bf_fit_log_axis(size_t n, const double *v);
-
-/* The configuration of the plane of incidence at incidence theta_i and
- * signed viewing angle t in [-pi/2, pi/2] (t > 0 on the forward, specular
- * side; Beckmann's frame, SPEC §1.2). */
-bf_geom bf_geom_in_plane(double theta_i, double t);
-
-/* The signed viewing angle of g in its plane of incidence (> 0 forward),
- * and in *off_plane (may be NULL) the angle between the viewing direction
- * and that plane, radians. */
-double bf_geom_plane_angle(const bf_geom *g, double *off_plane);
-
-/* The incidence angles at which a figure of the plane of incidence shows
- * measurements: the configurations of g whose viewing direction lies
- * within tol of their plane of incidence, grouped by theta_i (angles
- * within tol of a group's smallest are one; each group is represented by
- * its median member, a measured angle). The candidates are the groups of
- * more than half as many configurations as the largest group. At most
- * max angles, in increasing order, into theta_i, their number in *n (0
- * when no configuration is in its plane); more candidates than max are
- * thinned evenly over their range, the first and the last kept (CURET:
- * 6 or 7 in-plane views at each multiple of 11.25 degrees, 3 at normal
- * incidence, give 11.25, 33.75, 56.25 and 78.75 for max = 4). BF_OK, BF_EINVAL,
- * BF_ENOMEM. */
-int bf_geom_plane_incidences(size_t K, const bf_geom *g, double tol,
-                             size_t max, double *theta_i, size_t *n);
-
-/* A model type with some parameters' status or search range changed (n
- * freed in FC, rho and sigma fitted in ON, a wider --range). Initialise
- * with bf_model_variant_init and use &v->type; v must not be moved or
- * copied afterwards (type.param points into it). Owns no memory. */
-typedef struct {
-    bf_model_type type;
-    bf_param param[BF_MAX_PARAMS];
-} bf_model_variant;
-
-/* Copies base into v (every parameter as in base). */
-void bf_model_variant_init(bf_model_variant *v, const bf_model_type *base);
-
-/* Makes parameter name fitted over the grid lo, lo + step, ... (the last
- * point is hi, rounded to the step; at most BF_VARIANT_MAX_GRID points).
- * BF_ENOTFOUND for an unknown name, BF_EINVAL when lo < min, hi > max,
- * lo >= hi, step <= 0 or too many points. */
-#define BF_VARIANT_MAX_GRID 100001
-int bf_model_variant_fit(bf_model_variant *v, const char *name, double lo,
-                         double hi, double step);
-
-/* Makes parameter name fitted over [lo, hi] with its own grid step (its
- * paper grid's, or (hi - lo) / 100 for a parameter without a grid): the
- * policy of a user's search range (--range NAME=LO:HI). BF_ENOTFOUND when
- * v has no such parameter; BF_EINVAL as bf_model_variant_fit (outside
- * [min, max], lo >= hi, more than BF_VARIANT_MAX_GRID points). */
-int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
-                           double hi);
-
-/* The exact fit's policy (doc/methods.md §6): frees every input parameter
- * of v that has an exact-fit range (bf_param.free_lo < free_hi: FC's n
- * over [BF_FREE_N_LO, BF_FREE_N_HI], ON's rho over [0.05, 1] and sigma over
- * [0, 1.57]), fitted over the grid free_lo, free_lo + free_step, ...,
- * except inputs of the kinds in keep (bit 1u << BF_INPUT_INDEX: the user
- * gave n, so n stays the input). Returns the number of parameters freed. */
-size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
-
-/* Ranges that --fit exact frees by default (doc/methods.md §6). */
-#define BF_FREE_N_LO 1.2
-#define BF_FREE_N_HI 2.5
-#define BF_FREE_N_STEP 0.05
-
-/* ======================================================================
- * --- the study (SPEC §7) on a dataset ---
- * ====================================================================== */
-
-/* One thing the study fits: a material of the dataset on one channel, or
- * on the mean over its channels (SPEC §2). */
-typedef struct {
-    size_t material; /* index in the dataset */
-    size_t channel;  /* channel index, or BF_CHANNEL_MEAN */
-    int joint;       /* 1: fitted jointly with the material's other joint
-                        targets (--channel joint, SPEC §9.4): the targets
-                        of one material with joint set, consecutive, share
-                        the shape parameters and each has its own scales
-                        (bf_param.linear) */
-} bf_target;
-
-/* Expands materials (n_materials indices; materials = NULL: every material
- * in order) and a channel request into targets, material-major: NULL or
- * "mean": one target per material on BF_CHANNEL_MEAN; "each": one per
- * channel of each material, in channel order; "joint": the same targets
- * as "each" with joint set (SPEC §9.4: one shape for all channels, scales
- * per channel; every channel's data on the configurations valid on all
- * of them, as the mean's); any other text: that channel
- * of every material (bf_dataset_channel_find; BF_ENOTFOUND with err->msg
- * naming the first material that lacks it). *out (n_out targets) is
- * allocated with malloc; the caller frees it with free(). */
-int bf_study_targets(const bf_dataset *ds, const size_t *materials,
-                     size_t n_materials, const char *channel,
-                     bf_target **out, size_t *n_out, bf_error *err);
-
-/* What to fit: targets x models, each target on its own configuration
- * selection (bf_dataset_select with select, for the target's channel). */
-typedef struct {
-    const bf_dataset *data;       /* the measurements (borrowed) */
-    const bf_target *targets;     /* what to fit */
-    size_t n_targets;
-    bf_select select;             /* which configurations are used */
-    const bf_model_type *const *models; /* models to fit */
-    size_t n_models;
-    double n_default;             /* refractive index for FC models */
-    const bf_sample_table *n_file;    /* n per material number (NULL:
-                                         n_default) */
-    const bf_sample_table *on_params; /* ON (rho, sigma) per material
-                                         number */
-    int n_threads;                /* OpenMP threads; 0 or 1: one. The
-                                     results do not depend on it. */
-} bf_study_spec;
-
-/* The used configurations and the normalised measured radiance (SPEC §2)
- * of target t of spec, exactly as the study fits them: sel and data need
- * the capacity bf_dataset_nconf of the target's material; *k gets K.
- * BF_EDOM (err->msg naming the material) when K = 0 or the data cannot be
- * normalised; BF_ENOTFOUND when an excluded number does not exist. */
-int bf_study_target_data(const bf_study_spec *spec, size_t t, size_t *sel,
-                         size_t *k, double *data, bf_error *err);
-
-/* The used configurations and measured data of target t exactly as the
- * analysis fits them under objective obj: bf_study_target_data's for the
- * max-normalised objectives; for those that keep the scale (SPEC §10)
- * rho = BRDF x cos theta_i as measured, not normalised, on the
- * configurations with theta_i, theta_o <= 80 degrees
- * (BF_KEEP_SCALE_THETA). Same capacities and errors. */
-int bf_study_fit_data(const bf_study_spec *spec, bf_objective obj, size_t t,
-                      size_t *sel, size_t *k, double *data, bf_error *err);
-
-/* The outcome of one (target, model) pair. */
-typedef struct {
-    size_t target;                /* index into spec->targets */
-    size_t material;              /* its material (dataset index) */
-    int sample;                   /* the material's number
-                                     (bf_dataset_number) */
-    size_t channel;               /* its channel, or BF_CHANNEL_MEAN */
-    size_t k;                     /* K, configurations used */
-    const bf_model_type *type;    /* model */
-    int status;                   /* BF_OK; BF_ENOTFOUND when an input is
-                                     missing (ON without parameters) */
-    bf_fit_result fit;            /* valid when status == BF_OK */
-} bf_study_row;
-
-/* Runs the paper's protocol (SPEC §7) for every target and model, writing
- * n_targets * n_models rows (target-major) into rows. Targets that share a
- * configuration set and selection share the model curves. A target whose
- * data cannot be normalised, or that keeps no configuration, is an error
- * (returned, with err->msg naming the material); a model that cannot be
- * evaluated for a target for lack of inputs gets its row's status set and
- * the study goes on. */
-int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
-                 bf_error *err);
-
-/* The 24 CURET samples of Ragheb & Hancock's study, in increasing order. */
-#define BF_STUDY_NSAMPLES 24
-extern const int bf_study_samples[BF_STUDY_NSAMPLES];
-
-/* The models of a study from list, a comma-separated list of registry
- * names (bf_model_find_why: composites D+S too), "all" (every diffuse
- * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
- * into out (room for cap; bf_model_count() + 1 is enough), under the
- * options of SPEC §9.2: with fresnel or smith not DEFAULT, every specular
- * model and the S part of every composite is its variant
- * (bf_model_specular_variant: GGX under BF_FRESNEL_DIELECTRIC has rho_s,
- * alpha, n; LAMBERT+GGX rho_d, rho_s, alpha, n); diffuse models are
- * unaffected. Returns BF_OK; BF_ENOTFOUND for an unknown name; BF_EINVAL
- * for a bad list (an empty name, a trailing comma), a model listed twice,
- * more than cap, or fresnel or smith not a value of its enum; BF_EDOM for
- * a specular model, or fresnel or smith given, under an objective that
- * max-normalises (SPEC §9, §10: !bf_objective_keeps_scale), and -- under
- * one that keeps the scale -- for a specular model that cannot take an
- * option given or options that no listed model takes. err->msg says which
- * ("unknown model 'XX'", "'ON' listed twice", "GGX gives absolute BRDF
- * values (SPEC §9)", "WARD has no Fresnel term (SPEC §9.3): --fresnel
- * applies to GGX, BECKMANN and CT"), for the caller to prefix with its own
- * option's name. */
-int bf_study_models(const char *list, bf_model_set defaults,
-                    bf_objective objective, bf_fresnel_kind fresnel,
-                    bf_smith_kind smith, const bf_model_type **out,
-                    size_t cap, size_t *n, bf_error *err);
-
-/* A user's search range of the parameter called name (--range NAME=LO:HI). */
-typedef struct {
-    const char *name;
-    double lo, hi;
-} bf_param_range;
-#define BF_STUDY_MAX_RANGES 8
-
-/* The types a study fits for models (n_models registry types): with exact,
- * the exact fit's variants (bf_model_variant_exact(v, keep)); each of the
- * n_ranges ranges (at most BF_STUDY_MAX_RANGES) applied to every model
- * that has the parameter (bf_model_variant_range). out[m] is models[m]
- * when neither applies, else &variants[m].type (variants: room for
- * n_models, not moved afterwards; unused when neither applies, may then be
- * NULL). Returns BF_OK; BF_EINVAL when range *bad_range does not fit model
- * *bad_model's parameter (bf_model_variant_range) or for bad arguments;
- * BF_ENOTFOUND when range *bad_range names no parameter of any model. */
-int bf_study_variants(const bf_model_type *const *models, size_t n_models,
-                      int exact, unsigned keep, const bf_param_range *ranges,
-                      size_t n_ranges, bf_model_variant *variants,
-                      const bf_model_type **out, size_t *bad_range,
-                      size_t *bad_model);
-
-/* The check of the n rows a study wrote (bf_study_run, bf_study_analyse):
- * BF_OK when every row is BF_OK or BF_ENOTFOUND (a missing input: a gap
- * the tables leave and the caller notes); otherwise the first other row's
- * status (BF_EDOM: the model cannot be normalised on the used
- * configurations, SPEC §2; BF_ENOMEM), its index in *bad (may be NULL). */
-int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
-
-/* The paper's default refractive index for FC models (SPEC §4.2). */
-#define BF_DEFAULT_N 1.7
-
-/* ======================================================================
- * --- the study beyond the paper (doc/methods.md) ---
- * ====================================================================== */
+/* ---- the study's analysis ---- */
 
 /* Progress of a long computation: done of total units of work (one
  * (target, model) pair each) are finished. Called from the thread that
@@ -1644,12 +1482,12 @@ typedef struct {
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
-/* bf_calibrate for pair u (target u / n_models, model u % n_models) of a
+/* bf_fit_calibrate for pair u (target u / n_models, model u % n_models) of a
  * study analysed by bf_study_analyse(spec, opts, rows, stats): at the
  * target's configurations, the pair's refined parameters as the truth and
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
  * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
- * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
+ * bf_fit_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
  * not be estimated); BF_EINVAL for a pair that was not analysed or
  * that is a joint fit's (bf_target.joint). */
 int bf_study_calibrate(const bf_study_spec *spec,
@@ -1658,22 +1496,7 @@ int bf_study_calibrate(const bf_study_spec *spec,
                        size_t u, size_t n_sim, unsigned long seed,
                        bf_calibration *out, bf_error *err);
 
-/* Writes calibrate.csv: a header line, then one line per (pair of pairs[],
- * fitted parameter): sample, name, channel, model, parameter, value (the
- * truth simulated), objective, noise_power (p), noise_sd,
- * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
- * not_identified (share), boot_coverage, boot_width (empty without the
- * bootstrap). Formats as bf_fits_csv_write. */
-int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
-                             const bf_study_row *rows,
-                             const bf_fit_stats *stats,
-                             const bf_analysis_opts *opts,
-                             const size_t *pairs, size_t n_pairs,
-                             const bf_calibration *cal);
-
-/* ======================================================================
- * --- model selection: ranks, ties, the best model (doc/methods.md §5) ---
- * ====================================================================== */
+/* ---- model selection: ranks, ties, the best model (§5) ---- */
 
 /* The criteria a ranking can use. */
 typedef enum { BF_CRIT_AIC = 0, BF_CRIT_BIC, BF_CRIT_CV } bf_criterion;
@@ -1703,17 +1526,17 @@ int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
  * rank), 0 when m has no value; *best = the model of rank 1 with the
  * fewest parameters (k), the first listed among equals, or SIZE_MAX when
  * none has a value. rank may be NULL (only *best wanted). */
-void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
-             size_t *rank, size_t *best);
+void bf_criterion_rank(const bf_fit_stats *stats, size_t n_models,
+                       bf_criterion c, size_t *rank, size_t *best);
 
 /* The name a win of model best counts for (static storage): the model's,
  * or the model it reduces to when its fit is on that face
  * (BF_STAT_REDUCED: ON at sigma = 0 wins for LAMBERT); NULL when best is
  * SIZE_MAX. models and stats: the target's n_models entries. */
-const char *bf_rank_winner(const bf_model_type *const *models,
-                           const bf_fit_stats *stats, size_t best);
+const char *bf_criterion_winner(const bf_model_type *const *models,
+                                const bf_fit_stats *stats, size_t best);
 
-/* bf_rank for every target of a study analysed with bf_study_analyse
+/* bf_criterion_rank for every target of a study analysed with bf_study_analyse
  * (stats: n_targets x n_models, target-major): rank (n_targets x
  * n_models) and best (n_targets; SIZE_MAX for a target no model could be
  * ranked on), either may be NULL. BF_EINVAL for a NULL spec or stats,
@@ -1723,7 +1546,7 @@ int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
 
 /* The wins of each model over the study's targets by criterion c (the
  * best model of each target, bf_study_rank; a win counts for the model
- * bf_rank_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
+ * bf_criterion_winner names: ON at sigma = 0 wins for LAMBERT): *n_names
  * entries of names (static storage) and wins, most wins first, equal
  * counts in the order of the first win. names and wins need room for
  * 2 * spec->n_models entries. Targets without a best model are not
@@ -1732,8 +1555,80 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
                   bf_criterion c, const char **names, size_t *wins,
                   size_t *n_names);
 
+/* ---- what the figures draw ---- */
+
+/* The profile of pb's objective along free parameter j as a curve
+ * (doc/methods.md §3): dev[i] = n ln(S_p(theta[i]) / S_min) at the n
+ * increasing values theta[i] within the search range [lo_j, hi_j], S_p
+ * minimised over the other free parameters (warm-started outward from the
+ * optimum), S_min the objective at best (the exact optimum,
+ * bf_fit_refine), n the sum of the weights. The profile interval is where
+ * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
+ * undefined. BF_EINVAL on bad arguments or theta out of range or not
+ * increasing; BF_ENOMEM. (src/fit/profile_curve.c) */
+int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
+                         size_t j, size_t n, const double *theta,
+                         double *dev);
+
+/* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
+ * model at the n configurations at[], divided by its maximum over the
+ * n_used configurations used[] the fit saw. work holds n_used doubles.
+ * out[i] is NaN where the model is undefined at at[i]. BF_EDOM when the
+ * model cannot be normalised on used[] (maximum not positive or
+ * undefined); BF_EINVAL on bad arguments. (src/fit/plane.c) */
+int bf_fit_curve(const bf_model_type *type, const double *param,
+                 size_t n_used, const bf_geom *used, size_t n,
+                 const bf_geom *at, double *work, double *out);
+
+/* A fitted model drawn anywhere in absolute units under an objective
+ * that keeps the scale (SPEC §10): its rho_hat = BRDF x cos theta_i at
+ * the n configurations at[], the fitted scales included, never
+ * normalised. A specular model or composite (SPEC §9.3, §9.4) carries its
+ * scales in param: bf_model_eval x cos theta_i. A diffuse model's scale
+ * is the fit's, solved on pb (its data rho, configurations, weights and
+ * objective; bf_fit_scale's rho_d): rho_d v(at) / (pi v(normal)), v the
+ * model's value (SPEC §9.4). out[i] is NaN where the model is undefined.
+ * BF_EINVAL for another objective or bad arguments; bf_fit_scale's
+ * errors. (src/fit/plane.c) */
+int bf_fit_rho_curve(const bf_problem *pb, const double *param, size_t n,
+                     const bf_geom *at, double *out);
+
+/* The radiance axis of a figure of fitted and measured rho (SPEC §10):
+ * 1 when the positive finite values of v[0..n-1] span more than
+ * BF_LOG_AXIS_DECADES decades (max / min > 10^2), so that a linear axis
+ * would flatten the lower ones to the baseline (a gloss peak above a
+ * diffuse floor): the figure then draws a logarithmic axis; else 0.
+ * (src/fit/plane.c) */
+#define BF_LOG_AXIS_DECADES 2.0
+int bf_fit_log_axis(size_t n, const double *v);
+
+/* The configuration of the plane of incidence at incidence theta_i and
+ * signed viewing angle t in [-pi/2, pi/2] (t > 0 on the forward, specular
+ * side; Beckmann's frame, SPEC §1.2). */
+bf_geom bf_geom_in_plane(double theta_i, double t);
+
+/* The signed viewing angle of g in its plane of incidence (> 0 forward),
+ * and in *off_plane (may be NULL) the angle between the viewing direction
+ * and that plane, radians. */
+double bf_geom_plane_angle(const bf_geom *g, double *off_plane);
+
+/* The incidence angles at which a figure of the plane of incidence shows
+ * measurements: the configurations of g whose viewing direction lies
+ * within tol of their plane of incidence, grouped by theta_i (angles
+ * within tol of a group's smallest are one; each group is represented by
+ * its median member, a measured angle). The candidates are the groups of
+ * more than half as many configurations as the largest group. At most
+ * max angles, in increasing order, into theta_i, their number in *n (0
+ * when no configuration is in its plane); more candidates than max are
+ * thinned evenly over their range, the first and the last kept (CURET:
+ * 6 or 7 in-plane views at each multiple of 11.25 degrees, 3 at normal
+ * incidence, give 11.25, 33.75, 56.25 and 78.75 for max = 4). BF_OK, BF_EINVAL,
+ * BF_ENOMEM. */
+int bf_geom_plane_incidences(size_t K, const bf_geom *g, double tol,
+                             size_t max, double *theta_i, size_t *n);
+
 /* ======================================================================
- * --- output files: fits.csv and ranking.csv (README "Output files") ---
+ * --- write: the output files and tidy CSV (README "Output files") ---
  * ====================================================================== */
 
 /* What the analysis says about a fit, as words separated by spaces into
@@ -1818,22 +1713,84 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);
 
+/* One line of ranking.csv (below): the values of its columns after sample,
+ * name and channel (those of target rows[row].target). NaN and NULL stand
+ * for an empty field. */
+typedef struct {
+    size_t row;              /* index into the study's rows */
+    const char *model;       /* rows[row].type->name */
+    const char *objective;   /* bf_objective_name */
+    const char *fit;         /* "paper" or "exact" */
+    size_t k;                /* parameters counted */
+    size_t n;                /* configurations */
+    double objective_value;  /* the fit's objective */
+    double aic, bic, cv;
+    size_t rank[BF_NCRIT];   /* by bf_criterion (bf_study_rank) */
+    int best[BF_NCRIT];      /* 1 on the target's best model */
+    const char *counts_as;   /* bf_criterion_winner, NULL: none */
+    char flags[BF_FITS_FLAGS_MAX]; /* bf_fit_flags_format */
+    size_t n_params;         /* the model's fitted parameters: slots
+                                0 .. n_params - 1 below */
+    const char *param[BF_MAX_PARAMS];
+    double value[BF_MAX_PARAMS];
+    double ci_low[BF_MAX_PARAMS], ci_high[BF_MAX_PARAMS];
+    double boot_low[BF_MAX_PARAMS], boot_high[BF_MAX_PARAMS];
+} bf_ranking_line;
+
+/* The number P of parameter slots of ranking.csv for a study's rows: the
+ * most fitted parameters of any of its models. */
+size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows);
+
+/* The lines of ranking.csv (below) for an analysed study, in order, into
+ * out (NULL: only counted; otherwise room for the count), their number in
+ * *n. BF_EINVAL for NULL spec, rows, stats or n; BF_ENOMEM. */
+int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_ranking_line *out, size_t *n);
+
 /* Writes ranking.csv for an analysed study: a header line, then one line
  * per (target, model) that was analysed. Columns: sample, name, channel,
  * model, objective, fit, k (parameters counted), n (configurations),
  * objective_value (the fit's objective), aic, bic, cv, rank_aic, rank_bic,
  * rank_cv (bf_study_rank), best_aic, best_bic, best_cv (1 on the target's
  * best model after the tie-break), counts_as (the model its wins count for,
- * bf_rank_winner), flags (bf_fit_flags_format), then for each of the
+ * bf_criterion_winner), flags (bf_fit_flags_format), then for each of the
  * study's P fitted-parameter slots (P = the most fitted parameters of any
  * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_boot_low,
  * pJ_boot_high (J = 1..P: the model's J-th fitted parameter, its value,
- * profile and bootstrap interval; empty beyond the model's own). Formats
- * and errors as bf_fits_csv_write; stats is required. */
+ * profile and bootstrap interval; empty beyond the model's own): the
+ * lines of bf_ranking_lines, P of bf_ranking_slots. Formats and errors as
+ * bf_fits_csv_write; stats is required. */
 int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,
                          const bf_study_row *rows, const bf_fit_stats *stats,
                          const bf_analysis_opts *opts);
 
+/* Writes calibrate.csv: a header line, then one line per (pair of pairs[],
+ * fitted parameter): sample, name, channel, model, parameter, value (the
+ * truth simulated), objective, noise_power (p), noise_sd,
+ * n_sim, coverage, bias, sd, ml_bias, ml_sd, width (median), level,
+ * not_identified (share), boot_coverage, boot_width (empty without the
+ * bootstrap). Formats as bf_fits_csv_write. */
+int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
+                             const bf_study_row *rows,
+                             const bf_fit_stats *stats,
+                             const bf_analysis_opts *opts,
+                             const size_t *pairs, size_t n_pairs,
+                             const bf_calibration *cal);
+
+/* Writes ds as tidy CSV (the `material` column always present; a material
+ * without a name is written under its number). Angles are written in
+ * degrees with as few digits as read back (bf_csv_read) into the same
+ * radians bit for bit; values with the fewest of %.15g, %.16g, %.17g that
+ * read back bit for bit; invalid values as empty fields; wavelength
+ * channels as "<nm>nm". So bf_csv_read gives ds back. BF_EINVAL when it
+ * could not: materials with different channels, two materials written
+ * under one name, a line break in a name, a channel that would not read
+ * back as itself (a wavelength channel not named by its wavelength, a
+ * name ending in nm, or one of the CSV's own column names), or an angle
+ * below 1e-200 degrees that no decimal reads back into. BF_EIO on a
+ * write error. */
+int bf_csv_write(const bf_dataset *ds, FILE *fp);
 
 /* ======================================================================
  * --- report: a study's tables, figures and report.html (libbrdffit_report)

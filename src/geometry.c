@@ -22,7 +22,7 @@
 
 /* Wraps a to (-pi, pi]. fmod is exact, so the only rounding is the one
  * addition of 2 pi. Non-finite input gives NaN. */
-double bf_wrap_angle(double a)
+double bf_geom_wrap_angle(double a)
 {
     double r = fmod(a, TWO_PI); /* (-2 pi, 2 pi), sign of a */
     if (r > BF__PI) {
@@ -43,7 +43,8 @@ bf_geom bf_geom_from_measurement(double theta_i, double phi_i,
     g.theta_i = theta_i;
     g.phi_i = BF__PI;
     g.theta_s = theta_o;
-    g.phi_s = bf_wrap_angle(phi_o - phi_i - BF__PI); /* SPEC §1.3, §1.5 */
+    /* SPEC §1.3, §1.5 */
+    g.phi_s = bf_geom_wrap_angle(phi_o - phi_i - BF__PI);
     return g;
 }
 
@@ -92,7 +93,7 @@ int bf_geom_is_specular(const bf_geom *g)
         return 0;
     }
     return (fabs(g->theta_s - g->theta_i) < BF_SPECULAR_TOL)
-           && (fabs(bf_wrap_angle(g->phi_s)) < BF_SPECULAR_TOL);
+           && (fabs(bf_geom_wrap_angle(g->phi_s)) < BF_SPECULAR_TOL);
 }
 
 void bf__geom_trig(const bf_geom *g, bf__trig_t *tr)

@@ -194,7 +194,7 @@ bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
     bf_error err;
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = &t;
     spec.n_targets = 1;
     spec.models = &type;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "brdffit.h"
+#include "data/curet.h" /* the CURET reader's tables (private) */
 
 /* Named tolerances (STYLE §7, after GSL's TEST_TOL0..6). */
 #define TOL0 (2.0 * DBL_EPSILON)

@@ -1,4 +1,4 @@
-/* test_geometry.c: tests of bf_wrap_angle, bf_geom_from_curet and
+/* test_geometry.c: tests of bf_geom_wrap_angle, bf_geom_from_curet and
  * bf_geom_is_specular (SPEC §1). Hand examples use rows of CURET's
  * table.txt copied here, so this file needs no data; the real table is
  * checked in test_specular.c. */
@@ -12,17 +12,17 @@
 
 Test(geometry, wrap_maps_into_the_half_open_interval_minus_pi_to_pi)
 {
-    bf_assert_abs(bf_wrap_angle(0.0), 0.0, 0.0);
-    bf_assert_rel(bf_wrap_angle(PI), PI, TOL0);
-    bf_assert_rel(bf_wrap_angle(-PI), PI, TOL0); /* -pi is excluded */
-    bf_assert_rel(bf_wrap_angle(1.5 * PI), -0.5 * PI, TOL1);
-    bf_assert_rel(bf_wrap_angle(-1.5 * PI), 0.5 * PI, TOL1);
+    bf_assert_abs(bf_geom_wrap_angle(0.0), 0.0, 0.0);
+    bf_assert_rel(bf_geom_wrap_angle(PI), PI, TOL0);
+    bf_assert_rel(bf_geom_wrap_angle(-PI), PI, TOL0); /* -pi is excluded */
+    bf_assert_rel(bf_geom_wrap_angle(1.5 * PI), -0.5 * PI, TOL1);
+    bf_assert_rel(bf_geom_wrap_angle(-1.5 * PI), 0.5 * PI, TOL1);
     /* 7.1234 - 2 pi = 0.83981469282041 (by hand) */
-    bf_assert_rel(bf_wrap_angle(7.1234), 7.1234 - TWO_PI, TOL1);
+    bf_assert_rel(bf_geom_wrap_angle(7.1234), 7.1234 - TWO_PI, TOL1);
     /* -20.5 + 6 pi = -1.650444078461... (3 turns) */
-    bf_assert_rel(bf_wrap_angle(-20.5), -20.5 + (3.0 * TWO_PI), TOL2);
-    cr_assert(isnan(bf_wrap_angle(NAN)));
-    cr_assert(isnan(bf_wrap_angle(INFINITY)));
+    bf_assert_rel(bf_geom_wrap_angle(-20.5), -20.5 + (3.0 * TWO_PI), TOL2);
+    cr_assert(isnan(bf_geom_wrap_angle(NAN)));
+    cr_assert(isnan(bf_geom_wrap_angle(INFINITY)));
 }
 
 Test(geometry, wrap_differs_from_its_input_by_whole_turns)
@@ -30,7 +30,7 @@ Test(geometry, wrap_differs_from_its_input_by_whole_turns)
     int i;
     for (i = -2000; i <= 2000; i++) {
         double a = 0.0173 * i;
-        double w = bf_wrap_angle(a);
+        double w = bf_geom_wrap_angle(a);
         double turns = (a - w) / TWO_PI;
         cr_assert(w > -PI && w <= PI, "wrap(%.17g) = %.17g", a, w);
         bf_assert_abs(turns, nearbyint(turns), 1e-12);

@@ -176,10 +176,10 @@ typedef struct {
     double max_theta;
     const size_t *exclude;
     size_t n_exclude;
-} bf_select;
-void bf_select_init(bf_select *s);
+} bf_selection;
+void bf_selection_init(bf_selection *s);
 int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
-                      const bf_select *s, size_t *sel, size_t *n,
+                      const bf_selection *s, size_t *sel, size_t *n,
                       size_t *cone_out);
 int bf_dataset_radiance(const bf_dataset *ds, size_t m, size_t c, size_t n,
                         const size_t *sel, double *out);
@@ -228,7 +228,7 @@ typedef struct {
     const bf_dataset *data;
     const bf_target *targets;
     size_t n_targets;
-    bf_select select;
+    bf_selection select;
     const bf_model_type *const *models;
     size_t n_models;
     double n_default;
@@ -350,9 +350,9 @@ const char *bf_criterion_name(bf_criterion c);
 int bf_criterion_find(const char *name, bf_criterion *c);
 double bf_criterion_value(const bf_fit_stats *st, bf_criterion c);
 int bf_criterion_tied(double a, double b, bf_criterion c, size_t n);
-void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
+void bf_criterion_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
              size_t *rank, size_t *best);
-const char *bf_rank_winner(const bf_model_type *const *models,
+const char *bf_criterion_winner(const bf_model_type *const *models,
                            const bf_fit_stats *stats, size_t best);
 int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
                   bf_criterion c, size_t *rank, size_t *best);
@@ -392,6 +392,29 @@ typedef struct {
 size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
                      const bf_fit_stats *stats, const bf_analysis_opts *opts,
                      bf_fits_line *out);
+typedef struct {
+    size_t row;
+    const char *model;
+    const char *objective;
+    const char *fit;
+    size_t k;
+    size_t n;
+    double objective_value;
+    double aic, bic, cv;
+    size_t rank[3];
+    int best[3];
+    const char *counts_as;
+    char flags[512];
+    size_t n_params;
+    const char *param[8];
+    double value[8];
+    double ci_low[8], ci_high[8];
+    double boot_low[8], boot_high[8];
+} bf_ranking_line;
+size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows);
+int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,
+                     const bf_fit_stats *stats, const bf_analysis_opts *opts,
+                     bf_ranking_line *out, size_t *n);
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);

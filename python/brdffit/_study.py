@@ -8,6 +8,7 @@ by the Spec object.
 """
 
 import os
+import re
 from collections.abc import Mapping
 
 import numpy as np
@@ -279,7 +280,7 @@ class Spec:
         spec.n_targets = n_out[0]
 
         sel = ffi.addressof(spec[0], "select")
-        lib.bf_select_init(sel)
+        lib.bf_selection_init(sel)
         if cone is not None:
             sel.cone = float(cone)
         if max_theta is not None:
@@ -537,6 +538,57 @@ class Study:
         lib.bf_fits_lines(spec, self.rows, stats, opts, lines)
         albedo = [c for c in columns if c.startswith("albedo_")
                   and c[7:].isdigit()]
+
+        def value(ln, c):
+            if c in albedo:
+                return float(ln.albedo[albedo.index(c)])
+            return getattr(ln, c)
+        return self._records(text_, columns, lines, n, value)
+
+    def ranking_csv(self):
+        """ranking.csv of the run (bf_ranking_csv_write), as text; needs
+        the analysis."""
+        return self.spec.write(lib.bf_ranking_csv_write, self.rows,
+                               self.stats, self.opts)
+
+    def ranking_records(self):
+        """ranking.csv's lines as Records from the library's structs
+        (bf_ranking_lines): numbers at full precision, empty fields None;
+        .text the table (ranking_csv); needs the analysis."""
+        text_ = self.ranking_csv()
+        columns = text_.split("\n", 1)[0].split(",")
+        spec = self.spec.spec
+        opts = ffi.NULL if self.opts is None else self.opts
+        n = ffi.new("size_t *")
+        check(lib.bf_ranking_lines(spec, self.rows, self.stats, opts,
+                                   ffi.NULL, n))
+        lines = ffi.new("bf_ranking_line[]", max(n[0], 1))
+        check(lib.bf_ranking_lines(spec, self.rows, self.stats, opts, lines,
+                                   n))
+        crit = [c.lower() for c in CRITERIA]
+        slot = {"": "param", "_value": "value", "_ci_low": "ci_low",
+                "_ci_high": "ci_high", "_boot_low": "boot_low",
+                "_boot_high": "boot_high"}
+
+        def value(ln, c):
+            kind, _, which = c.partition("_")
+            if kind in ("rank", "best") and which in crit:
+                return int(getattr(ln, kind)[crit.index(which)])
+            m = re.match(r"p(\d+)(\w*)$", c)
+            if m and m.group(2) in slot:
+                q = int(m.group(1)) - 1
+                if q >= ln.n_params:
+                    return None
+                v = getattr(ln, slot[m.group(2)])[q]
+                return v if m.group(2) == "" else float(v)
+            return getattr(ln, c)
+        return self._records(text_, columns, lines, n[0], value)
+
+    def _records(self, text_, columns, lines, n, value):
+        """Records of the n library lines (bf_fits_line, bf_ranking_line)
+        with the table's columns: sample, name and channel of the line's
+        target (its row's), the others value(line, column)."""
+        spec = self.spec.spec
         ds = self.spec.dataset._ds
         out = []
         for i in range(n):
@@ -549,21 +601,14 @@ class Study:
                 elif c == "name":
                     v = lib.bf_dataset_name(ds, t.material)
                 elif c == "channel":  # a joint fit's shape: "joint"
-                    v = "joint" if ln.joint else lib.bf_dataset_channel(
+                    joint = getattr(ln, "joint", 0)  # ranking: per channel
+                    v = "joint" if joint else lib.bf_dataset_channel(
                         ds, t.material, t.channel)
-                elif c in albedo:
-                    v = float(ln.albedo[albedo.index(c)])
                 else:
-                    v = getattr(ln, c)
+                    v = value(ln, c)
                 rec[c] = _field(v)
             out.append(rec)
         return Records(out, columns, text_)
-
-    def ranking_csv(self):
-        """ranking.csv of the run (bf_ranking_csv_write), as text; needs
-        the analysis."""
-        return self.spec.write(lib.bf_ranking_csv_write, self.rows,
-                               self.stats, self.opts)
 
     def missing_note(self):
         """The CLI's note on models left out for lack of inputs, or ""."""

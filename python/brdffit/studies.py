@@ -2,18 +2,16 @@
 Python, returning the rows of fits.csv and ranking.csv as records.
 
 The study is the CLI's: the same library functions set it up
-(bf_study_models, bf_study_variants, bf_study_rows_check). compare()'s
-records are the library's structs (bf_fits_lines, the lines its writer
-bf_fits_csv_write prints); rank()'s are read back from its writer's text
-(bf_ranking_csv_write, brdffit.records). .text is the CLI's file, byte
-for byte.
+(bf_study_models, bf_study_variants, bf_study_rows_check). The records
+are the library's structs, the lines its writers print: compare()'s
+bf_fits_lines (bf_fits_csv_write), rank()'s bf_ranking_lines
+(bf_ranking_csv_write). .text is the CLI's file, byte for byte.
 """
 
 import warnings
 
 from ._errors import InvalidArgumentError
 from ._study import CRITERIA, Study
-from .records import Records
 
 def _model_set(which):
     """The library's default model list (bf_model_set_names) as a tuple;
@@ -118,7 +116,9 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
         objective_value, aic, bic, cv, rank_aic, rank_bic, rank_cv,
         best_aic, best_bic, best_cv, counts_as, flags, then pJ, pJ_value,
         pJ_ci_low, pJ_ci_high, pJ_boot_low, pJ_boot_high per fitted
-        parameter; README), .columns, .text, .to_dataframe(), and .wins:
+        parameter; README) from the library's structs (bf_ranking_lines:
+        numbers at full precision, an empty field None), .columns, .text
+        (the CSV as the library wrote it, %.10g), .to_dataframe(), and .wins:
         {criterion: [(model, wins), ...]} over the samples, most wins
         first (bf_study_wins; a fit that reduces to a smaller model wins
         for that model), for "AIC", "BIC" and "CV" (CV empty with
@@ -126,6 +126,6 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
     """
     study = _run(dict(locals(), stats=True), "BF_MODELS_RANKING", "all",
                  "rank")
-    out = Records.from_csv(study.ranking_csv())
+    out = study.ranking_records()
     out.wins = {c: study.spec.wins(study.stats, c) for c in CRITERIA}
     return out

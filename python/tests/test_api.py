@@ -47,19 +47,3 @@ def test_the_exceptions_derive_from_the_builtin_a_caller_expects():
         assert issubclass(cls, brdffit.BrdffitError)
 
 
-def test_records_keep_names_and_words_as_text_and_numbers_as_numbers():
-    from brdffit.records import Records
-    text = ("sample,name,channel,model,parameter,unit,value,lse,flags\n"
-            "1,123,550,FC-E,m,1,0.25,3,\n"
-            "2,0.5,600,FC-E,n,1,1.5,4,clamped\n")
-    r = Records.from_csv(text)
-    assert r.columns[:3] == ("sample", "name", "channel")
-    # a material named "123", a wavelength channel "550", a unit "1" stay
-    # text; the numeric columns convert
-    assert [x["name"] for x in r] == ["123", "0.5"]
-    assert [x["channel"] for x in r] == ["550", "600"]
-    assert [x["unit"] for x in r] == ["1", "1"]
-    assert [x["sample"] for x in r] == [1, 2]
-    assert [x["value"] for x in r] == [0.25, 1.5]
-    assert [x["lse"] for x in r] == [3, 4]
-    assert [x["flags"] for x in r] == [None, "clamped"]

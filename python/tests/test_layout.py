@@ -131,11 +131,13 @@ def test_every_declaration_struct_and_constant_matches_the_header(
 def test_the_check_covers_every_struct_and_function_the_package_uses():
     structs = {name for name, _ in _structs()}
     assert {"bf_error", "bf_geom", "bf_param", "bf_model_type",
-            "bf_material_desc", "bf_select", "bf_load_opts",
+            "bf_material_desc", "bf_selection", "bf_load_opts",
             "bf_fit_result", "bf_target", "bf_study_spec", "bf_study_row",
-            "bf_analysis_opts", "bf_fit_stats", "bf_report_options",
+            "bf_analysis_opts", "bf_fit_stats", "bf_fits_line",
+            "bf_ranking_line", "bf_report_options",
             "bf_report_inputs"} <= structs
     names = " ".join(_declarations())
     for fn in ("bf_model_eval", "bf_dataset_load", "bf_study_run",
-               "bf_study_analyse", "bf_study_samples", "bf_report_write"):
+               "bf_study_analyse", "bf_study_samples", "bf_report_write",
+               "bf_fits_lines", "bf_ranking_lines", "bf_ranking_slots"):
         assert fn in names

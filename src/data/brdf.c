@@ -9,6 +9,7 @@
  * as measured. Rows may come in any order but the sample numbers must be
  * 1, 2, ..., count, each exactly once; the rows are stored sorted, so
  * row r holds sample r + 1. */
+#include "data/curet.h"
 #include "internal.h"
 
 #include <limits.h>

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "data/curet.h"
 #include "data/reader.h"
 #include "internal.h"
 
@@ -45,6 +46,31 @@ void bf_table_angles(const bf_table *t, double *angles)
         angles[4 * k + 2] = raw[0]; /* o = v */
         angles[4 * k + 3] = raw[1];
     }
+}
+
+int bf_curet_configs_load(const char *path, double **angles, size_t *n,
+                          bf_error *err)
+{
+    bf_table *t = NULL;
+    int rc;
+    if (angles == NULL || n == NULL) {
+        return BF_EINVAL;
+    }
+    *angles = NULL;
+    *n = 0;
+    rc = bf_table_load(path, &t, err);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    *angles = malloc(4 * bf_table_size(t) * sizeof **angles);
+    if (*angles == NULL) {
+        bf_table_free(t);
+        return bf__error_set(err, BF_ENOMEM, 0, "out of memory");
+    }
+    bf_table_angles(t, *angles);
+    *n = bf_table_size(t);
+    bf_table_free(t);
+    return BF_OK;
 }
 
 int bf_curet_dataset(const bf_table *t, const bf_brdf *b,

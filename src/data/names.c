@@ -6,6 +6,7 @@
  * The first line is a header when its first field is not an integer. The
  * flag (CURET's in_ragheb_hancock_24 column) must be 0 or 1 when present.
  * Sample numbers are positive and unique; gaps are allowed (a partial list). */
+#include "data/curet.h"
 #include "internal.h"
 
 #include <limits.h>

@@ -86,7 +86,7 @@ int bf_dataset_value(const bf_dataset *ds, size_t m, size_t k, size_t c,
     return 1;
 }
 
-void bf_select_init(bf_select *s)
+void bf_selection_init(bf_selection *s)
 {
     memset(s, 0, sizeof *s);
     s->cone = BF_CONE_DEFAULT;
@@ -105,7 +105,7 @@ static int in_cone(const bf_geom *g, double cone, int curet)
 }
 
 int bf_dataset_select(const bf_dataset *ds, size_t m, size_t c,
-                      const bf_select *s, size_t *sel, size_t *n,
+                      const bf_selection *s, size_t *sel, size_t *n,
                       size_t *cone_out)
 {
     size_t nconf = bf_dataset_nconf(ds, m);

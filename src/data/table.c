@@ -9,6 +9,7 @@
  * [-2 pi, 2 pi], each up to BF__ANGLE_TOL. A zenith within the tolerance
  * outside [0, pi/2] is clamped onto it, so a pi/2 printed with rounding
  * (1.5707963268 > pi/2) still passes bf_model_eval's closed-hemisphere check. */
+#include "data/curet.h"
 #include "internal.h"
 
 #include <limits.h>

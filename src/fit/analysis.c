@@ -30,7 +30,7 @@ typedef struct {
     size_t m;
     const double *fixed; /* BF_MAX_PARAMS values (a member's) */
     size_t prep;         /* index into preps */
-    bf_grid *gr;
+    bf__grid *gr;
     int status;          /* of building the grid */
 } group_t;
 
@@ -189,8 +189,8 @@ static int analyse_separable(bf__fitctx *fc, bf_fit_stats *st)
         return rc;
     }
     if (st->refined.lse > 0.0) {
-        st->aic = bf_aic(st->refined.lse, fc->pb->n, st->k);
-        st->bic = bf_bic(st->refined.lse, fc->pb->n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, fc->pb->n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, fc->pb->n, st->k);
     }
     st->done = 1;
     return BF_OK;
@@ -251,8 +251,8 @@ static int analyse_joint(run_t *r, size_t u, bf__fitctx *fc, size_t n_ch)
         rc = bf__varpro_scales(&jc, st->refined.param, ref_p);
     }
     if (rc == BF_OK && st->refined.lse > 0.0) {
-        st->aic = bf_aic(st->refined.lse, st->n, st->k);
-        st->bic = bf_bic(st->refined.lse, st->n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, st->n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, st->n, st->k);
     }
     for (c = n_ch; rc == BF_OK && c-- > 0;) { /* the first channel last */
         bf_fit_stats *sc = &r->stats[u + c * job->n_models];
@@ -317,7 +317,7 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     /* the grid optima of the data and of every fold's training set: from
      * the group's pass (phase 2), else one pass for this unit */
     cv = opts->folds >= 2 && opts->folds <= pb.n && pb.free_mask != 0;
-    rc = cv ? bf_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
+    rc = cv ? bf_fit_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
     if (rc == BF_OK && r->have[u]) {
         memcpy(grids, r->grids + u * r->per, r->per * sizeof *grids);
     } else if (rc == BF_OK && cv) {
@@ -398,8 +398,8 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
         }
     }
     if (st->refined.lse > 0.0) {
-        st->aic = bf_aic(st->refined.lse, pb.n, st->k);
-        st->bic = bf_bic(st->refined.lse, pb.n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, pb.n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, pb.n, st->k);
     }
     if (opts->folds >= 2 && opts->folds <= pb.n) {
         if (pb.free_mask == 0) {
@@ -438,7 +438,8 @@ static void group_optima(run_t *r, size_t g)
     size_t b;
     if (gp->gr == NULL || data == NULL || members == NULL || fold == NULL ||
         (opts->objective != BF_OBJ_MAX && opts->objective != BF_OBJ_COSW) ||
-        (folds > 0 && bf_cv_folds(cs->n, folds, opts->seed, fold) != BF_OK)) {
+        (folds > 0 &&
+         bf_fit_cv_folds(cs->n, folds, opts->seed, fold) != BF_OK)) {
         goto done; /* the units score themselves */
     }
     for (u = 0; u < n_units; u++) {
@@ -624,7 +625,7 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
         }
     }
     for (g = 0; g < r.n_groups; g++) {
-        bf_grid_free(r.groups[g].gr);
+        bf__grid_free(r.groups[g].gr);
     }
     for (s = 0; r.preps != NULL && s < job->n_sets * job->n_models; s++) {
         bf__prep_free(&r.preps[s]);

@@ -94,14 +94,14 @@ static void clear(bf_calibration *out, const double *truth, size_t p)
     }
 }
 
-int bf_calibrate(const bf_problem *pb, const double *truth,
-                 double noise_power, double sigma, bf_noise noise,
-                 size_t n_sim, size_t n_boot, unsigned long seed,
-                 double level, bf_calibration *out)
+int bf_fit_calibrate(const bf_problem *pb, const double *truth,
+                     double noise_power, double sigma, bf_noise noise,
+                     size_t n_sim, size_t n_boot, unsigned long seed,
+                     double level, bf_calibration *out)
 {
     bf__solo so;
     bf__grid_layout_t lay;
-    bf_grid *gr = NULL;
+    bf__grid *gr = NULL;
     gsl_rng *rng = NULL;
     bf_problem sim;
     tally_t t;
@@ -210,7 +210,7 @@ int bf_calibrate(const bf_problem *pb, const double *truth,
         summarise(pb, &t, m, n_sim, out);
         rc = m >= 2 ? BF_OK : BF_EDOM;
     }
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     gsl_rng_free(rng);
     free(t.est);
     free(curve);

@@ -22,19 +22,19 @@
 
 #include "fit/engine.h"
 
-double bf_aic(double rss, size_t n, size_t k)
+double bf_criterion_aic(double rss, size_t n, size_t k)
 {
     double dn = (double)n;
     return dn * log(rss / dn) + 2.0 * (double)k; /* [1] */
 }
 
-double bf_bic(double rss, size_t n, size_t k)
+double bf_criterion_bic(double rss, size_t n, size_t k)
 {
     double dn = (double)n;
     return dn * log(rss / dn) + (double)k * log(dn); /* [2] */
 }
 
-int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
+int bf_fit_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
 {
     gsl_rng *rng;
     size_t *perm;
@@ -62,7 +62,7 @@ int bf_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
     return BF_OK;
 }
 
-int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid, double *cv)
 {
     const bf_problem *pb = fc->pb;
@@ -128,7 +128,7 @@ int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
     if (fold == NULL) {
         return BF_ENOMEM;
     }
-    rc = bf_cv_folds(pb->n, folds, seed, fold);
+    rc = bf_fit_cv_folds(pb->n, folds, seed, fold);
     if (rc == BF_OK) {
         rc = bf__solo_init(&so, pb);
         if (rc == BF_OK) {

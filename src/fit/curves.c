@@ -16,13 +16,13 @@
 struct bf_curves {
     bf__cset cs;
     bf__prep pm;
-    bf_grid *gr;
+    bf__grid *gr;
     unsigned mask; /* free parameters */
 };
 
 /* The objective of pb (weights w) at every grid point, the slow way: one
  * curve at a time through bf__objective (the scale and log objectives). */
-static int optima_by_point(const bf_grid *gr, const bf_problem *pb,
+static int optima_by_point(const bf__grid *gr, const bf_problem *pb,
                            const double *cti, size_t n_w,
                            const double *const *w, double *lse)
 {
@@ -51,7 +51,7 @@ static int optima_by_point(const bf_grid *gr, const bf_problem *pb,
     return BF_OK;
 }
 
-int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_optima(const bf__grid *gr, const bf_problem *pb,
                     const double *cti, size_t n_w, const double *const *w,
                     bf_fit_result *results)
 {
@@ -89,7 +89,7 @@ int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
     return rc;
 }
 
-int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_optima_folds(const bf__grid *gr, const bf_problem *pb,
                           const double *cti, const size_t *fold,
                           size_t folds, bf_fit_result *results)
 {
@@ -163,7 +163,7 @@ static int local_min(const bf__grid_layout_t *lay, const double *lse,
     return 1;
 }
 
-int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_minima(const bf__grid *gr, const bf_problem *pb,
                     const double *cti, size_t max, bf_fit_result *results,
                     size_t *count)
 {
@@ -273,7 +273,7 @@ void bf_curves_free(bf_curves *c)
     if (c == NULL) {
         return;
     }
-    bf_grid_free(c->gr);
+    bf__grid_free(c->gr);
     bf__prep_free(&c->pm);
     bf__cset_free(&c->cs);
     free(c);
@@ -281,10 +281,10 @@ void bf_curves_free(bf_curves *c)
 
 size_t bf_curves_points(const bf_curves *c)
 {
-    return bf_grid_points(c->gr);
+    return bf__grid_points(c->gr);
 }
 
-const bf_grid *bf__curves_grid(const bf_curves *c)
+const bf__grid *bf__curves_grid(const bf_curves *c)
 {
     return c->gr;
 }

@@ -22,6 +22,32 @@
 #include "internal.h"
 
 /* ======================================================================
+ * --- the grid of model curves ---
+ * ====================================================================== */
+
+/* The study's grid: precomputed normalised model curves at every point of
+ * a parameter grid on one set of configurations. Model curves do not depend on the sample, so a
+ * study computes them once and fits every sample against them. The
+ * optimum is bf_fit_grid's; for the BK family and LFTG the curves come from
+ * vectorised kernels that rearrange the math (no division or pow in the
+ * inner loop, libmvec's exp), so the LSE agrees with bf_fit_grid's to a few
+ * units in the last place times sqrt(n LSE) (see src/fit/kernels.c).
+ * The public face of the same curves is bf_curves (curves.c), built on
+ * it. Opaque; owns memory. */
+typedef struct bf__grid bf__grid;
+
+/* Builds the grid (arguments as bf_fit_grid). geom is read here and not
+ * kept. Returns NULL with *status set on failure. */
+bf__grid *bf__grid_alloc(const bf_model_type *type, const double *fixed,
+                         unsigned free_mask, size_t n, const bf_geom *geom,
+                         int *status);
+void bf__grid_free(bf__grid *gr);
+/* Number of grid points. */
+size_t bf__grid_points(const bf__grid *gr);
+/* Best grid point against normalised data of the grid's n configurations. */
+int bf__grid_fit(const bf__grid *gr, const double *data, bf_fit_result *result);
+
+/* ======================================================================
  * --- configuration sets ---
  * ====================================================================== */
 
@@ -395,18 +421,18 @@ int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
  * the first point. A vector under which no point is defined gets lse NaN.
  * cti: cos theta_i of the configurations (the cosw objective). BF_OK or
  * BF_ENOMEM. */
-int bf__grid_optima(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_optima(const bf__grid *gr, const bf_problem *pb,
                     const double *cti, size_t n_w, const double *const *w,
                     bf_fit_result *results);
 /* The local minima of pb's objective (weights pb->weight) over gr's
  * points -- no lattice neighbour lower, a plateau once -- the max lowest
  * in increasing order into results (*count of them). BF_OK, BF_ENOMEM. */
-int bf__grid_minima(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_minima(const bf__grid *gr, const bf_problem *pb,
                     const double *cti, size_t max, bf_fit_result *results,
                     size_t *count);
 /* The grid of a bf_curves, and BF_OK when c was made for pb's model,
  * configurations and free parameters (else BF_EINVAL). */
-const bf_grid *bf__curves_grid(const bf_curves *c);
+const bf__grid *bf__curves_grid(const bf_curves *c);
 int bf__curves_check(const bf_curves *c, const bf_problem *pb);
 
 /* ======================================================================
@@ -434,10 +460,10 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
 int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
-/* bf_fit_cv on fc with the grid gr and the folds fold (bf_cv_folds);
+/* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
  * bf__grid_optima_folds), or NULL to compute them. */
-int bf__cv(bf__fitctx *fc, const bf_grid *gr, const size_t *fold,
+int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid, double *cv);
 
 /* ======================================================================
@@ -498,42 +524,42 @@ int bf__stream_fast(const bf_model_type *type, const bf__grid_layout_t *lay,
 /* The normalised curves of every point of lay for pm, stored transposed
  * (block kernels where they apply, else bf__curve per point). NULL with
  * *status (BF_ENOMEM) on failure. */
-bf_grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
-                       int *status);
+bf__grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
+                        int *status);
 /* The same for type's paper grids (free_mask as bf_fit_grid) on cs. */
-bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
-                        unsigned free_mask, const bf__cset *cs, int *status);
-/* Row length of the grid's LSE arrays (>= bf_grid_points, padded). */
-size_t bf__grid_cols(const bf_grid *gr);
+bf__grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                         unsigned free_mask, const bf__cset *cs, int *status);
+/* Row length of the grid's LSE arrays (>= bf__grid_points, padded). */
+size_t bf__grid_cols(const bf__grid *gr);
 /* The grid's layout, and its flags (1 where a point's curve is defined). */
-const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr);
-const unsigned char *bf__grid_ok(const bf_grid *gr);
+const bf__grid_layout_t *bf__grid_lay(const bf__grid *gr);
+const unsigned char *bf__grid_ok(const bf__grid *gr);
 /* Scores n_samples samples at once: lse must hold n_samples * cols. */
-void bf__grid_score(const bf_grid *gr, size_t n_samples,
+void bf__grid_score(const bf__grid *gr, size_t n_samples,
                     const double *const *data, double *lse);
 /* bf__score_weights on the grid's curves: lse holds n_w * cols. */
-void bf__grid_score_weights(const bf_grid *gr, const double *data,
+void bf__grid_score_weights(const bf__grid *gr, const double *data,
                             const double *cw, size_t n_w,
                             const double *const *w, double *lse);
 /* bf__weights_argmin on the grid's curves: each weight vector's grid
  * optimum as bf__grid_best reports it (no defined point: lse NaN, n_eval
  * the points, as bf__grid_optima). BF_OK or BF_ENOMEM. */
-int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+int bf__grid_weights_argmin(const bf__grid *gr, const double *data,
                             const double *cw, size_t n_w,
                             const double *const *w, bf_fit_result *results);
 /* Row k of the transposed curves and their row pitch. */
-const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
+const double *bf__grid_curve_row(const bf__grid *gr, size_t k,
                                  size_t *stride);
 /* The curve of grid point idx (n values). */
-void bf__grid_curve(const bf_grid *gr, size_t idx, double *curve);
+void bf__grid_curve(const bf__grid *gr, size_t idx, double *curve);
 /* The result of a grid search whose best point is best (SIZE_MAX: none,
  * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
  * bf_fit_grid reports them. */
 int bf__grid_result(const bf__grid_layout_t *g, size_t best, double best_lse,
                     bf_fit_result *result);
 /* The best grid point of one row of LSE values (ties keep the first),
- * as bf_grid_fit reports it. */
-int bf__grid_best(const bf_grid *gr, const double *lse,
+ * as bf__grid_fit reports it. */
+int bf__grid_best(const bf__grid *gr, const double *lse,
                   bf_fit_result *result);
 
 /* Models with no fitted parameter (ON, LAMBERT), evaluated once per sample
@@ -567,18 +593,18 @@ int bf__folds_argmin(size_t n, size_t cols, size_t stride,
                      double *best_lse, size_t *best);
 /* The same on a grid (folds may be 0: only the full data). BF_OK or
  * BF_ENOMEM. */
-int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+int bf__grid_folds_argmin(const bf__grid *gr, size_t n_data,
                           const double *const *data, const double *cw,
                           const size_t *fold, size_t folds,
                           bf_fit_result *results);
 /* bf__score_folds on a grid's curves: lse holds (folds + 1) * cols. */
-void bf__grid_score_folds(const bf_grid *gr, const double *data,
+void bf__grid_score_folds(const bf__grid *gr, const double *data,
                           const double *cw, const size_t *fold, size_t folds,
                           double *lse);
 /* The grid optima of pb (no weights) and of each fold's training set
  * (results[0], results[1 + f]) from one pass (max and cosw objectives;
  * the others through bf__grid_optima). BF_OK or BF_ENOMEM. */
-int bf__grid_optima_folds(const bf_grid *gr, const bf_problem *pb,
+int bf__grid_optima_folds(const bf__grid *gr, const bf_problem *pb,
                           const double *cti, const size_t *fold,
                           size_t folds, bf_fit_result *results);
 

@@ -8,13 +8,13 @@
  * Two paths compute the same numbers:
  *   - bf_fit_grid evaluates the model at every grid point for one sample
  *     (the plain path, no allocation beyond the workspace);
- *   - bf_grid precomputes the normalised model curves of every grid point
+ *   - bf__grid precomputes the normalised model curves of every grid point
  *     once per geometry and reuses them for every sample (the study path).
  *     Model curves do not depend on the sample, so the study's cost falls
  *     from samples x grid x K model evaluations to grid x K. bf_study_run
  *     does the same without storing them (bf__stream_fast in kernels.c:
  *     8 grid points at a time, scored at once, same kernels and sums,
- *     same bits); models without a kernel go through bf_grid.
+ *     same bits); models without a kernel go through bf__grid.
  * Both form LSE = sum_k (L_k / max L - D_k)^2 in index order. The plain
  * path is the reference; the study path's vector kernels
  * (src/fit/kernels.c) rearrange the math without divisions in the inner
@@ -287,7 +287,7 @@ int bf_fit_grid(const bf_model_type *type, const double *fixed,
 
 /* ==== precomputed grid (the study path) ================================= */
 
-struct bf_grid {
+struct bf__grid {
     bf__grid_layout_t layout;
     size_t n;          /* configurations */
     size_t cols;       /* grid points padded to a multiple of the lanes */
@@ -299,7 +299,7 @@ struct bf_grid {
 
 /* Fills gr's curves one grid point at a time through the engine (models
  * without a block kernel: ON, LAMBERT, WNO, WNO-R, other free masks). */
-static int curves_by_point(bf_grid *gr, const bf__prep *pm)
+static int curves_by_point(bf__grid *gr, const bf__prep *pm)
 {
     double param[BF_MAX_PARAMS];
     double *curve = malloc(gr->n * sizeof *curve);
@@ -323,10 +323,10 @@ static int curves_by_point(bf_grid *gr, const bf__prep *pm)
     return BF_OK;
 }
 
-bf_grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
-                       int *status)
+bf__grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
+                        int *status)
 {
-    bf_grid *gr = NULL;
+    bf__grid *gr = NULL;
     size_t bytes;
     size_t n = pm->n;
     int rc;
@@ -371,19 +371,19 @@ bf_grid *bf__grid_make(const bf__prep *pm, const bf__grid_layout_t *lay,
     return gr;
 
 fail:
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     if (status != NULL) {
         *status = rc;
     }
     return NULL;
 }
 
-bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
-                        unsigned free_mask, const bf__cset *cs, int *status)
+bf__grid *bf__grid_build(const bf_model_type *type, const double *fixed,
+                         unsigned free_mask, const bf__cset *cs, int *status)
 {
     bf__grid_layout_t lay;
     bf__prep pm;
-    bf_grid *gr = NULL;
+    bf__grid *gr = NULL;
     int rc = bf__grid_layout(type, fixed, free_mask, &lay);
     if (rc == BF_OK) {
         rc = bf__prep_init(&pm, type, cs);
@@ -398,12 +398,12 @@ bf_grid *bf__grid_build(const bf_model_type *type, const double *fixed,
     return gr;
 }
 
-bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
-                       unsigned free_mask, size_t n, const bf_geom *geom,
-                       int *status)
+bf__grid *bf__grid_alloc(const bf_model_type *type, const double *fixed,
+                         unsigned free_mask, size_t n, const bf_geom *geom,
+                         int *status)
 {
     bf__cset cs;
-    bf_grid *gr = NULL;
+    bf__grid *gr = NULL;
     int rc = bf__geom_check(n, geom);
     if (rc == BF_OK) {
         rc = bf__cset_init(&cs, n, geom);
@@ -418,7 +418,7 @@ bf_grid *bf_grid_alloc(const bf_model_type *type, const double *fixed,
     return gr;
 }
 
-void bf_grid_free(bf_grid *gr)
+void bf__grid_free(bf__grid *gr)
 {
     if (gr == NULL) {
         return;
@@ -428,34 +428,34 @@ void bf_grid_free(bf_grid *gr)
     free(gr);
 }
 
-size_t bf_grid_points(const bf_grid *gr)
+size_t bf__grid_points(const bf__grid *gr)
 {
     return gr->layout.points;
 }
 
-size_t bf__grid_cols(const bf_grid *gr)
+size_t bf__grid_cols(const bf__grid *gr)
 {
     return gr->cols;
 }
 
-const bf__grid_layout_t *bf__grid_lay(const bf_grid *gr)
+const bf__grid_layout_t *bf__grid_lay(const bf__grid *gr)
 {
     return &gr->layout;
 }
 
-const unsigned char *bf__grid_ok(const bf_grid *gr)
+const unsigned char *bf__grid_ok(const bf__grid *gr)
 {
     return gr->ok;
 }
 
-void bf__grid_score(const bf_grid *gr, size_t n_samples,
+void bf__grid_score(const bf__grid *gr, size_t n_samples,
                     const double *const *data, double *lse)
 {
     bf__score_all(gr->n, gr->cols, gr->stride, gr->curves, n_samples, data,
                   lse);
 }
 
-void bf__grid_score_weights(const bf_grid *gr, const double *data,
+void bf__grid_score_weights(const bf__grid *gr, const double *data,
                             const double *cw, size_t n_w,
                             const double *const *w, double *lse)
 {
@@ -463,7 +463,7 @@ void bf__grid_score_weights(const bf_grid *gr, const double *data,
                       n_w, w, lse);
 }
 
-int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
+int bf__grid_weights_argmin(const bf__grid *gr, const double *data,
                             const double *cw, size_t n_w,
                             const double *const *w, bf_fit_result *results)
 {
@@ -491,7 +491,7 @@ int bf__grid_weights_argmin(const bf_grid *gr, const double *data,
     return rc;
 }
 
-void bf__grid_score_folds(const bf_grid *gr, const double *data,
+void bf__grid_score_folds(const bf__grid *gr, const double *data,
                           const double *cw, const size_t *fold, size_t folds,
                           double *lse)
 {
@@ -499,7 +499,7 @@ void bf__grid_score_folds(const bf_grid *gr, const double *data,
                     folds, lse);
 }
 
-int bf__grid_folds_argmin(const bf_grid *gr, size_t n_data,
+int bf__grid_folds_argmin(const bf__grid *gr, size_t n_data,
                           const double *const *data, const double *cw,
                           const size_t *fold, size_t folds,
                           bf_fit_result *results)
@@ -531,14 +531,14 @@ done:
     return rc;
 }
 
-const double *bf__grid_curve_row(const bf_grid *gr, size_t k,
+const double *bf__grid_curve_row(const bf__grid *gr, size_t k,
                                  size_t *stride)
 {
     *stride = gr->stride;
     return gr->curves + k * gr->stride;
 }
 
-void bf__grid_curve(const bf_grid *gr, size_t idx, double *curve)
+void bf__grid_curve(const bf__grid *gr, size_t idx, double *curve)
 {
     size_t k;
     for (k = 0; k < gr->n; k++) {
@@ -559,7 +559,7 @@ int bf__grid_result(const bf__grid_layout_t *g, size_t best, double best_lse,
     return BF_OK;
 }
 
-int bf__grid_best(const bf_grid *gr, const double *lse,
+int bf__grid_best(const bf__grid *gr, const double *lse,
                   bf_fit_result *result)
 {
     size_t best;
@@ -567,7 +567,7 @@ int bf__grid_best(const bf_grid *gr, const double *lse,
     return bf__grid_result(&gr->layout, best, best_lse, result);
 }
 
-int bf_grid_fit(const bf_grid *gr, const double *data, bf_fit_result *result)
+int bf__grid_fit(const bf__grid *gr, const double *data, bf_fit_result *result)
 {
     double *lse;
     int rc;

@@ -263,7 +263,7 @@ static void score_tile(size_t n, size_t stride, const double *restrict c,
     }
 }
 
-/* The same for one sample (bf_grid_fit): four independent sums per lane
+/* The same for one sample (bf__grid_fit): four independent sums per lane
  * group keep the pipeline busy without a second sample. */
 BF__CLONES
 static void score_one(size_t n, size_t stride, const double *restrict c,

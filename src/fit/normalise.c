@@ -6,6 +6,7 @@
  */
 #include <math.h>
 
+#include "data/curet.h"
 #include "internal.h"
 
 BF__CLONES

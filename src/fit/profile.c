@@ -74,7 +74,7 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     bf_fit_result g[CI_STARTS];
     size_t n_min = 0;
     size_t i;
-    bf_grid *gr;
+    bf__grid *gr;
     int found = 0;
     int rc = bf__grid_layout_range(p->sub.type, p->sub.fixed,
                                    p->sub.free_mask, p->sub.lo, p->sub.hi,
@@ -88,7 +88,7 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     }
     rc = bf__grid_minima(gr, &p->sub, p->fc->pm->cs->cti, CI_STARTS, g,
                          &n_min);
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     for (i = 0; rc == BF_OK && i < n_min; i++) {
         bf_fit_result ri;
         int st = bf__refine(p->fc, &g[i], &ri);

@@ -70,8 +70,8 @@ int bf_criterion_tied(double a, double b, bf_criterion c, size_t n)
     return fabs(a - b) <= BF_TIE_REL * scale; /* [1]; NaN never ties */
 }
 
-void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
-             size_t *rank, size_t *best)
+void bf_criterion_rank(const bf_fit_stats *stats, size_t n_models,
+                       bf_criterion c, size_t *rank, size_t *best)
 {
     size_t m;
     size_t q;
@@ -99,8 +99,8 @@ void bf_rank(const bf_fit_stats *stats, size_t n_models, bf_criterion c,
     }
 }
 
-const char *bf_rank_winner(const bf_model_type *const *models,
-                           const bf_fit_stats *stats, size_t best)
+const char *bf_criterion_winner(const bf_model_type *const *models,
+                                const bf_fit_stats *stats, size_t best)
 {
     if (best == SIZE_MAX) {
         return NULL;
@@ -127,8 +127,8 @@ int bf_study_rank(const bf_study_spec *spec, const bf_fit_stats *stats,
     }
     for (t = 0; t < spec->n_targets; t++) {
         size_t b;
-        bf_rank(stats + t * nm, nm, c, rank != NULL ? rank + t * nm : scratch,
-                &b);
+        bf_criterion_rank(stats + t * nm, nm, c,
+                          rank != NULL ? rank + t * nm : scratch, &b);
         if (best != NULL) {
             best[t] = b;
         }
@@ -157,8 +157,8 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
     }
     rc = bf_study_rank(spec, stats, c, NULL, best);
     for (t = 0; rc == BF_OK && t < spec->n_targets; t++) {
-        const char *w = bf_rank_winner(spec->models,
-                                       stats + t * spec->n_models, best[t]);
+        const char *w = bf_criterion_winner(
+            spec->models, stats + t * spec->n_models, best[t]);
         if (w == NULL) {
             continue;
         }

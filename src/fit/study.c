@@ -118,7 +118,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     const double **group = malloc((ns + 1) * sizeof *group);
     size_t *members = malloc((ns + 1) * sizeof *members);
     double *lse = NULL;
-    bf_grid *gr = NULL;
+    bf__grid *gr = NULL;
     bf__grid_layout_t lay;
     size_t n_group = 0;
     size_t cols;
@@ -182,7 +182,7 @@ static int run_group(const study_t *st, size_t m, size_t leader)
     }
 
 done:
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     free(lse);
     free(group);
     free(members);

@@ -1,4 +1,4 @@
-/* study_calibrate.c: bf_calibrate for a pair of an analysed study -- the
+/* study_calibrate.c: bf_fit_calibrate for a pair of an analysed study -- the
  * target's configurations and data as the analysis fitted them, the pair's
  * refined parameters and fitted noise model (doc/methods.md §3,
  * `brdffit calibrate`). */
@@ -69,9 +69,9 @@ int bf_study_calibrate(const bf_study_spec *spec,
                              g->data + s * g->n_sel);
         if (rc == BF_OK) {
             pb.objective = opts->objective;
-            rc = bf_calibrate(&pb, st->refined.param, st->noise_power,
-                              st->noise_sigma, opts->noise, n_sim,
-                              opts->n_boot, seed, opts->level, out);
+            rc = bf_fit_calibrate(&pb, st->refined.param, st->noise_power,
+                                  st->noise_sigma, opts->noise, n_sim,
+                                  opts->n_boot, seed, opts->level, out);
         }
         break;
     }

@@ -1,8 +1,8 @@
 /* ranking.c: model selection per sample as the CLI prints it
  * (doc/methods.md §4-5) -- criterion values, ranks and best models from
- * the library (bf_rank, bf_study_wins), the per-sample tables (criteria,
- * fitted parameters with their intervals) and the summary over samples.
- * Shared by `brdffit rank` (ranking.md, standard output) and `brdffit
+ * the library (bf_criterion_rank, bf_study_wins), the per-sample tables
+ * (criteria, fitted parameters with their intervals) and the summary over
+ * samples. Shared by `brdffit rank` (ranking.md, standard output) and `brdffit
  * report --stats`. */
 #include <math.h>
 #include <stdint.h>
@@ -22,14 +22,14 @@ double bf_rep_rank_value(const bf_rep_study *st, size_t i, int c)
     return bf_criterion_value(&st->stats[i], (bf_criterion)c);
 }
 
-/* bf_rank of sample s into rank (n_models entries; NULL: not wanted);
+/* bf_criterion_rank of sample s into rank (n_models entries; NULL: not wanted);
  * returns the best model or SIZE_MAX. */
 static size_t rank_sample(const bf_rep_study *st, size_t s, int c,
                           size_t *rank)
 {
     size_t best = SIZE_MAX;
-    bf_rank(&st->stats[s * st->n_models], st->n_models, (bf_criterion)c,
-            rank, &best);
+    bf_criterion_rank(&st->stats[s * st->n_models], st->n_models,
+                      (bf_criterion)c, rank, &best);
     return best;
 }
 
@@ -69,7 +69,7 @@ static void sample_cells(bf_tt *t, const bf_rep_study *st, size_t s)
 
 /* The best model b of sample s as the tables name it: "FC-E", or
  * "ON = LAMBERT" for a fit that reduces to another model (its win counts
- * for that one, bf_rank_winner). */
+ * for that one, bf_criterion_winner). */
 static const char *best_name(const bf_rep_study *st, size_t s, size_t b,
                              char *buf, size_t len)
 {
@@ -77,7 +77,7 @@ static const char *best_name(const bf_rep_study *st, size_t s, size_t b,
     if (b == SIZE_MAX) {
         return "-";
     }
-    w = bf_rank_winner(st->models, &st->stats[s * st->n_models], b);
+    w = bf_criterion_winner(st->models, &st->stats[s * st->n_models], b);
     if (strcmp(w, st->models[b]->name) == 0) {
         return w;
     }

@@ -357,7 +357,7 @@ int bf_rep_study_prepare(bf_rep_study *st)
     st->spec.data = st->in.ds;
     st->spec.targets = st->targets;
     st->spec.n_targets = st->n_samples;
-    bf_select_init(&st->spec.select);
+    bf_selection_init(&st->spec.select);
     st->spec.select.cone = o->cone < 0.0 ? BF_CONE_DEFAULT : o->cone * DEG;
     st->spec.select.max_theta = o->max_theta * DEG;
     st->spec.select.exclude = st->exclude;

@@ -98,7 +98,7 @@ static void study(const bf_dataset *ds, const char *ch, bf_study_row *rows,
     cr_assert_eq(n_t * 3, n_rows);
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.select.cone = CONE_15;
     spec.targets = t;
     spec.n_targets = n_t;

@@ -192,12 +192,12 @@ Test(dataset, numbers_are_unique_and_append_renumbers_by_position)
 Test(dataset, selection_leaves_out_invalid_values_the_cone_and_exclusions)
 {
     bf_dataset *ds = small_dataset();
-    bf_select s;
+    bf_selection s;
     size_t sel[3];
     size_t n = 9;
     size_t cone = 9;
     size_t ex[1] = {3};
-    bf_select_init(&s);
+    bf_selection_init(&s);
     /* default on non-CURET data: no cone; the mean drops configuration 2 */
     cr_assert_eq(bf_dataset_select(ds, 0, BF_CHANNEL_MEAN, &s, sel, &n,
                                    &cone),
@@ -253,7 +253,7 @@ Test(dataset, curet_cone_below_4_5_degrees_is_the_seven_and_5_adds_203)
 {
     bf_dataset *ds = NULL;
     bf_error err;
-    bf_select s;
+    bf_selection s;
     size_t sel[205];
     size_t n;
     size_t cone;
@@ -268,7 +268,7 @@ Test(dataset, curet_cone_below_4_5_degrees_is_the_seven_and_5_adds_203)
     cr_assert_eq(bf_dataset_format(ds, 0), BF_FORMAT_CURET);
     cr_assert_str_eq(bf_dataset_channel(ds, 0, 0), "mean");
     cr_assert_eq(bf_dataset_set(ds, 0), bf_dataset_set(ds, 60));
-    bf_select_init(&s);
+    bf_selection_init(&s);
     cr_assert_eq(bf_dataset_select(ds, 4, BF_CHANNEL_MEAN, &s, sel, &n,
                                    &cone),
                  BF_OK);
@@ -364,7 +364,7 @@ Test(dataset, study_on_two_configuration_sets_fits_each_as_alone)
     cr_assert_eq(bf_dataset_append(ds, more), BF_OK);
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = t;
     spec.n_targets = 2;
     spec.models = models;

@@ -763,7 +763,7 @@ Test(merl, models_are_fitted_back_within_the_lookup_error_elsewhere)
         cr_assert_eq(bf_normalise(N_RANDOM, star, star), BF_OK);
         memset(&spec, 0, sizeof spec);
         spec.data = ds;
-        bf_select_init(&spec.select);
+        bf_selection_init(&spec.select);
         spec.targets = &target;
         spec.n_targets = 1;
         cr_assert_eq(bf_study_target_data(&spec, 0, sel, &k, data, &err),

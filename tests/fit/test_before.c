@@ -164,7 +164,7 @@ Test(before, the_engine_gives_the_analysis_of_the_code_before_it,
     spec.data = ds;
     spec.targets = targets;
     spec.n_targets = n_targets;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.models = models;
     spec.n_models = n_models;
     spec.n_default = BF_DEFAULT_N;

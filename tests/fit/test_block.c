@@ -290,7 +290,7 @@ Test(block, stored_grids_use_the_block_kernel_and_fall_back_where_it_declines)
     for (pass = 0; pass < 2; pass++) {
         /* the paper grid (kernel), then one from 0.1 (declined) */
         int made = blocks_made;
-        bf_grid *gr;
+        bf__grid *gr;
         void *work = bf__work_alloc(&pm);
         size_t g;
         int status;
@@ -317,7 +317,7 @@ Test(block, stored_grids_use_the_block_kernel_and_fall_back_where_it_declines)
         cr_assert_eq(bf__stream_fast(&toy_piped, &lay, &cs, SAMPLES, d,
                                      best_lse, best),
                      pass == 0 ? 1 : 0);
-        bf_grid_free(gr);
+        bf__grid_free(gr);
         free(work);
     }
     bf__prep_free(&pm);

@@ -88,7 +88,7 @@ static void coverage(const bf_model_type *type, int boot, size_t reps,
     bf_problem pb;
     bf__grid_layout_t lay;
     bf__solo so;
-    bf_grid *gr;
+    bf__grid *gr;
     size_t r;
     size_t j;
     size_t k;
@@ -154,7 +154,7 @@ static void coverage(const bf_model_type *type, int boot, size_t reps,
             covered[j] += lo[j] <= truth[j] && truth[j] <= hi[j];
         }
     }
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     bf__solo_free(&so);
     gsl_rng_free(rng);
 }

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fit/engine.h"
 #include "internal.h"
 #include "support.h"
 
@@ -399,7 +400,7 @@ static bf_study_row *study_all(const bf_table *t, const bf_brdf *b,
     (void)n; /* the dataset's default selection is sel (SPEC §1.4) */
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = targets;
     spec.n_targets = *n_samples;
     spec.models = models;
@@ -553,9 +554,9 @@ Test(grid, study_results_do_not_depend_on_the_thread_count)
 }
 
 /* Grids of sizes that are not multiples of the kernels' lanes (padding),
- * through the public bf_grid API: the same optimum as bf_fit_grid for a
+ * through the public bf__grid API: the same optimum as bf_fit_grid for a
  * VH-E and an LFTG with shortened grids (recognised as the same models),
- * and for ON and LAMBERT, whose curves bf_grid evaluates plainly. */
+ * and for ON and LAMBERT, whose curves bf__grid evaluates plainly. */
 Test(grid, grids_of_any_size_find_the_plain_optimum)
 {
     bf_table *t = bf_test_load_table();
@@ -585,7 +586,7 @@ Test(grid, grids_of_any_size_find_the_plain_optimum)
             double data[BF_CURET_NCONF];
             bf_fit_result plain;
             bf_fit_result fast;
-            bf_grid *gr;
+            bf__grid *gr;
             int st = -1;
             size_t s = (q * 17 + m * 5) % bf_brdf_count(b); /* a sample */
             if (type.p > 0) {
@@ -599,9 +600,9 @@ Test(grid, grids_of_any_size_find_the_plain_optimum)
             cr_assert_eq(bf_data_radiance(t, bf_brdf_values(b, s), n, sel,
                                           data),
                          BF_OK);
-            gr = bf_grid_alloc(&type, param, 0, n, geom, &st);
+            gr = bf__grid_alloc(&type, param, 0, n, geom, &st);
             cr_assert_not_null(gr, "%s: status %d", type.name, st);
-            cr_assert_eq(bf_grid_fit(gr, data, &fast), BF_OK);
+            cr_assert_eq(bf__grid_fit(gr, data, &fast), BF_OK);
             cr_assert_eq(bf_fit_grid(&type, param, 0, n, geom, data, w,
                                      &plain),
                          BF_OK);
@@ -610,7 +611,7 @@ Test(grid, grids_of_any_size_find_the_plain_optimum)
             cr_assert_eq(fast.bound_hit, plain.bound_hit);
             cr_assert_eq(fast.n_eval, plain.n_eval);
             bf_assert_abs(fast.lse, plain.lse, study_lse_bound(n, plain.lse));
-            bf_grid_free(gr);
+            bf__grid_free(gr);
         }
     }
     bf_fit_free(w);
@@ -634,7 +635,7 @@ Test(grid, study_reports_a_missing_sample_and_missing_on_parameters)
     cr_assert_eq(bf_dataset_find(ds, 62), -1);
     memset(&spec, 0, sizeof spec);
     spec.data = ds;
-    bf_select_init(&spec.select);
+    bf_selection_init(&spec.select);
     spec.targets = targets;
     spec.n_targets = 1;
     spec.models = models;

@@ -3,7 +3,7 @@
  * normalised by their own noisy maximum, as measured data are, under
  * relative and absolute noise and the objectives max, scale and log;
  * the residual bootstrap on the same kind of data, and its bad input;
- * bf_calibrate on a synthetic material whose answer is known; the
+ * bf_fit_calibrate on a synthetic material whose answer is known; the
  * not-identified flag on constructed flat profiles; bad input.
  *
  * Acceptance band: R = 200 simulations, a correct 95% interval covers the
@@ -79,8 +79,8 @@ static void calibrated(const bf_model_type *base, double p, double sd,
     size_t n = bf_test_curet_geometry(geom, STRIDE);
     double truth[BF_MAX_PARAMS];
     problem(v, base, n, geom, obj, pb, truth);
-    cr_assert_eq(bf_calibrate(pb, truth, p, sd, BF_NOISE_AUTO, REPS, n_boot,
-                              SEED, LEVEL, cal),
+    cr_assert_eq(bf_fit_calibrate(pb, truth, p, sd, BF_NOISE_AUTO, REPS, n_boot,
+                                  SEED, LEVEL, cal),
                  BF_OK);
     cr_assert_geq(cal->n_sim, REPS - REPS / 50, "%s: %zu fitted", base->name,
                   cal->n_sim);
@@ -157,8 +157,8 @@ Test(intervals, the_objectives_own_profile_undercovers_under_max,
     bf_calibration cal;
     double truth[BF_MAX_PARAMS];
     problem(&v, bf_model_fc_e, n, geom, BF_OBJ_MAX, &pb, truth);
-    cr_assert_eq(bf_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_OBJECTIVE,
-                              REPS, 0, SEED, LEVEL, &cal),
+    cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_OBJECTIVE,
+                                  REPS, 0, SEED, LEVEL, &cal),
                  BF_OK);
     cr_log_info("FC-E old profile: m %.3f n %.3f", cal.coverage[0],
                 cal.coverage[1]);
@@ -174,7 +174,7 @@ Test(intervals, the_objectives_own_profile_undercovers_under_max,
 #define BOOT_B 199
 
 /* Coverage of the bootstrap's intervals (bf_fit_bootstrap,
- * src/fit/bootstrap.c) through bf_calibrate: data simulated at the truth
+ * src/fit/bootstrap.c) through bf_fit_calibrate: data simulated at the truth
  * with noise of power p, normalised by the noisy maximum, fitted under
  * obj, the noise model's intervals and each simulation's bootstrap. The
  * resampling of configurations it replaced covered 16-19 of 40 under max
@@ -253,8 +253,8 @@ Test(intervals, calibrate_reports_coverage_and_bias_of_a_known_material)
     double truth[BF_MAX_PARAMS];
     size_t reps = REPS < 100 ? REPS : 100;
     problem(&v, bf_model_bk_e, n, geom, BF_OBJ_SCALE, &pb, truth);
-    cr_assert_eq(bf_calibrate(&pb, truth, 0.0, 0.02, BF_NOISE_ABSOLUTE, reps,
-                              0, SEED, LEVEL, &cal),
+    cr_assert_eq(bf_fit_calibrate(&pb, truth, 0.0, 0.02, BF_NOISE_ABSOLUTE,
+                                  reps, 0, SEED, LEVEL, &cal),
                  BF_OK);
     cr_assert_eq(cal.n_sim + cal.n_failed, reps);
     cr_assert_float_eq(cal.truth[0], truth[0], 0.0);
@@ -373,8 +373,8 @@ Test(intervals, calibrate_refuses_fewer_than_ten_simulations)
     bf_calibration cal;
     double truth[BF_MAX_PARAMS];
     problem(&v, bf_model_bk_e, n, geom, BF_OBJ_MAX, &pb, truth);
-    cr_assert_eq(bf_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 9, 0,
-                              SEED, LEVEL, &cal),
+    cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 9, 0,
+                                  SEED, LEVEL, &cal),
                  BF_EINVAL);
 }
 
@@ -401,8 +401,8 @@ Test(intervals, the_noise_of_too_few_configurations_cannot_be_estimated)
     cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_AUTO, LEVEL, &iv),
                  BF_EDOM);
     cr_assert(isnan(iv.low[0]) && isnan(iv.high[1]));
-    cr_assert_eq(bf_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 20, 0,
-                              SEED, LEVEL, &cal),
+    cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 20, 0,
+                                  SEED, LEVEL, &cal),
                  BF_EDOM);
     /* with p fixed one degree of freedom is left: intervals exist */
     cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_RELATIVE, LEVEL, &iv),

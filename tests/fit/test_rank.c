@@ -49,19 +49,19 @@ Test(rank, ties_share_a_rank_and_fewer_parameters_win)
     s[1] = stat(-500.0 + 1e-9, 1); /* tied with 0 (n e = 1e-9 < 1e-7) */
     s[2] = stat(-400.0, 0);
     s[3] = stat(NAN, 1);           /* not computed */
-    bf_rank(s, 4, BF_CRIT_BIC, rank, &best);
+    bf_criterion_rank(s, 4, BF_CRIT_BIC, rank, &best);
     cr_assert_eq(rank[0], 1);
     cr_assert_eq(rank[1], 1);
     cr_assert_eq(rank[2], 3);
     cr_assert_eq(rank[3], 0);
     cr_assert_eq(best, 1, "the tie goes to the model with fewer parameters");
     s[1].k = 2; /* equal counts: the first listed */
-    bf_rank(s, 4, BF_CRIT_BIC, rank, &best);
+    bf_criterion_rank(s, 4, BF_CRIT_BIC, rank, &best);
     cr_assert_eq(best, 0);
     s[0] = stat(NAN, 1);
     s[1] = stat(NAN, 1);
     s[2] = stat(NAN, 1);
-    bf_rank(s, 4, BF_CRIT_BIC, rank, &best);
+    bf_criterion_rank(s, 4, BF_CRIT_BIC, rank, &best);
     cr_assert_eq(best, SIZE_MAX);
 }
 
@@ -98,7 +98,7 @@ Test(rank, wins_count_for_the_model_a_fit_reduces_to)
     cr_assert_eq(best[1], 0);
     cr_assert_eq(best[2], 1);
     cr_assert_eq(rank[4], 2);
-    cr_assert_str_eq(bf_rank_winner(models, s + 2, 0), "LAMBERT");
+    cr_assert_str_eq(bf_criterion_winner(models, s + 2, 0), "LAMBERT");
     cr_assert_eq(bf_study_wins(&spec, s, BF_CRIT_BIC, names, wins, &n),
                  BF_OK);
     cr_assert_eq(n, 3);

@@ -67,10 +67,11 @@ Test(select, aic_and_bic_match_hand_computed_values)
 {
     /* rss = 0.5, n = 10, k = 2: 10 ln 0.05 = -29.95732273553991;
      * AIC = -29.957... + 4; BIC = -29.957... + 2 ln 10 (4.605170185988091) */
-    bf_assert_rel(bf_aic(0.5, 10, 2), -25.95732273553991, TOL1);
-    bf_assert_rel(bf_bic(0.5, 10, 2), -25.35215254955182, TOL1);
+    bf_assert_rel(bf_criterion_aic(0.5, 10, 2), -25.95732273553991, TOL1);
+    bf_assert_rel(bf_criterion_bic(0.5, 10, 2), -25.35215254955182, TOL1);
     /* k = 0: both are n ln(rss/n) */
-    bf_assert_rel(bf_aic(0.5, 10, 0), bf_bic(0.5, 10, 0), TOL0);
+    bf_assert_rel(bf_criterion_aic(0.5, 10, 0), bf_criterion_bic(0.5, 10, 0),
+                  TOL0);
 }
 
 Test(select, parameter_count_includes_the_scale_only_when_fitted)
@@ -93,9 +94,9 @@ Test(select, cv_folds_are_deterministic_balanced_and_seed_dependent)
     size_t c[198];
     size_t count[10] = {0};
     size_t k;
-    cr_assert_eq(bf_cv_folds(198, 10, 7, a), BF_OK);
-    cr_assert_eq(bf_cv_folds(198, 10, 7, b), BF_OK);
-    cr_assert_eq(bf_cv_folds(198, 10, 8, c), BF_OK);
+    cr_assert_eq(bf_fit_cv_folds(198, 10, 7, a), BF_OK);
+    cr_assert_eq(bf_fit_cv_folds(198, 10, 7, b), BF_OK);
+    cr_assert_eq(bf_fit_cv_folds(198, 10, 8, c), BF_OK);
     cr_assert_arr_eq(a, b, sizeof a);
     cr_assert(memcmp(a, c, sizeof a) != 0);
     for (k = 0; k < 198; k++) {
@@ -106,8 +107,8 @@ Test(select, cv_folds_are_deterministic_balanced_and_seed_dependent)
         cr_assert(count[k] == 20 || count[k] == 19, "fold %zu: %zu", k,
                   count[k]);
     }
-    cr_assert_eq(bf_cv_folds(198, 1, 7, a), BF_EINVAL);
-    cr_assert_eq(bf_cv_folds(5, 6, 7, a), BF_EINVAL);
+    cr_assert_eq(bf_fit_cv_folds(198, 1, 7, a), BF_EINVAL);
+    cr_assert_eq(bf_fit_cv_folds(5, 6, 7, a), BF_EINVAL);
 }
 
 /* A model with nothing to fit predicts the held-out configurations as it

@@ -47,7 +47,7 @@ static void check_model(const bf_model_type *type, size_t n,
     size_t best[SAMPLES];
     bf__grid_layout_t lay;
     bf__cset cs;
-    bf_grid *gr;
+    bf__grid *gr;
     double *lse;
     size_t cols;
     size_t q;
@@ -80,7 +80,7 @@ static void check_model(const bf_model_type *type, size_t n,
                   type->name, n, q, best_lse[q], v);
     }
     free(lse);
-    bf_grid_free(gr);
+    bf__grid_free(gr);
     bf__cset_free(&cs);
 }
 

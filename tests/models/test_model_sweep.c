@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fit/engine.h"
 #include "support.h"
 
 #define PI 3.14159265358979323846
@@ -456,7 +457,7 @@ static void expect_not_normalisable(const bf_model_type *t,
     static const double data[N_DEGEN] = {1.0, 0.8, 0.6, 0.4, 0.2};
     bf_fit_workspace *w = bf_fit_alloc(N_DEGEN);
     bf_fit_result res;
-    bf_grid *gr;
+    bf__grid *gr;
     double lse = 42.0;
     int st = -1;
     cr_assert_not_null(w);
@@ -466,12 +467,12 @@ static void expect_not_normalisable(const bf_model_type *t,
     cr_expect_eq(bf_fit_grid(t, param, 0, N_DEGEN, g, data, w, &res), BF_EDOM,
                  "%s: bf_fit_grid", t->name);
     cr_expect(!isnan(res.lse), "%s: bf_fit_grid left NaN", t->name);
-    gr = bf_grid_alloc(t, param, 0, N_DEGEN, g, &st);
-    cr_assert_not_null(gr, "%s: bf_grid_alloc %d", t->name, st);
-    cr_expect_eq(bf_grid_fit(gr, data, &res), BF_EDOM, "%s: bf_grid_fit",
+    gr = bf__grid_alloc(t, param, 0, N_DEGEN, g, &st);
+    cr_assert_not_null(gr, "%s: bf__grid_alloc %d", t->name, st);
+    cr_expect_eq(bf__grid_fit(gr, data, &res), BF_EDOM, "%s: bf__grid_fit",
                  t->name);
-    cr_expect(!isnan(res.lse), "%s: bf_grid_fit left NaN", t->name);
-    bf_grid_free(gr);
+    cr_expect(!isnan(res.lse), "%s: bf__grid_fit left NaN", t->name);
+    bf__grid_free(gr);
     bf_fit_free(w);
 }
 

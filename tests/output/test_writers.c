@@ -76,7 +76,7 @@ static void run_study(study *s)
     s->spec.data = s->ds;
     s->spec.targets = s->targets;
     s->spec.n_targets = n;
-    bf_select_init(&s->spec.select);
+    bf_selection_init(&s->spec.select);
     s->spec.models = s->models;
     s->spec.n_models = 3;
     s->spec.n_default = BF_DEFAULT_N;

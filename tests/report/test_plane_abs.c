@@ -38,7 +38,7 @@ static bf_target *spec_of(bf_dataset *ds, bf_study_spec *spec)
     spec->data = ds;
     spec->targets = targets;
     spec->n_targets = n;
-    bf_select_init(&spec->select);
+    bf_selection_init(&spec->select);
     spec->n_default = BF_DEFAULT_N;
     return targets;
 }
