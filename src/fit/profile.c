@@ -54,6 +54,7 @@ typedef struct {
     double start[BF_MAX_PARAMS]; /* nuisance optimum of the last point */
     double anchor[BF_MAX_PARAMS]; /* the root finder's start: the nuisance
                                     optimum at the bracket's inside end */
+    double est[BF_MAX_PARAMS];   /* the optimum */
     size_t j;
     double s_min;                /* objective at the optimum */
     double n_w;                  /* sum of the weights */
@@ -106,6 +107,41 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     return found ? BF_OK : BF_EDOM;
 }
 
+/* S_p(theta) of a specular model (SPEC §9): the scales solved exactly
+ * (NNLS) at every point, the other free parameters refined (varpro.c)
+ * from the last point's optimum and, with thorough, from the optimum's
+ * values too (their grid is the fit's own, made for the whole domain;
+ * with the scales solved at most two parameters are left, and the two
+ * starts find the basins the grid's would). */
+static int spec_inner(profile_t *p, int thorough, double *s, int *improved)
+{
+    bf_fit_result warm;
+    int rc = bf__varpro_refine(p->fc, p->start, &warm);
+    if (rc == BF_ENOMEM || (rc != BF_OK && !thorough)) {
+        return rc;
+    }
+    if (rc != BF_OK) {
+        warm.lse = HUGE_VAL;
+    }
+    if (thorough) {
+        bf_fit_result g;
+        rc = bf__varpro_refine(p->fc, p->est, &g);
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+        if (rc == BF_OK && g.lse < warm.lse * (1.0 - CI_BETTER)) {
+            warm = g;
+            *improved = 1;
+        }
+    }
+    if (!(warm.lse < HUGE_VAL)) {
+        return BF_EDOM;
+    }
+    memcpy(p->start, warm.param, sizeof p->start);
+    *s = warm.lse;
+    return BF_OK;
+}
+
 /* S_p(theta): the warm-started refinement, and with thorough also the
  * grid fit; *improved = 1 when the grid fit was lower. */
 static int inner(profile_t *p, double theta, int thorough, double *s,
@@ -119,6 +155,9 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     p->start[p->j] = theta;
     if (p->sub.free_mask == 0) {
         return bf__fit_value(p->fc, p->sub.fixed, s);
+    }
+    if (p->sub.type->kind == BF_MODEL_SPECULAR) {
+        return spec_inner(p, thorough, s, improved);
     }
     memset(&start, 0, sizeof start);
     memcpy(start.param, p->start, sizeof start.param);
@@ -324,6 +363,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     p.sub.free_mask &= ~(1u << j);
     memcpy(p.sub.fixed, best->param, sizeof p.sub.fixed);
     memcpy(p.start, best->param, sizeof p.start);
+    memcpy(p.est, best->param, sizeof p.est);
     p.j = j;
     p.n_w = bf__weight_sum(pb);
     p.chi2 = thr;
@@ -334,6 +374,13 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
         }
         bf__fitctx_use(fc, &p.sub);
         d0 = pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
+        if (pb->type->kind == BF_MODEL_SPECULAR) {
+            /* domains without a grid, the scales' up to 1e6 (SPEC §9.3):
+             * a first step of 5 % of the estimate (of 1e-3 of the domain,
+             * at most 1e-3, from 0) */
+            d0 = theta_hat > 0.0 ? 0.05 * theta_hat
+                                 : 1e-3 * fmin(pb->hi[j] - pb->lo[j], 1.0);
+        }
         rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
         if (rc == BF_OK) {
             rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
