@@ -7,7 +7,7 @@
  * normalised by their own maximum, as measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
- * [B]]]]]]]
+ * [B [CORNELL_FILE]]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
@@ -18,7 +18,16 @@
  * median width over the spread of the maximum-likelihood estimates
  * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
  * that of the ML ones, and the share of intervals flagged not identified
- * (open to a bound the estimate is not on). Never part of the tests. */
+ * (open to a bound the estimate is not on). Never part of the tests.
+ *
+ * The specular family (SPEC §9; issue 17 item 6): MODELS may name
+ * composites (LAMBERT+GGX, LAMBERT+WARD: the truths below; "all" means
+ * the diffuse table only), fitted under
+ * ngan at the Cornell geometry (argument 9, CORNELL_FILE, default
+ * ../shared/data/cornell-pbrt-v2/krylon_blue.brdf: its 1439
+ * configurations with theta_i, theta_o <= 80 deg) and at 300 random ones
+ * (half within 10 deg of the mirror direction), the data kept in sr^-1
+ * (bf_calibrate). */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -86,6 +95,130 @@ static int listed(const char *list, const char *name)
     return 0;
 }
 
+#define MAX_SPEC_CONF 1500
+#define N_SPEC_RANDOM 300
+
+/* The Cornell file's configurations with theta_i, theta_o <= 80 deg. */
+static size_t cornell_geom(const char *path, bf_geom *geom)
+{
+    static size_t sel[MAX_SPEC_CONF];
+    bf_dataset *ds = NULL;
+    bf_error err;
+    bf_select s;
+    size_t n = 0;
+    size_t k;
+    if (bf_dataset_load(path, NULL, &ds, &err) != BF_OK ||
+        bf_dataset_nconf(ds, 0) > MAX_SPEC_CONF) {
+        fprintf(stderr, "bench_coverage: cannot load %s\n", path);
+        exit(1);
+    }
+    bf_select_init(&s);
+    s.max_theta = BF_KEEP_SCALE_THETA;
+    if (bf_dataset_select(ds, 0, BF_CHANNEL_MEAN, &s, sel, &n, NULL) != BF_OK) {
+        fprintf(stderr, "bench_coverage: cannot select %s\n", path);
+        exit(1);
+    }
+    for (k = 0; k < n; k++) {
+        geom[k] = bf_dataset_geom(ds, 0)[sel[k]];
+    }
+    bf_dataset_free(ds);
+    return n;
+}
+
+/* Random directions for a lobe: half uniform up to 80 deg, half within
+ * 10 deg of the mirror direction (fixed seed). */
+static size_t random_spec_geom(bf_geom *geom)
+{
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    double cmin = cos(80.0 * M_PI / 180.0);
+    size_t k;
+    gsl_rng_set(rng, 11);
+    for (k = 0; k < N_SPEC_RANDOM; k++) {
+        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+        geom[k].phi_i = M_PI;
+        if (k % 2 == 0) {
+            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        } else {
+            double t = geom[k].theta_i +
+                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
+            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        }
+    }
+    gsl_rng_free(rng);
+    return N_SPEC_RANDOM;
+}
+
+/* The specular rows: each composite with a truth below, both geometries,
+ * both noises, objective ngan. */
+static void specular_rows(const char *models, const char *cornell,
+                          size_t reps, bf_noise noise, unsigned long seed0,
+                          size_t n_boot)
+{
+    /* LAMBERT+GGX: krylon_blue's ngan fit, rounded; LAMBERT+WARD: a
+     * broader lobe than krylon_blue's alpha 0.019 */
+    static const struct {
+        const char *name;
+        double truth[BF_MAX_PARAMS];
+    } spec[] = {{"LAMBERT+GGX", {0.077, 0.76, 0.113, 0.059}},
+                {"LAMBERT+WARD", {0.1, 0.05, 0.08}}};
+    static bf_geom geoms[2][MAX_SPEC_CONF];
+    const char *gname[2] = {"Cornell", "random"};
+    const char *nname[2] = {"rel 5%", "abs 2%"};
+    const double npow[2] = {2.0, 0.0};
+    const double nsd[2] = {0.05, 0.02};
+    size_t n_geom[2] = {0, 0};
+    size_t i;
+    for (i = 0; i < sizeof spec / sizeof spec[0]; i++) {
+        const bf_model_type *t = bf_model_find(spec[i].name);
+        size_t g;
+        if (t == NULL || strcmp(models, "all") == 0 ||
+            !listed(models, spec[i].name)) {
+            continue;
+        }
+        if (n_geom[0] == 0) {
+            n_geom[0] = cornell_geom(cornell, geoms[0]);
+            n_geom[1] = random_spec_geom(geoms[1]);
+        }
+        for (g = 0; g < 2; g++) {
+            size_t q;
+            for (q = 0; q < 2; q++) {
+                bf_problem pb;
+                bf_calibration cal;
+                size_t j;
+                int rc;
+                bf_problem_init(&pb, t, spec[i].truth, n_geom[g], geoms[g],
+                                NULL);
+                pb.objective = BF_OBJ_NGAN;
+                rc = bf_calibrate(&pb, spec[i].truth, npow[q], nsd[q], noise,
+                                  reps, n_boot, seed0 + 10 * g + q, 0.95,
+                                  &cal);
+                for (j = 0; j < t->p; j++) {
+                    if (rc != BF_OK) {
+                        printf("| %s | | %s | %s | ngan | error %d | | | |\n",
+                               t->name, gname[g], nname[q], rc);
+                        break;
+                    }
+                    printf("| %s | %s | %s | %s | ngan | %.3f | %.2f | %.2f "
+                           "| %.3f |",
+                           t->name, t->param[j].name, gname[g], nname[q],
+                           cal.coverage[j],
+                           cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
+                           cal.sd[j] / cal.ml_sd[j], cal.not_identified[j]);
+                    if (n_boot >= 2) {
+                        printf(" %.3f | %.2f |", cal.boot_coverage[j],
+                               cal.boot_width[j] /
+                                   (2.0 * 1.959964 * cal.ml_sd[j]));
+                    }
+                    printf("\n");
+                    fflush(stdout);
+                }
+            }
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     static bf_geom geoms[2][NCONF];
@@ -103,6 +236,9 @@ int main(int argc, char **argv)
     const char *models = argc > 5 ? argv[5] : "all";
     unsigned long seed0 = argc > 6 ? strtoul(argv[6], NULL, 10) : 1000;
     size_t n_boot = argc > 7 ? (size_t)atol(argv[7]) : 0;
+    const char *cornell =
+        argc > 8 ? argv[8]
+                 : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -117,6 +253,7 @@ int main(int argc, char **argv)
            n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
                        : "",
            n_boot >= 2 ? "---|---|" : "");
+    specular_rows(models, cornell, reps, noise, seed0, n_boot);
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
         size_t g;
