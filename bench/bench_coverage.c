@@ -61,21 +61,31 @@ static size_t curet_geom(const char *dir, bf_geom *geom)
     return k;
 }
 
-/* Directions uniform on the hemisphere up to 80 degrees (fixed seed). */
-static size_t random_geom(bf_geom *geom)
+/* n directions uniform on the hemisphere up to 80 degrees (fixed seed
+ * seed); with mirror every second within 10 degrees of the mirror
+ * direction instead (where a lobe is measured). */
+static size_t random_geom(bf_geom *geom, size_t n, unsigned long seed,
+                          int mirror)
 {
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double cmin = cos(80.0 * M_PI / 180.0);
     size_t k;
-    gsl_rng_set(rng, 7);
-    for (k = 0; k < NCONF; k++) {
+    gsl_rng_set(rng, seed);
+    for (k = 0; k < n; k++) {
         geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
         geom[k].phi_i = M_PI;
-        geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        if (!mirror || k % 2 == 0) {
+            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        } else { /* phi_s = 0, theta_s = theta_i: the mirror (SPEC §1.2) */
+            double t = geom[k].theta_i +
+                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
+            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        }
     }
     gsl_rng_free(rng);
-    return NCONF;
+    return n;
 }
 
 /* 1 when name is in the comma-separated list (or the list is "all"). */
@@ -125,31 +135,6 @@ static size_t cornell_geom(const char *path, bf_geom *geom)
     return n;
 }
 
-/* Random directions for a lobe: half uniform up to 80 deg, half within
- * 10 deg of the mirror direction (fixed seed). */
-static size_t random_spec_geom(bf_geom *geom)
-{
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    double cmin = cos(80.0 * M_PI / 180.0);
-    size_t k;
-    gsl_rng_set(rng, 11);
-    for (k = 0; k < N_SPEC_RANDOM; k++) {
-        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_i = M_PI;
-        if (k % 2 == 0) {
-            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        } else {
-            double t = geom[k].theta_i +
-                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
-            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        }
-    }
-    gsl_rng_free(rng);
-    return N_SPEC_RANDOM;
-}
-
 /* The specular rows: each composite with a truth below, both geometries,
  * both noises, objective ngan. */
 static void specular_rows(const char *models, const char *cornell,
@@ -179,7 +164,7 @@ static void specular_rows(const char *models, const char *cornell,
         }
         if (n_geom[0] == 0) {
             n_geom[0] = cornell_geom(cornell, geoms[0]);
-            n_geom[1] = random_spec_geom(geoms[1]);
+            n_geom[1] = random_geom(geoms[1], N_SPEC_RANDOM, 11, 1);
         }
         for (g = 0; g < 2; g++) {
             size_t q;
@@ -246,7 +231,7 @@ int main(int argc, char **argv)
         return 2;
     }
     n_geom[0] = curet_geom(dir, geoms[0]);
-    n_geom[1] = random_geom(geoms[1]);
+    n_geom[1] = random_geom(geoms[1], NCONF, 7, 0);
     printf("| model | param | geometry | noise | objective | covered | "
            "width / spread | sd obj / sd ML | not identified |%s\n"
            "|---|---|---|---|---|---|---|---|---|%s\n",

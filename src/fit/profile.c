@@ -107,57 +107,15 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     return found ? BF_OK : BF_EDOM;
 }
 
-/* S_p(theta) of a specular model (SPEC §9): the scales solved exactly
- * (NNLS) at every point, the other free parameters refined (varpro.c)
- * from the last point's optimum and, with thorough, from the optimum's
- * values too (their grid is the fit's own, made for the whole domain;
- * with the scales solved at most two parameters are left, and the two
- * starts find the basins the grid's would). */
-static int spec_inner(profile_t *p, int thorough, double *s, int *improved)
+/* The warm-started refinement of the nuisance parameters from the last
+ * point's optimum. A specular model (SPEC §9): its scales solved exactly
+ * (NNLS) at every point, the other free parameters refined (varpro.c). */
+static int warm_fit(profile_t *p, bf_fit_result *warm)
 {
-    bf_fit_result warm;
-    int rc = bf__varpro_refine(p->fc, p->start, &warm);
-    if (rc == BF_ENOMEM || (rc != BF_OK && !thorough)) {
-        return rc;
-    }
-    if (rc != BF_OK) {
-        warm.lse = HUGE_VAL;
-    }
-    if (thorough) {
-        bf_fit_result g;
-        rc = bf__varpro_refine(p->fc, p->est, &g);
-        if (rc == BF_ENOMEM) {
-            return rc;
-        }
-        if (rc == BF_OK && g.lse < warm.lse * (1.0 - CI_BETTER)) {
-            warm = g;
-            *improved = 1;
-        }
-    }
-    if (!(warm.lse < HUGE_VAL)) {
-        return BF_EDOM;
-    }
-    memcpy(p->start, warm.param, sizeof p->start);
-    *s = warm.lse;
-    return BF_OK;
-}
-
-/* S_p(theta): the warm-started refinement, and with thorough also the
- * grid fit; *improved = 1 when the grid fit was lower. */
-static int inner(profile_t *p, double theta, int thorough, double *s,
-                 int *improved)
-{
-    bf_fit_result warm;
     bf_fit_result start;
     int rc;
-    *improved = 0;
-    p->sub.fixed[p->j] = theta;
-    p->start[p->j] = theta;
-    if (p->sub.free_mask == 0) {
-        return bf__fit_value(p->fc, p->sub.fixed, s);
-    }
     if (p->sub.type->kind == BF_MODEL_SPECULAR) {
-        return spec_inner(p, thorough, s, improved);
+        return bf__varpro_refine(p->fc, p->start, warm);
     }
     memset(&start, 0, sizeof start);
     memcpy(start.param, p->start, sizeof start.param);
@@ -165,16 +123,45 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     if (rc != BF_OK) {
         start.lse = HUGE_VAL; /* the refinement keeps a defined point */
     }
-    rc = bf__refine(p->fc, &start, &warm);
-    if (rc != BF_OK && rc != BF_ENOCONV) {
-        if (!thorough) {
+    rc = bf__refine(p->fc, &start, warm);
+    return rc == BF_ENOCONV ? BF_OK : rc;
+}
+
+/* The thorough fit: the grid fit; a specular model's refinement from the
+ * optimum's values (its grid is the fit's own, made for the whole domain;
+ * with the scales solved at most two parameters are left, and the two
+ * starts, this and the warm one, find the basins its grid would). */
+static int thorough_fit(profile_t *p, bf_fit_result *g)
+{
+    if (p->sub.type->kind == BF_MODEL_SPECULAR) {
+        return bf__varpro_refine(p->fc, p->est, g);
+    }
+    return grid_fit(p, g);
+}
+
+/* S_p(theta): the warm-started refinement, and with thorough also the
+ * thorough fit; *improved = 1 when that was lower. */
+static int inner(profile_t *p, double theta, int thorough, double *s,
+                 int *improved)
+{
+    bf_fit_result warm;
+    int rc;
+    *improved = 0;
+    p->sub.fixed[p->j] = theta;
+    p->start[p->j] = theta;
+    if (p->sub.free_mask == 0) {
+        return bf__fit_value(p->fc, p->sub.fixed, s);
+    }
+    rc = warm_fit(p, &warm);
+    if (rc != BF_OK) {
+        if (!thorough || rc == BF_ENOMEM) {
             return rc;
         }
         warm.lse = HUGE_VAL;
     }
     if (thorough) {
         bf_fit_result g;
-        rc = grid_fit(p, &g);
+        rc = thorough_fit(p, &g);
         if (rc == BF_ENOMEM) {
             return rc;
         }
