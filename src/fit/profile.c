@@ -23,6 +23,13 @@
  * (the warm start followed a local minimum, so the end was too early), the
  * search goes on from there. The result is the end of the true profile
  * wherever the nuisance grid resolves its minima.
+ *
+ * A specular model or composite (SPEC §9; varpro.c): at every point its
+ * free scales are solved exactly (NNLS; a held scale joins the fixed part
+ * of the columns) and the other free parameters refined by
+ * bf__varpro_refine; the thorough fit refines them from the optimum's
+ * values as well (no stored grid). Its domains have no grid step: the
+ * first outward step is 5 % of the estimate.
  */
 #include <float.h>
 #include <gsl/gsl_cdf.h>
