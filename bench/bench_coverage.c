@@ -105,6 +105,23 @@ static int listed(const char *list, const char *name)
     return 0;
 }
 
+/* One row of the table: parameter j of cal. */
+static void print_row(const char *model, const char *param, const char *geom,
+                      const char *noise, const char *obj,
+                      const bf_calibration *cal, size_t j, size_t n_boot)
+{
+    double spread = 2.0 * 1.959964 * cal->ml_sd[j];
+    printf("| %s | %s | %s | %s | %s | %.3f | %.2f | %.2f | %.3f |", model,
+           param, geom, noise, obj, cal->coverage[j], cal->width[j] / spread,
+           cal->sd[j] / cal->ml_sd[j], cal->not_identified[j]);
+    if (n_boot >= 2) {
+        printf(" %.3f | %.2f |", cal->boot_coverage[j],
+               cal->boot_width[j] / spread);
+    }
+    printf("\n");
+    fflush(stdout);
+}
+
 #define MAX_SPEC_CONF 1500
 #define N_SPEC_RANDOM 300
 
@@ -185,19 +202,8 @@ static void specular_rows(const char *models, const char *cornell,
                                t->name, gname[g], nname[q], rc);
                         break;
                     }
-                    printf("| %s | %s | %s | %s | ngan | %.3f | %.2f | %.2f "
-                           "| %.3f |",
-                           t->name, t->param[j].name, gname[g], nname[q],
-                           cal.coverage[j],
-                           cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
-                           cal.sd[j] / cal.ml_sd[j], cal.not_identified[j]);
-                    if (n_boot >= 2) {
-                        printf(" %.3f | %.2f |", cal.boot_coverage[j],
-                               cal.boot_width[j] /
-                                   (2.0 * 1.959964 * cal.ml_sd[j]));
-                    }
-                    printf("\n");
-                    fflush(stdout);
+                    print_row(t->name, t->param[j].name, gname[g], nname[q],
+                              "ngan", &cal, j, n_boot);
                 }
             }
         }
@@ -283,21 +289,10 @@ int main(int argc, char **argv)
                         if (!((pb.free_mask >> j) & 1u)) {
                             continue;
                         }
-                        printf("| %s | %s | %s | %s | %s | %.3f | %.2f | "
-                               "%.2f | %.3f |",
-                               v.type.name, v.type.param[j].name, gname[g],
-                               nname[q], bf_objective_name(objs[o]),
-                               cal.coverage[j],
-                               cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
-                               cal.sd[j] / cal.ml_sd[j],
-                               cal.not_identified[j]);
-                        if (n_boot >= 2) {
-                            printf(" %.3f | %.2f |", cal.boot_coverage[j],
-                                   cal.boot_width[j] /
-                                       (2.0 * 1.959964 * cal.ml_sd[j]));
-                        }
-                        printf("\n");
-                        fflush(stdout);
+                        print_row(v.type.name, v.type.param[j].name,
+                                  gname[g], nname[q],
+                                  bf_objective_name(objs[o]), &cal, j,
+                                  n_boot);
                     }
                 }
             }
