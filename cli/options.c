@@ -95,6 +95,15 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    cuberoot, log1p (SPEC §10: BRDF values kept at their\n"
 "                    scale, theta <= 80 deg, a free scale rho_d); needs\n"
 "                    --fit exact unless max; see doc/methods.md\n"
+"  --fresnel F       the specular models' Fresnel term (SPEC §9.2):\n"
+"                    schlick (F0, their default), dielectric (index n in\n"
+"                    [1.01, 4] in F0's place) or none (F = 1, no F0);\n"
+"                    GGX, BECKMANN, CT and the S of their composites D+S\n"
+"                    (diffuse models are unaffected; another specular\n"
+"                    model is an error)\n"
+"  --smith M         the Smith masking of GGX and BECKMANN (and their\n"
+"                    composites): height (correlated, the default) or\n"
+"                    separable (Heitz 2014 eqs. 99, 98)\n"
 "  --range P=LO:HI   search range of parameter P, e.g. m=0.01:20 (grid\n"
 "                    keeps its step; repeatable)\n"
 "  --noise MODEL     the intervals' noise model: auto (power law var ~\n"
@@ -151,7 +160,8 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
            O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
-           O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE, O_NOISE };
+           O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE, O_NOISE, O_FRESNEL,
+           O_SMITH };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -170,6 +180,8 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         {"out", required_argument, NULL, O_OUT},
         {"fit", required_argument, NULL, O_FIT},
         {"objective", required_argument, NULL, O_OBJECTIVE},
+        {"fresnel", required_argument, NULL, O_FRESNEL},
+        {"smith", required_argument, NULL, O_SMITH},
         {"range", required_argument, NULL, O_RANGE},
         {"noise", required_argument, NULL, O_NOISE},
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
@@ -297,6 +309,16 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
                                          optarg);
             }
             break;
+        case O_FRESNEL:
+        case O_SMITH: {
+            int rc = c == O_FRESNEL
+                         ? bf_cli_parse_fresnel(hint, optarg, &o->fresnel)
+                         : bf_cli_parse_smith(hint, optarg, &o->smith);
+            if (rc != BF_EXIT_OK) {
+                return rc;
+            }
+            break;
+        }
         case O_NOISE:
             if (bf_noise_find(optarg, &o->noise) != BF_OK) {
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--noise: '%s' is not "

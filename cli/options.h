@@ -35,6 +35,8 @@ typedef struct {
     /* beyond the paper (doc/methods.md) */
     int exact;                /* --fit exact */
     bf_objective objective;   /* --objective */
+    bf_fresnel_kind fresnel;  /* --fresnel (0: each model's own) */
+    bf_smith_kind smith;      /* --smith (0: each model's own) */
     bf_noise noise;           /* --noise (BF_NOISE_AUTO) */
     const char *range[BF_CLI_MAX_RANGES]; /* --range NAME=LO:HI */
     size_t n_range;

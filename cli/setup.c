@@ -77,6 +77,8 @@ void bf_cli_report_options(bf_cli_run *r, bf_report_options *ro,
     ro->on_file = o->on_file;
     ro->exact = o->exact;
     ro->objective = o->objective;
+    ro->fresnel = o->fresnel;
+    ro->smith = o->smith;
     ro->noise = o->noise;
     ro->n_range = o->n_range;
     for (i = 0; i < o->n_range; i++) {

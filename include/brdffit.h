@@ -315,11 +315,13 @@ typedef enum {
 #define BF_SPECULAR_VARIANTS 6
 #define BF_VARIANT_INDEX(f, s) (((size_t)(f) - 1) * 2 + ((size_t)(s) - 1))
 
-/* The variant of base (a registry model, one of its variants or a
- * bf_model_variant copy of either) with
+/* The variant of base (a registry model, one of its variants, a
+ * composite D+S of either, or a bf_model_variant copy of any of them) with
  * Fresnel term f and masking s: a type object of static storage with the
  * same name (GGX stays "GGX") and the parameters of the option (rho_s,
- * alpha, n for GGX with BF_FRESNEL_DIELECTRIC; rho_s, alpha without F0).
+ * alpha, n for GGX with BF_FRESNEL_DIELECTRIC; rho_s, alpha without F0; a
+ * composite's are rho_d, D's, then those of S's variant, which
+ * bf_model_specular_part returns).
  * The options apply as SPEC §9.2 says: --fresnel to GGX, BECKMANN and CT,
  * --smith to GGX and BECKMANN. Returns NULL where an option does not
  * apply, with *why (when why is not NULL) a sentence saying so (static
@@ -1480,15 +1482,25 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
 /* The models of a study from list, a comma-separated list of registry
  * names (bf_model_find_why: composites D+S too), "all" (every diffuse
  * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
- * into out (room for cap; bf_model_count() + 1 is enough). Returns BF_OK;
- * BF_ENOTFOUND for an unknown name; BF_EINVAL for a bad list (an empty
- * name, a trailing comma), a model listed twice or more than cap; BF_EDOM
- * for a specular model under an objective that max-normalises (SPEC §9,
- * §10: !bf_objective_keeps_scale). err->msg says which ("unknown model
- * 'XX'", "'ON' listed twice", "GGX gives absolute BRDF values (SPEC §9)"),
- * for the caller to prefix with its own option's name. */
+ * into out (room for cap; bf_model_count() + 1 is enough), under the
+ * options of SPEC §9.2: with fresnel or smith not DEFAULT, every specular
+ * model and the S part of every composite is its variant
+ * (bf_model_specular_variant: GGX under BF_FRESNEL_DIELECTRIC has rho_s,
+ * alpha, n; LAMBERT+GGX rho_d, rho_s, alpha, n); diffuse models are
+ * unaffected. Returns BF_OK; BF_ENOTFOUND for an unknown name; BF_EINVAL
+ * for a bad list (an empty name, a trailing comma), a model listed twice,
+ * more than cap, or fresnel or smith not a value of its enum; BF_EDOM for
+ * a specular model, or fresnel or smith given, under an objective that
+ * max-normalises (SPEC §9, §10: !bf_objective_keeps_scale), and -- under
+ * one that keeps the scale -- for a specular model that cannot take an
+ * option given or options that no listed model takes. err->msg says which
+ * ("unknown model 'XX'", "'ON' listed twice", "GGX gives absolute BRDF
+ * values (SPEC §9)", "WARD has no Fresnel term (SPEC §9.3): --fresnel
+ * applies to GGX, BECKMANN and CT"), for the caller to prefix with its own
+ * option's name. */
 int bf_study_models(const char *list, bf_model_set defaults,
-                    bf_objective objective, const bf_model_type **out,
+                    bf_objective objective, bf_fresnel_kind fresnel,
+                    bf_smith_kind smith, const bf_model_type **out,
                     size_t cap, size_t *n, bf_error *err);
 
 /* A user's search range of the parameter called name (--range NAME=LO:HI). */
@@ -1883,6 +1895,8 @@ typedef struct {
     const char *on_file;   /*   (described and checksummed), or NULL */
     int exact;             /* the exact fit (doc/methods.md §1) */
     bf_objective objective;
+    bf_fresnel_kind fresnel; /* SPEC §9.2 options of the specular models */
+    bf_smith_kind smith;     /*   (bf_study_models); 0: each model's own */
     bf_noise noise;
     const char *range[BF_REPORT_MAX_RANGES]; /* "NAME=LO:HI" */
     size_t n_range;

@@ -271,3 +271,79 @@ FILE *bf_test_membuf(const void *buf, size_t len)
     cr_assert_not_null(fp, "cannot open an in-memory stream");
     return fp;
 }
+
+/* ==== synthetic glossy materials through tidy CSV ======================= */
+
+void bf_test_glossy_configs(double *at)
+{
+    const double pi = 3.14159265358979323846;
+    const double deg = pi / 180.0;
+    size_t n = 0;
+    int a;
+    for (a = 0; a < 8; a++) {
+        double ti = (5.0 + 10.0 * a) * deg;
+        int u;
+        int w;
+        for (u = -2; u <= 2; u++) {
+            for (w = -2; w <= 2; w++) {
+                at[4 * n + 0] = ti;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = fabs(ti + 2.0 * u * deg);
+                at[4 * n + 3] = pi + 3.0 * w * deg;
+                n++;
+            }
+        }
+        for (u = 0; u < 5; u++) {
+            for (w = 0; w < 5; w++) {
+                at[4 * n + 0] = ti;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = (5.0 + 15.0 * u) * deg;
+                at[4 * n + 3] = (72.0 * w + 10.0) * deg;
+                n++;
+            }
+        }
+    }
+    cr_assert_eq(n, BF_TEST_GLOSSY_NCONF);
+}
+
+void bf_test_write_glossy_csv(const char *path, size_t n,
+                              const bf_test_material *mat)
+{
+    enum { K = BF_TEST_GLOSSY_NCONF };
+    double *at = malloc(4 * K * sizeof *at);
+    double *v = malloc((n + 1) * K * sizeof *v);
+    bf_geom *g = malloc(K * sizeof *g);
+    bf_dataset *ds = bf_dataset_alloc();
+    size_t set;
+    size_t i;
+    size_t k;
+    FILE *fp;
+    cr_assert(at != NULL && v != NULL && g != NULL && ds != NULL);
+    bf_test_glossy_configs(at);
+    cr_assert_eq(bf_dataset_add_configs(ds, K, at, &set, NULL), BF_OK);
+    for (k = 0; k < K; k++) {
+        g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
+                                        at[4 * k + 2], at[4 * k + 3]);
+    }
+    for (i = 0; i < n; i++) {
+        bf_material_desc d;
+        cr_assert_eq(bf_model_eval(mat[i].type, mat[i].param, K, g,
+                                   v + i * K),
+                     BF_OK, "%s", mat[i].name);
+        memset(&d, 0, sizeof d);
+        d.name = mat[i].name;
+        d.format = BF_FORMAT_MEMORY;
+        d.set = set;
+        d.n_channels = 1;
+        d.values = v + i * K;
+        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+    }
+    fp = fopen(path, "w");
+    cr_assert_not_null(fp);
+    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
+    cr_assert_eq(fclose(fp), 0);
+    bf_dataset_free(ds);
+    free(g);
+    free(v);
+    free(at);
+}

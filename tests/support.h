@@ -102,6 +102,27 @@ void bf_test_model_brdf(const bf_model_type *type, const double *param,
 bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
                               const bf_model_type *type, size_t *k);
 
+/* The configurations of the glossy recovery tests (measurement frame,
+ * radians, 4 angles each): theta_i 5..75 deg by 10; at each, 25 directions
+ * within 4 deg and 6 deg of azimuth of the mirror direction (theta_i,
+ * phi_i + pi) and 25 spread over the hemisphere: half near the mirror
+ * direction, all with theta <= 80 deg (SPEC §10 uses every one). */
+#define BF_TEST_GLOSSY_NCONF 400
+void bf_test_glossy_configs(double *at);
+
+/* A synthetic material: type's BRDF (bf_model_eval, sr^-1) at param. */
+typedef struct {
+    const char *name;
+    const bf_model_type *type;
+    const double *param;
+} bf_test_material;
+
+/* Writes the n materials at bf_test_glossy_configs as one dataset (one
+ * channel, material i + 1 is mat[i]) through the library's tidy CSV
+ * writer (bf_csv_write) to path; fails the test on any error. */
+void bf_test_write_glossy_csv(const char *path, size_t n,
+                              const bf_test_material *mat);
+
 /* Path of a fixture in tests/fixtures (static buffer). */
 const char *bf_test_fixture_path(const char *file);
 

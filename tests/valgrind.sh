@@ -58,6 +58,9 @@
 # (the Cornell one 20 fits on 1439 configurations, about 25 s of CPU
 # plain); the composites' values and the CLI's checks of their names run
 # under valgrind in composite's other tests.
+# specular_options' recovery and separable-height tests fit six composites
+# and lobes through the CLI (about 1.1 s of CPU plain); the same paths run
+# under valgrind in its fits.csv, description and bad-option tests.
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
@@ -139,6 +142,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     keep_scale/cornell_lambert_at_most_the_peers_e
     composite/recovery_ngan_through_csv_and_cli
     composite/cornell_every_fit_at_most_the_peers_e
+    specular_options/recovery_ngan_through_csv_and_cli
+    specular_options/separable_and_height_fits_differ
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     grid/round_trip_recovers_every_model_exactly_at_grid_values

@@ -102,6 +102,19 @@ const char *bf_model_set_names(bf_model_set set);
 int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
                   const bf_geom *geom, double *out);
 int bf_model_param_index(const bf_model_type *type, const char *name);
+typedef enum {
+    BF_FRESNEL_DEFAULT = 0, BF_FRESNEL_SCHLICK, BF_FRESNEL_DIELECTRIC,
+    BF_FRESNEL_NONE
+} bf_fresnel_kind;
+typedef enum {
+    BF_SMITH_DEFAULT = 0, BF_SMITH_HEIGHT, BF_SMITH_SEPARABLE
+} bf_smith_kind;
+const bf_model_type *bf_model_specular_variant(const bf_model_type *base,
+                                               bf_fresnel_kind f,
+                                               bf_smith_kind s,
+                                               const char **why);
+int bf_fresnel_find(const char *name, bf_fresnel_kind *out);
+int bf_smith_find(const char *name, bf_smith_kind *out);
 
 /* --- per-sample tables (ON parameters, refractive index) --- */
 typedef struct bf_sample_table bf_sample_table;
@@ -316,7 +329,8 @@ int bf_model_variant_range(bf_model_variant *v, const char *name, double lo,
                            double hi);
 size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
 int bf_study_models(const char *list, bf_model_set defaults,
-                    bf_objective objective, const bf_model_type **out,
+                    bf_objective objective, bf_fresnel_kind fresnel,
+                    bf_smith_kind smith, const bf_model_type **out,
                     size_t cap, size_t *n, bf_error *err);
 typedef struct {
     const char *name;
@@ -429,6 +443,8 @@ typedef struct {
     const char *on_file;
     int exact;
     bf_objective objective;
+    bf_fresnel_kind fresnel;
+    bf_smith_kind smith;
     bf_noise noise;
     const char *range[8];
     size_t n_range;

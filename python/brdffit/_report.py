@@ -17,7 +17,7 @@ from cffi import FFI
 from ._errors import InvalidArgumentError, error, new_error
 from ._lib import DEFAULT_N, ffi, lib
 from ._lib import path as _core_path
-from ._study import _noise, _objective, _sample_table
+from ._study import _fresnel, _noise, _objective, _sample_table, _smith
 
 REPORT_CDEF = r"""
 int bf_report_write(bf_report_inputs *in, const bf_report_options *o,
@@ -131,7 +131,8 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
            bootstrap=0, folds=10, seed=1, n=None, n_file=None,
            on_params=None, exclude=None, max_theta=90.0,
            exclude_specular=None, ranges=None, threads=1, format="png,pdf",
-           size="double", log=False, per_sample=False, incidence=None):
+           size="double", log=False, per_sample=False, incidence=None,
+           fresnel=None, smith=None):
     """Runs the study of `brdffit report` on dataset and writes its report
     into folder out (created, one level, if missing): fits.csv, table2.md,
     table3.md, report.html and figures/ -- the same files as the CLI with
@@ -152,6 +153,10 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         exclude: configuration numbers (--exclude); max_theta and
             exclude_specular: degrees (--max-theta, --exclude-specular);
             ranges: {parameter: (lo, hi)} (--range).
+        fresnel: "schlick", "dielectric" or "none"; smith: "height" or
+            "separable"; None each model's own (--fresnel, --smith; SPEC
+            §9.2; the page's run description names each specular model's
+            NDF, masking and Fresnel term).
         threads: fitting threads and drawing processes, 0 one per core
             (--threads); format: "png,pdf" or a sequence of png, svg, pdf
             (--format); size: "double" or "single" (--size); log (--log);
@@ -195,6 +200,8 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
     o.n_given = n is not None
     o.exact = fit == "exact"
     o.objective = _objective(objective)
+    o.fresnel = _fresnel(fresnel)
+    o.smith = _smith(smith)
     o.noise = _noise(noise)
     rng = list((ranges or {}).items())
     if len(rng) > lib.BF_REPORT_MAX_RANGES:

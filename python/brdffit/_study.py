@@ -17,7 +17,7 @@ from ._errors import (DomainError, InvalidArgumentError, check, error,
                       new_error)
 from ._lib import DEFAULT_N, ffi, lib, libc, text
 from ._streams import read_from, written_by
-from .models import _find
+from .models import Model, _find
 from .records import Records
 
 #: The 24 CURET samples of Ragheb & Hancock's study (bf_study_samples).
@@ -61,6 +61,35 @@ def _noise(name):
         raise InvalidArgumentError("noise must be one of %s, got %r"
                                    % (", ".join(NOISES), name), 1)
     return nz[0]
+
+
+FRESNELS = ("schlick", "dielectric", "none")
+SMITHS = ("height", "separable")
+
+
+def _option(what, names, find, ctype, value):
+    """The bf_fresnel_kind or bf_smith_kind of value, a name of names
+    (find: bf_fresnel_find, bf_smith_find), or 0 (each model's own) for
+    None; InvalidArgumentError otherwise."""
+    if value is None:
+        return 0
+    out = ffi.new(ctype)
+    if not isinstance(value, str) or find(value.encode(), out) != 0:
+        raise InvalidArgumentError("%s must be one of %s or None, got %r"
+                                   % (what, ", ".join(names), value), 1)
+    return out[0]
+
+
+def _fresnel(value):
+    """The bf_fresnel_kind of fresnel= (SPEC §9.2, the CLI's --fresnel)."""
+    return _option("fresnel", FRESNELS, lib.bf_fresnel_find,
+                   "bf_fresnel_kind *", value)
+
+
+def _smith(value):
+    """The bf_smith_kind of smith= (SPEC §9.2, the CLI's --smith)."""
+    return _option("smith", SMITHS, lib.bf_smith_find, "bf_smith_kind *",
+                   value)
 
 
 def _sample_table(kind, value):
@@ -122,11 +151,13 @@ def _ranges(ranges):
     return out
 
 
-def _models(models, defaults, objective):
+def _models(models, defaults, objective, fresnel=None, smith=None):
     """([Model], [bf_model_type *]) of models (bf_study_models): None (the
     library's model set called defaults, e.g. "BF_MODELS_PAPER"), "all"
     (every diffuse registry model), a comma-separated string or a sequence
-    of names or Models."""
+    of names or Models; under fresnel, smith (SPEC §9.2: None each model's
+    own) the specular models and the S of composites are their variants,
+    whose Models have the variants' parameters (n in F0's place)."""
     if models is not None and not isinstance(models, str):
         if not models:
             raise InvalidArgumentError("no model to fit", 1)
@@ -136,9 +167,14 @@ def _models(models, defaults, objective):
     out = ffi.new("const bf_model_type *[]", cap)
     n = ffi.new("size_t *")
     err = new_error()
+    obj = _objective(objective)
     rc = lib.bf_study_models(ffi.NULL if models is None else
-                             models.encode(), getattr(lib, defaults),
-                             _objective(objective), out, cap, n, err)
+                             models.encode(), getattr(lib, defaults), obj,
+                             _fresnel(fresnel), _smith(smith), out, cap, n,
+                             err)
+    if rc == lib.BF_EDOM and lib.bf_objective_keeps_scale(obj):
+        # fresnel=, smith=: a model that cannot take them (SPEC §9.2)
+        raise InvalidArgumentError("models: %s" % text(err.msg), rc)
     if rc == lib.BF_EDOM:  # SPEC §9, §10: the others max-normalise
         raise InvalidArgumentError(
             "models: %s; fit it with fit='exact' and objective 'ngan', "
@@ -148,7 +184,14 @@ def _models(models, defaults, objective):
     base = [out[i] for i in range(n[0])]
     if not base:
         raise InvalidArgumentError("no model to fit", 1)
-    return [_find(text(t.name)) for t in base], base
+    return [_model_of(t) for t in base], base
+
+
+def _model_of(ctype):
+    """The Model of a type bf_study_models gave: the registry's (or the
+    composite's) when it is that type, else its variant's own."""
+    m = _find(text(ctype.name))
+    return m if m._type == ctype else Model(ctype)
 
 
 def _field(v):
@@ -210,10 +253,12 @@ class Spec:
     def __init__(self, dataset, materials, channel, models, n=None,
                  n_file=None, on_params=None, exclude=(), max_theta=None,
                  cone=None, threads=1, exact=False, ranges=None,
-                 defaults="BF_MODELS_PAPER", objective="max"):
+                 defaults="BF_MODELS_PAPER", objective="max", fresnel=None,
+                 smith=None):
         self.dataset = dataset
         self._keep = []
-        self.models, base = _models(models, defaults, objective)
+        self.models, base = _models(models, defaults, objective, fresnel,
+                                    smith)
         index = _material_indices(dataset, materials)
         if not index:
             raise InvalidArgumentError("no material to fit", 1)
@@ -441,7 +486,7 @@ class Study:
                  folds=None, seed=None, level=None, n=None, n_file=None,
                  on_params=None, exclude=(), max_theta=None, cone=None,
                  ranges=None, threads=1, progress=None, context="study",
-                 noise="auto"):
+                 noise="auto", fresnel=None, smith=None):
         if fit not in FITS:
             raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
                                        "%r" % (fit,), 1)
@@ -458,7 +503,8 @@ class Study:
                          n_file=n_file, on_params=on_params,
                          exclude=exclude, max_theta=max_theta, cone=cone,
                          threads=threads, exact=exact, ranges=ranges,
-                         defaults=defaults, objective=objective)
+                         defaults=defaults, objective=objective,
+                         fresnel=fresnel, smith=smith)
         self.stats = self.opts = None
         if exact:  # the analysis is the study (it fills the rows)
             self.rows = ffi.new("bf_study_row[]", self.spec.n_rows)

@@ -76,7 +76,8 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
               bootstrap=0, channel="mean", fit="exact", objective="max",
               level=None,
               noise="auto", n=None, n_file=None, on_params=None, exclude=(),
-              max_theta=None, cone=None, ranges=None, threads=1):
+              max_theta=None, cone=None, ranges=None, threads=1,
+              fresnel=None, smith=None):
     """Fits model to material as brdffit.fit does (the analysis on), then
     simulates n_sim measurements of the fitted model under the fitted
     noise model at the material's configurations, refits each and checks
@@ -98,7 +99,8 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
                       bootstrap=bootstrap,
                       n=n, n_file=n_file, on_params=on_params,
                       exclude=exclude, max_theta=max_theta, cone=cone,
-                      ranges=ranges, threads=threads, noise=noise)
+                      ranges=ranges, threads=threads, noise=noise,
+                      fresnel=fresnel, smith=smith)
     cal = ffi.new("bf_calibration *")
     err = new_error()
     rc = lib.bf_study_calibrate(study.spec.spec, study.opts, study.rows,

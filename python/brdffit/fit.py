@@ -205,7 +205,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective="max", stats=True, bootstrap=0, folds=None, seed=None,
         level=None, n=None, n_file=None, on_params=None, exclude=(),
         max_theta=None, cone=None, ranges=None, threads=1, progress=None,
-        noise="auto"):
+        noise="auto", fresnel=None, smith=None):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -255,6 +255,16 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             (var ~ mu^p, p estimated; default), "absolute", "relative", or
             "objective" (the objective's own profile, the intervals before
             issue 18).
+        fresnel, smith: the specular models' options (SPEC §9.2, the CLI's
+            --fresnel, --smith; None: each model's own, Schlick's F0 and
+            height-correlated Smith): fresnel "schlick", "dielectric" (a
+            refractive index n in [1.01, 4] in F0's place) or "none" (no
+            F0), for GGX, BECKMANN, CT and their composites D+S; smith
+            "height" or "separable", for GGX, BECKMANN and theirs. A
+            diffuse model is unaffected; a specular model that cannot take
+            the option, or options that no model takes, raise
+            InvalidArgumentError. result.model is the variant fitted
+            (its parameters, ndf, masking, fresnel).
     Returns a FitResult.
     Raises InvalidArgumentError (bad option), NotFoundError (material,
     channel or model unknown; ON without on_params), DomainError (data
@@ -266,7 +276,8 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective=objective, stats=stats, bootstrap=bootstrap, folds=folds,
         seed=seed, level=level, n=n, n_file=n_file, on_params=on_params,
         exclude=exclude, max_theta=max_theta, cone=cone, ranges=ranges,
-        threads=threads, progress=progress, noise=noise))
+        threads=threads, progress=progress, noise=noise, fresnel=fresnel,
+        smith=smith))
 
 
 def fit_study(dataset, model, material, **kw):

@@ -163,12 +163,26 @@ def models():
     return list(_REGISTRY)
 
 
-def model(name):
+def model(name, fresnel=None, smith=None):
     """The model called name (case-insensitive, bf_model_find; "D+S" is the
     composite of SPEC §9.4, e.g. "LAMBERT+GGX"); a Model is returned as it
-    is. Raises NotFoundError naming the known models (for a composite, why
-    the name is refused)."""
-    return _find(name)
+    is. fresnel ("schlick", "dielectric", "none") and smith ("height",
+    "separable"), SPEC §9.2, give a specular model's variant
+    (bf_model_specular_variant; the CLI's --fresnel, --smith): GGX with
+    fresnel="dielectric" has the parameters rho_s, alpha, n. Raises
+    NotFoundError naming the known models (for a composite, why the name
+    is refused); InvalidArgumentError when the model cannot take the
+    option (the library's sentence says why)."""
+    m = _find(name)
+    if fresnel is None and smith is None:
+        return m
+    from ._study import _fresnel, _smith
+    why = ffi.new("const char **")
+    ctype = lib.bf_model_specular_variant(m._type, _fresnel(fresnel),
+                                          _smith(smith), why)
+    if ctype == ffi.NULL:
+        raise InvalidArgumentError("%s %s" % (m.name, text(why[0])), 1)
+    return m if ctype == m._type else Model(ctype)
 
 
 def _find(name):

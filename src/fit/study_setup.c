@@ -1,6 +1,7 @@
 /* study_setup.c: the parts of a study's specification every caller makes
  * the same way (the CLI's compare, rank, report, calibrate and Python's
- * compare, rank, fit): the model list, the models' variants (the exact
+ * compare, rank, fit): the model list under the specular options of
+ * SPEC §9.2 (--fresnel, --smith), the models' variants (the exact
  * fit's freed inputs, the user's search ranges) and the check of the rows
  * a study wrote (SPEC §2, §7, §9; doc/methods.md §6). Callers word the
  * messages with their own option names.
@@ -34,17 +35,83 @@ static int add_model(const bf_model_type *t, bf_objective objective,
     return BF_OK;
 }
 
+/* The models' variants under the options of SPEC §9.2 (fresnel, smith),
+ * in place: a specular model, or the S part of a composite D+S, becomes its
+ * variant; a diffuse model is unaffected. A specular model that cannot
+ * take an option given, or options that no model takes, are an error. */
+static int apply_options(bf_fresnel_kind fresnel, bf_smith_kind smith,
+                         bf_objective objective, const bf_model_type **out,
+                         size_t n, bf_error *err)
+{
+    size_t taken = 0;
+    size_t m;
+    if ((unsigned)fresnel > BF_FRESNEL_NONE
+        || (unsigned)smith > BF_SMITH_SEPARABLE) {
+        return bf__error_set(err, BF_EINVAL, 0,
+                             "unknown --fresnel or --smith value");
+    }
+    if (fresnel == BF_FRESNEL_DEFAULT && smith == BF_SMITH_DEFAULT) {
+        return BF_OK;
+    }
+    if (!bf_objective_keeps_scale(objective)) {
+        return bf__error_set(err, BF_EDOM, 0,
+                             "--fresnel and --smith apply to the specular "
+                             "models, which give absolute BRDF values "
+                             "(SPEC §9.2, §9.3)");
+    }
+    for (m = 0; m < n; m++) {
+        const bf_model_type *v;
+        const char *why;
+        if (out[m]->kind != BF_MODEL_SPECULAR) {
+            continue; /* a diffuse model: unaffected */
+        }
+        v = bf_model_specular_variant(out[m], fresnel, smith, &why);
+        if (v == NULL) {
+            return bf__error_set(err, BF_EDOM, 0, "%s %s", out[m]->name,
+                                 why);
+        }
+        out[m] = v;
+        taken++;
+    }
+    if (taken == 0) {
+        return bf__error_set(err, BF_EDOM, 0,
+                             "no selected model takes --fresnel or "
+                             "--smith: they apply to GGX, BECKMANN, CT "
+                             "(--smith: GGX, BECKMANN) and their "
+                             "composites D+S (SPEC §9.2)");
+    }
+    return BF_OK;
+}
+
+static int resolve_list(const char *list, bf_model_set defaults,
+                        bf_objective objective, const bf_model_type **out,
+                        size_t cap, size_t *n, bf_error *err);
+
 int bf_study_models(const char *list, bf_model_set defaults,
-                    bf_objective objective, const bf_model_type **out,
+                    bf_objective objective, bf_fresnel_kind fresnel,
+                    bf_smith_kind smith, const bf_model_type **out,
                     size_t cap, size_t *n, bf_error *err)
 {
-    const char *p;
-    size_t i;
+    int rc;
     bf__error_clear(err, "study");
     if (out == NULL || n == NULL) {
         return bf__error_set(err, BF_EINVAL, 0, "no output");
     }
     *n = 0;
+    rc = resolve_list(list, defaults, objective, out, cap, n, err);
+    if (rc == BF_OK) {
+        rc = apply_options(fresnel, smith, objective, out, *n, err);
+    }
+    return rc;
+}
+
+/* The model list of bf_study_models, every model as the registry has it. */
+static int resolve_list(const char *list, bf_model_set defaults,
+                        bf_objective objective, const bf_model_type **out,
+                        size_t cap, size_t *n, bf_error *err)
+{
+    const char *p;
+    size_t i;
     if (list != NULL && strcmp(list, "all") == 0) {
         for (i = 0; i < bf_model_count(); i++) {
             const bf_model_type *t = bf_model_get(i);

@@ -1,7 +1,10 @@
 /* composite.c: the composites D+S of SPEC §9.4 -- a diffuse model D and a
  * specular model S of the registry -- for every pair of its two lists
  * (models/registry.h), so a new model's composites come with its registry
- * line.
+ * line; and for every variant of S (SPEC §9.2: --fresnel, --smith) the
+ * composite of D and that variant, the composite's own variants
+ * (bf_model_specular_variant): LAMBERT+GGX under --fresnel dielectric has
+ * the parameters rho_d, rho_s, alpha, n.
  *
  * References:
  *   [1] SPEC §9.4; A. Ngan, F. Durand, W. Matusik, "Experimental analysis
@@ -87,13 +90,27 @@ static int composite_eval(const bf_model_type *d, const bf_model_type *s,
     return (rc == BF_OK) && (rs == BF_OK) ? BF_OK : BF_EDOM;
 }
 
-/* One eval function per pair (the eval has no context, bf_eval_fn). */
-#define PAIR_EVAL(d, s)                                                     \
-    static int eval_##d##_##s(const double *param, size_t n,               \
-                              const bf_geom *geom, double *out, void *work) \
+/* S's variant j (bf_model_type.variants; S itself for a model without
+ * options). */
+static const bf_model_type *variant_of(const bf_model_type *s, size_t j)
+{
+    return (s->variants != NULL) && (s->variants[j] != NULL) ? s->variants[j]
+                                                             : s;
+}
+
+/* One eval function per pair and variant of S (the eval has no context,
+ * bf_eval_fn); those of S's absent variants are never used. */
+#define VARIANT_EVAL(d, s, j)                                               \
+    static int eval_##d##_##s##_##j(const double *param, size_t n,         \
+                                    const bf_geom *geom, double *out,      \
+                                    void *work)                            \
     {                                                                      \
-        return composite_eval(d, s, param, n, geom, out, work);            \
+        return composite_eval(d, variant_of(s, j), param, n, geom, out,    \
+                              work);                                       \
     }
+#define PAIR_EVAL(d, s)                                                     \
+    VARIANT_EVAL(d, s, 0) VARIANT_EVAL(d, s, 1) VARIANT_EVAL(d, s, 2)      \
+    VARIANT_EVAL(d, s, 3) VARIANT_EVAL(d, s, 4) VARIANT_EVAL(d, s, 5)
 #define ROW_EVAL(unused, d) BF_REGISTRY_SPECULAR(PAIR_EVAL, d)
 BF_REGISTRY_DIFFUSE(ROW_EVAL, 0)
 
@@ -314,76 +331,112 @@ static int kernel_usable(const bf_model_type *t)
 typedef struct {
     const bf_model_type *const *d;
     const bf_model_type *const *s;
-    bf_eval_fn eval;
+    bf_eval_fn eval[BF_SPECULAR_VARIANTS];
 } pair_t;
 
-#define PAIR_ENTRY(d, s) {&d, &s, eval_##d##_##s},
+#define PAIR_ENTRY(d, s)                                                    \
+    {&d, &s, {eval_##d##_##s##_0, eval_##d##_##s##_1, eval_##d##_##s##_2,  \
+              eval_##d##_##s##_3, eval_##d##_##s##_4, eval_##d##_##s##_5}},
 #define ROW_ENTRY(unused, d) BF_REGISTRY_SPECULAR(PAIR_ENTRY, d)
 static const pair_t pairs[] = {BF_REGISTRY_DIFFUSE(ROW_ENTRY, 0)};
 #define N_PAIRS (sizeof pairs / sizeof pairs[0])
 
+_Static_assert(BF_SPECULAR_VARIANTS == 6, "PAIR_EVAL makes six variants");
+
 /* The type objects, made once (their parts' fields are not constant
- * expressions). */
-static bf_model_type types[N_PAIRS];
-static bf_param params[N_PAIRS][BF_MAX_PARAMS];
+ * expressions): for each pair, one per variant of S (SPEC §9.2: --fresnel,
+ * --smith), at S's index in its table (BF_VARIANT_INDEX; a model without
+ * options at 0); name NULL where S has no such variant. */
+static bf_model_type types[N_PAIRS][BF_SPECULAR_VARIANTS];
+static bf_param params[N_PAIRS][BF_SPECULAR_VARIANTS][BF_MAX_PARAMS];
+static const bf_model_type *tables[N_PAIRS][BF_SPECULAR_VARIANTS];
 static char names[N_PAIRS][NAME_MAX_LEN];
 static char titles[N_PAIRS][2 * NAME_MAX_LEN];
-static comp_kernel kernels[N_PAIRS];
+static comp_kernel kernels[N_PAIRS][BF_SPECULAR_VARIANTS];
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 
 static const bf_param rho_d_param = {
     .name = "rho_d", .label = "diffuse albedo rho_d", .unit = "1",
     .min = 0.0, .max = 1e6, .value = 0.5, .fitted = 1, .linear = 1};
 
+/* The composite of D and S (pair i, variant j) into t. */
+static void make_type(size_t i, size_t j, const bf_model_type *d,
+                      const bf_model_type *s)
+{
+    bf_model_type *t = &types[i][j];
+    bf_param *pp = params[i][j];
+    pp[0] = rho_d_param;
+    if (d->p > 0) { /* LAMBERT has no parameters: param NULL */
+        memcpy(&pp[1], d->param, d->p * sizeof *d->param);
+    }
+    if (s->p > 0) {
+        memcpy(&pp[1 + d->p], s->param, s->p * sizeof *s->param);
+    }
+    t->name = names[i];
+    t->title = titles[i];
+    t->reference = "SPEC §9.4";
+    t->p = 1 + d->p + s->p;
+    t->param = pp;
+    t->eval = pairs[i].eval[j];
+    t->work_size = chunk_bytes()
+                   + (d->work_size > s->work_size ? d->work_size
+                                                  : s->work_size);
+    t->style = s->style;
+    if (kernel_usable(d) && kernel_usable(s)) {
+        comp_kernel *ck = &kernels[i][j];
+        ck->d = d;
+        ck->s = s;
+        ck->k.n_terms = d->kernel->n_terms + s->kernel->n_terms;
+        ck->k.n_extra = d->kernel->n_extra + s->kernel->n_extra
+                        + terms_len(d->kernel, 1);
+        ck->k.terms = comp_terms;
+        ck->k.work_bytes = comp_work_bytes;
+        ck->k.values = comp_values;
+        ck->k.columns = comp_columns;
+        ck->k.cheap = -1;
+        t->kernel = &ck->k;
+    }
+    t->kind = BF_MODEL_SPECULAR;
+    t->ndf = s->ndf;
+    t->masking = s->masking;
+    t->fresnel_term = s->fresnel_term;
+    /* the composite's options are S's (bf_model_specular_variant) */
+    t->variants = s->variants != NULL ? tables[i] : NULL;
+    tables[i][j] = t;
+}
+
 static void make_types(void)
 {
     size_t i;
+    size_t j;
     for (i = 0; i < N_PAIRS; i++) {
         const bf_model_type *d = *pairs[i].d;
         const bf_model_type *s = *pairs[i].s;
-        bf_model_type *t = &types[i];
-        if (1 + d->p + s->p > BF_MAX_PARAMS) {
-            continue; /* t->name NULL: too many parameters */
-        }
         snprintf(names[i], sizeof names[i], "%s+%s", d->name, s->name);
         snprintf(titles[i], sizeof titles[i], "%s diffuse + %s specular",
                  d->name, s->name);
-        params[i][0] = rho_d_param;
-        if (d->p > 0) { /* LAMBERT has no parameters: param NULL */
-            memcpy(&params[i][1], d->param, d->p * sizeof *d->param);
+        for (j = 0; j < BF_SPECULAR_VARIANTS; j++) {
+            const bf_model_type *sj = s->variants != NULL ? s->variants[j]
+                                      : j == 0            ? s
+                                                          : NULL;
+            if ((sj != NULL) && (1 + d->p + sj->p <= BF_MAX_PARAMS)) {
+                make_type(i, j, d, sj); /* else name NULL: too many */
+            }
         }
-        if (s->p > 0) {
-            memcpy(&params[i][1 + d->p], s->param, s->p * sizeof *s->param);
-        }
-        t->name = names[i];
-        t->title = titles[i];
-        t->reference = "SPEC §9.4";
-        t->p = 1 + d->p + s->p;
-        t->param = params[i];
-        t->eval = pairs[i].eval;
-        t->work_size = chunk_bytes()
-                       + (d->work_size > s->work_size ? d->work_size
-                                                      : s->work_size);
-        t->style = s->style;
-        if (kernel_usable(d) && kernel_usable(s)) {
-            comp_kernel *ck = &kernels[i];
-            ck->d = d;
-            ck->s = s;
-            ck->k.n_terms = d->kernel->n_terms + s->kernel->n_terms;
-            ck->k.n_extra = d->kernel->n_extra + s->kernel->n_extra
-                            + terms_len(d->kernel, 1);
-            ck->k.terms = comp_terms;
-            ck->k.work_bytes = comp_work_bytes;
-            ck->k.values = comp_values;
-            ck->k.columns = comp_columns;
-            ck->k.cheap = -1;
-            t->kernel = &ck->k;
-        }
-        t->kind = BF_MODEL_SPECULAR;
-        t->ndf = s->ndf;
-        t->masking = s->masking;
-        t->fresnel_term = s->fresnel_term;
     }
+}
+
+/* The index of S's registry type in its table of variants (0 for a model
+ * without options). */
+static size_t registry_variant(const bf_model_type *s)
+{
+    size_t j;
+    for (j = 0; (s->variants != NULL) && (j < BF_SPECULAR_VARIANTS); j++) {
+        if (s->variants[j] == s) {
+            return j;
+        }
+    }
+    return 0;
 }
 
 /* The registry model named by the len bytes at name, or NULL. */
@@ -431,11 +484,12 @@ const bf_model_type *bf__composite_find(const char *name, const char **why)
     pthread_once(&once, make_types);
     for (i = 0; i < N_PAIRS; i++) {
         if ((*pairs[i].d == d) && (*pairs[i].s == s)) {
-            if (types[i].name == NULL) {
+            const bf_model_type *t = &types[i][registry_variant(s)];
+            if (t->name == NULL) {
                 break;
             }
             *why = NULL;
-            return &types[i];
+            return t;
         }
     }
     *why = "the composite has more parameters than BF_MAX_PARAMS";
@@ -455,10 +509,15 @@ const bf_model_type *bf_model_specular_part(const bf_model_type *type,
         return NULL;
     }
     for (i = 0; i < N_PAIRS; i++) {
-        /* a composite, or a copy of one (bf_model_variant): by its eval */
-        if ((types[i].name != NULL) && (type->eval == types[i].eval)) {
-            *first = 1 + (*pairs[i].d)->p;
-            return *pairs[i].s;
+        size_t j;
+        for (j = 0; j < BF_SPECULAR_VARIANTS; j++) {
+            /* a composite, or a copy of one (bf_model_variant): by its
+             * eval */
+            if ((types[i][j].name != NULL)
+                && (type->eval == types[i][j].eval)) {
+                *first = 1 + (*pairs[i].d)->p;
+                return variant_of(*pairs[i].s, j);
+            }
         }
     }
     return type;

@@ -106,8 +106,13 @@ static int select_models(const char *hint, const bf_report_options *o,
         bf_rep_err("out of memory");
         return BF_REPORT_SOFTWARE;
     }
-    rc = bf_study_models(o->models, o->default_models, o->objective, *out,
-                         cap, n, &err);
+    rc = bf_study_models(o->models, o->default_models, o->objective,
+                         o->fresnel, o->smith, *out, cap, n, &err);
+    if (rc == BF_EDOM && bf_objective_keeps_scale(o->objective)) {
+        /* --fresnel, --smith: a model that cannot take them (SPEC §9.2) */
+        return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint, "--models: %s",
+                                 err.msg);
+    }
     if (rc == BF_EDOM) { /* SPEC §9, §10: the others max-normalise */
         return bf_rep_usage_fail(BF_REPORT_BADVALUE, hint,
                                  "%s; fit it with --fit exact --objective "

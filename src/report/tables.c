@@ -208,6 +208,17 @@ static void describe_separable(const bf_rep_study *st, FILE *fp)
     if (n_specular(st) == 0) {
         return;
     }
+    fputs("Specular models (SPEC §9.2: NDF, masking, Fresnel):", fp);
+    for (m = 0; m < st->n_models; m++) {
+        const bf_model_type *t = st->models[m];
+        if (t->kind == BF_MODEL_SPECULAR) {
+            fprintf(fp, "%s %s (%s, %s, %s)", sep, t->name, t->ndf,
+                    t->masking, t->fresnel_term);
+            sep = ";";
+        }
+    }
+    fputc('\n', fp);
+    sep = "";
     fputs("Fit of", fp);
     for (m = 0; m < st->n_models; m++) {
         if (st->models[m]->kind == BF_MODEL_SPECULAR) {

@@ -135,83 +135,21 @@ static const truth_t truths[] = {
 };
 #define N_TRUTHS (sizeof truths / sizeof truths[0])
 
-/* The configurations (measurement frame, radians): theta_i 5..75 deg by
- * 10; at each, 25 directions within 4 deg and 6 deg of azimuth of the
- * mirror direction (theta_i, phi_i + pi) and 25 spread over the
- * hemisphere: half near the mirror direction, all with theta <= 80 deg
- * (SPEC §10 uses every one). */
-#define N_PER 50
-#define N_INC 8
-#define N_CONF (N_PER * N_INC)
+#define N_CONF BF_TEST_GLOSSY_NCONF
 
-static void configs(double *at)
-{
-    size_t n = 0;
-    int a;
-    for (a = 0; a < N_INC; a++) {
-        double ti = (5.0 + 10.0 * a) * DEG;
-        int u;
-        int w;
-        for (u = -2; u <= 2; u++) {
-            for (w = -2; w <= 2; w++) {
-                at[4 * n + 0] = ti;
-                at[4 * n + 1] = 0.0;
-                at[4 * n + 2] = fabs(ti + 2.0 * u * DEG);
-                at[4 * n + 3] = PI + 3.0 * w * DEG;
-                n++;
-            }
-        }
-        for (u = 0; u < 5; u++) {
-            for (w = 0; w < 5; w++) {
-                at[4 * n + 0] = ti;
-                at[4 * n + 1] = 0.0;
-                at[4 * n + 2] = (5.0 + 15.0 * u) * DEG;
-                at[4 * n + 3] = (72.0 * w + 10.0) * DEG;
-                n++;
-            }
-        }
-    }
-    cr_assert_eq(n, N_CONF);
-}
-
-/* Writes every truth's BRDF (bf_model_eval, sr^-1) at the configurations
- * as one dataset, through the library's tidy CSV writer. */
+/* Writes every truth's BRDF at bf_test_glossy_configs as one dataset,
+ * each material named by its model. */
 static void write_csv(const char *path)
 {
-    static double at[4 * N_CONF];
-    static double v[N_TRUTHS][N_CONF];
-    bf_geom g[N_CONF];
-    bf_dataset *ds = bf_dataset_alloc();
-    size_t set;
+    bf_test_material mat[N_TRUTHS];
     size_t i;
-    size_t k;
-    FILE *fp;
-    cr_assert_not_null(ds);
-    configs(at);
-    cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
-    for (k = 0; k < N_CONF; k++) {
-        g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
-                                        at[4 * k + 2], at[4 * k + 3]);
-    }
     for (i = 0; i < N_TRUTHS; i++) {
-        bf_material_desc d;
-        const bf_model_type *t = bf_model_find(truths[i].model);
-        cr_assert_not_null(t, "%s", truths[i].model);
-        cr_assert_eq(bf_model_eval(t, truths[i].param, N_CONF, g, v[i]),
-                     BF_OK, "%s", truths[i].model);
-        memset(&d, 0, sizeof d);
-        d.name = truths[i].model;
-        d.format = BF_FORMAT_MEMORY;
-        d.set = set;
-        d.n_channels = 1;
-        d.values = v[i];
-        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+        mat[i].name = truths[i].model;
+        mat[i].type = bf_model_find(truths[i].model);
+        mat[i].param = truths[i].param;
+        cr_assert_not_null(mat[i].type, "%s", truths[i].model);
     }
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_glossy_csv(path, N_TRUTHS, mat);
 }
 
 Test(composite, recovery_ngan_through_csv_and_cli, .timeout = 300)

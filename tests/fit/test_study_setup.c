@@ -4,6 +4,7 @@
  * errors; the first failed row. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "support.h"
@@ -16,26 +17,26 @@ Test(study_models, defaults_all_and_a_list)
     size_t n = 0;
     size_t i;
     bf_error err;
-    cr_assert_eq(bf_study_models(NULL, BF_MODELS_PAPER, BF_OBJ_MAX, m, CAP,
-                                 &n, &err), BF_OK);
+    cr_assert_eq(bf_study_models(NULL, BF_MODELS_PAPER, BF_OBJ_MAX, 0, 0, m,
+                                 CAP, &n, &err), BF_OK);
     cr_assert_eq(n, 6);
     cr_assert_str_eq(m[0]->name, "VH-G");
     cr_assert_str_eq(m[5]->name, "LFTG");
-    cr_assert_eq(bf_study_models(NULL, BF_MODELS_RANKING, BF_OBJ_MAX, m, CAP,
-                                 &n, &err), BF_OK);
+    cr_assert_eq(bf_study_models(NULL, BF_MODELS_RANKING, BF_OBJ_MAX, 0, 0,
+                                 m, CAP, &n, &err), BF_OK);
     cr_assert_eq(n, 9);
-    cr_assert_eq(bf_study_models("all", BF_MODELS_PAPER, BF_OBJ_MAX, m, CAP,
-                                 &n, &err), BF_OK);
+    cr_assert_eq(bf_study_models("all", BF_MODELS_PAPER, BF_OBJ_MAX, 0, 0, m,
+                                 CAP, &n, &err), BF_OK);
     cr_assert_gt(n, 6);
     for (i = 0; i < n; i++) {
         cr_assert_eq(m[i]->kind, BF_MODEL_DIFFUSE, "%s", m[i]->name);
     }
-    cr_assert_eq(bf_study_models("fc-e,ON", BF_MODELS_PAPER, BF_OBJ_MAX, m,
-                                 CAP, &n, &err), BF_OK);
+    cr_assert_eq(bf_study_models("fc-e,ON", BF_MODELS_PAPER, BF_OBJ_MAX, 0,
+                                 0, m, CAP, &n, &err), BF_OK);
     cr_assert_eq(n, 2);
     cr_assert_eq(m[0], bf_model_find("FC-E"));
-    cr_assert_eq(bf_study_models("GGX", BF_MODELS_PAPER, BF_OBJ_NGAN, m, CAP,
-                                 &n, &err), BF_OK);
+    cr_assert_eq(bf_study_models("GGX", BF_MODELS_PAPER, BF_OBJ_NGAN, 0, 0, m,
+                                 CAP, &n, &err), BF_OK);
     cr_assert_eq(n, 1);
 }
 
@@ -63,10 +64,103 @@ Test(study_models, errors_say_what)
         bf_error err;
         size_t cap = strcmp(bad[i].msg, "too many") == 0 ? 1 : CAP;
         cr_assert_eq(bf_study_models(bad[i].list, BF_MODELS_PAPER,
-                                     bad[i].obj, m, cap, &n, &err),
+                                     bad[i].obj, 0, 0, m, cap, &n, &err),
                      bad[i].code, "%s", bad[i].list);
         cr_assert_not_null(strstr(err.msg, bad[i].msg), "%s: %s",
                            bad[i].list, err.msg);
+    }
+}
+
+/* The names of type's parameters, comma-separated, into buf. */
+static const char *param_names(const bf_model_type *t, char *buf, size_t len)
+{
+    size_t j;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (j = 0; j < t->p && at < len; j++) {
+        at += (size_t)snprintf(buf + at, len - at, "%s%s", j ? "," : "",
+                               t->param[j].name);
+    }
+    return buf;
+}
+
+Test(study_models, fresnel_and_smith_options)
+{
+    const bf_model_type *m[CAP];
+    size_t n = 0;
+    bf_error err;
+    char names[128];
+    cr_assert_eq(bf_study_models("LAMBERT+GGX,ON,CT", BF_MODELS_PAPER,
+                                 BF_OBJ_NGAN, BF_FRESNEL_DIELECTRIC, 0, m,
+                                 CAP, &n, &err), BF_OK, "%s", err.msg);
+    cr_assert_eq(n, 3);
+    cr_assert_str_eq(m[0]->name, "LAMBERT+GGX");
+    cr_assert_str_eq(param_names(m[0], names, sizeof names),
+                     "rho_d,rho_s,alpha,n");
+    cr_assert_eq(m[1], bf_model_find("ON")); /* diffuse: unaffected */
+    cr_assert_str_eq(param_names(m[2], names, sizeof names), "rho_s,alpha,n");
+    cr_assert_neq(m[0], bf_model_find("LAMBERT+GGX"));
+    cr_assert_str_eq(m[0]->fresnel_term, m[2]->fresnel_term);
+    cr_assert_str_neq(m[0]->fresnel_term,
+                      bf_model_find("LAMBERT+GGX")->fresnel_term);
+    /* the composite's S part is GGX's variant */
+    cr_assert_eq(bf_model_specular_part(m[0], NULL),
+                 bf_model_specular_variant(bf_model_find("GGX"),
+                                           BF_FRESNEL_DIELECTRIC, 0, NULL));
+
+    cr_assert_eq(bf_study_models("BECKMANN,ON+BECKMANN", BF_MODELS_PAPER,
+                                 BF_OBJ_NGAN, BF_FRESNEL_NONE,
+                                 BF_SMITH_SEPARABLE, m, CAP, &n, &err),
+                 BF_OK, "%s", err.msg);
+    cr_assert_str_eq(param_names(m[0], names, sizeof names), "rho_s,alpha");
+    cr_assert_str_eq(param_names(m[1], names, sizeof names),
+                     "rho_d,rho,sigma,rho_s,alpha");
+    cr_assert_str_eq(m[1]->masking, m[0]->masking);
+    cr_assert_str_neq(m[0]->masking, bf_model_find("BECKMANN")->masking);
+
+    /* the options given explicitly as the defaults: the registry's */
+    cr_assert_eq(bf_study_models("GGX", BF_MODELS_PAPER, BF_OBJ_NGAN,
+                                 BF_FRESNEL_SCHLICK, BF_SMITH_HEIGHT, m, CAP,
+                                 &n, &err), BF_OK);
+    cr_assert_eq(m[0], bf_model_find("GGX"));
+}
+
+Test(study_models, option_errors_say_what)
+{
+    static const struct {
+        const char *list;
+        bf_objective obj;
+        bf_fresnel_kind f;
+        bf_smith_kind s;
+        int code;
+        const char *msg;
+    } bad[] = {
+        {"GGX,WARD", BF_OBJ_NGAN, BF_FRESNEL_DIELECTRIC, 0, BF_EDOM,
+         "WARD has no Fresnel term"},
+        {"LAMBERT+WARD", BF_OBJ_NGAN, BF_FRESNEL_NONE, 0, BF_EDOM,
+         "LAMBERT+WARD has no Fresnel term"},
+        {"ABC", BF_OBJ_NGAN, BF_FRESNEL_SCHLICK, 0, BF_EDOM,
+         "ABC has its own Fresnel term"},
+        {"CT", BF_OBJ_NGAN, 0, BF_SMITH_SEPARABLE, BF_EDOM,
+         "CT has no Smith masking"},
+        {"VH-G,ON", BF_OBJ_NGAN, BF_FRESNEL_DIELECTRIC, 0, BF_EDOM,
+         "no selected model takes --fresnel or --smith"},
+        {NULL, BF_OBJ_MAX, 0, BF_SMITH_SEPARABLE, BF_EDOM,
+         "--fresnel and --smith apply to the specular models"},
+        {"GGX", BF_OBJ_NGAN, (bf_fresnel_kind)9, 0, BF_EINVAL,
+         "unknown --fresnel or --smith value"},
+    };
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const bf_model_type *m[CAP];
+        size_t n = 0;
+        bf_error err;
+        cr_assert_eq(bf_study_models(bad[i].list, BF_MODELS_PAPER,
+                                     bad[i].obj, bad[i].f, bad[i].s, m, CAP,
+                                     &n, &err),
+                     bad[i].code, "%zu", i);
+        cr_assert_not_null(strstr(err.msg, bad[i].msg), "%zu: %s", i,
+                           err.msg);
     }
 }
 
