@@ -21,6 +21,8 @@
  *     configurations), on the same configurations and data.
  *
  *   bench_merl [--data DIR] [--numpy SCRIPT] [--quick] [--keep FILE]
+ *   bench_merl --glossy FILE   (writes LAMBERT+GGX's table to FILE, no
+ *                               more: bench/glossy_peer.sh fits it)
  */
 #include <math.h>
 #include <stdio.h>
@@ -69,10 +71,10 @@ static int centre(size_t i, size_t j, size_t k, double a[4])
 }
 
 /* Writes the FC-E table to path. */
-static void write_table(const char *path)
+static void write_table(const char *path, const bf_model_type *model,
+                        const double *param)
 {
     static const int dims[3] = {90, 90, 180};
-    const double param[2] = {0.42, BF_DEFAULT_N};
     double *raw = malloc(3 * (size_t)N_CELLS * sizeof *raw);
     bf_geom *g = malloc(N_CELLS * sizeof *g);
     size_t *at = malloc(N_CELLS * sizeof *at);
@@ -99,11 +101,15 @@ static void write_table(const char *path)
             }
         }
     }
-    if (bf_model_eval(bf_model_fc_e, param, n, g, f) != BF_OK) {
-        die("FC-E on the cell centres", NULL);
+    if (bf_model_eval(model, param, n, g, f) != BF_OK) {
+        die("the model on the cell centres", NULL);
     }
     for (k = 0; k < n; k++) {
-        double brdf = f[k] / fmax(cos(g[k].theta_i), 1e-300); /* SPEC §2 */
+        /* SPEC §2: a diffuse model's value is BRDF cos theta_i; a
+         * specular model's is the BRDF (sr^-1, SPEC §9) */
+        double brdf = model->kind == BF_MODEL_SPECULAR
+                          ? f[k]
+                          : f[k] / fmax(cos(g[k].theta_i), 1e-300);
         for (j = 0; j < 3; j++) {
             raw[j * N_CELLS + at[k]] = brdf / scale[j];
         }
@@ -174,7 +180,7 @@ static double time_study(const bf_dataset *ds,
                          const bf_model_type *const *models, size_t n_models,
                          int threads, int reps, bf_study_row *rows)
 {
-    bf_target t = {0, BF_CHANNEL_MEAN};
+    bf_target t = {0, BF_CHANNEL_MEAN, 0};
     bf_study_spec spec;
     double *tm = malloc((size_t)reps * sizeof *tm);
     double med;
@@ -228,7 +234,7 @@ static bf_dataset *subset(const bf_merl *m, const bf_dataset *ds, size_t step,
  * numpy_cells.py. */
 static void dump_cells(const bf_dataset *ds, const char *path)
 {
-    bf_target t = {0, BF_CHANNEL_MEAN};
+    bf_target t = {0, BF_CHANNEL_MEAN, 0};
     bf_study_spec spec;
     size_t n = bf_dataset_nconf(ds, 0);
     size_t *sel = malloc(n * sizeof *sel);
@@ -348,13 +354,20 @@ int main(int argc, char **argv)
             keep = argv[++a];
         } else if (strcmp(argv[a], "--numpy") == 0 && a + 1 < argc) {
             numpy = argv[++a];
+        } else if (strcmp(argv[a], "--glossy") == 0 && a + 1 < argc) {
+            /* only the table of a glossy paint, for the dense fit of
+             * bench/glossy_peer.sh: LAMBERT+GGX about krylon_blue's fit
+             * (rho_d, rho_s, alpha, F0) */
+            const double param[4] = {0.14, 1.0, 0.113, 0.0588};
+            write_table(argv[++a], bf_model_find("LAMBERT+GGX"), param);
+            return 0;
         } else if (strcmp(argv[a], "--quick") == 0) {
             reps_load = 5;
             reps_big = 1;
         } else {
             fprintf(stderr,
                     "usage: bench_merl [--data DIR] [--numpy SCRIPT] "
-                    "[--quick] [--keep FILE]\n");
+                    "[--quick] [--keep FILE] [--glossy FILE]\n");
             return 2;
         }
     }
@@ -363,7 +376,10 @@ int main(int argc, char **argv)
         die("mkstemp", NULL);
     }
     close(fd);
-    write_table(path);
+    {
+        const double param[2] = {0.42, BF_DEFAULT_N};
+        write_table(path, bf_model_fc_e, param);
+    }
 
     printf("# brdffit %s: MERL tables\n\n", bf_version());
     printf("A full-size table (%u bytes) written from FC-E (m = 0.42, n = "

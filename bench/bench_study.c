@@ -897,6 +897,7 @@ int main(int argc, char **argv)
         for (i = 0; i < bf_dataset_count(in.ds) && i < 128; i++) {
             samples[i].material = i;
             samples[i].channel = BF_CHANNEL_MEAN;
+            samples[i].joint = 0;
         }
         spec_init(&in, &spec);
         spec.models = all;

@@ -53,8 +53,12 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    file, or every valid cell (default: CURET's 205\n"
 "                    configurations, from DIR/table.txt)\n"
 "  --channel C       channel to fit: 'mean' (of all channels, default), a\n"
-"                    channel name (R, G, B) or wavelength (550), or 'each'\n"
-"                    (every channel, one set of rows per channel)\n",
+"                    channel name (R, G, B) or wavelength (550), 'each'\n"
+"                    (every channel, one set of rows per channel) or\n"
+"                    'joint' (one shape for all channels, the scales\n"
+"                    rho_d, rho_s, A, Rd per channel, SPEC 9.4; needs\n"
+"                    --fit exact --objective ngan and models with scales;\n"
+"                    fits.csv: the shape on channel 'joint')\n",
             BF_DEFAULT_DATA_DIR, BF_CLI_MAX_INPUTS);
     if (d->samples == NULL) {
         fputs(

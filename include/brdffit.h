@@ -1403,12 +1403,20 @@ size_t bf_model_variant_exact(bf_model_variant *v, unsigned keep);
 typedef struct {
     size_t material; /* index in the dataset */
     size_t channel;  /* channel index, or BF_CHANNEL_MEAN */
+    int joint;       /* 1: fitted jointly with the material's other joint
+                        targets (--channel joint, SPEC §9.4): the targets
+                        of one material with joint set, consecutive, share
+                        the shape parameters and each has its own scales
+                        (bf_param.linear) */
 } bf_target;
 
 /* Expands materials (n_materials indices; materials = NULL: every material
  * in order) and a channel request into targets, material-major: NULL or
  * "mean": one target per material on BF_CHANNEL_MEAN; "each": one per
- * channel of each material, in channel order; any other text: that channel
+ * channel of each material, in channel order; "joint": the same targets
+ * as "each" with joint set (SPEC §9.4: one shape for all channels, scales
+ * per channel; every channel's data on the configurations valid on all
+ * of them, as the mean's); any other text: that channel
  * of every material (bf_dataset_channel_find; BF_ENOTFOUND with err->msg
  * naming the first material that lacks it). *out (n_out targets) is
  * allocated with malloc; the caller frees it with free(). */
@@ -1633,7 +1641,14 @@ typedef struct {
  * the targets' data are rho as measured on the configurations with
  * theta_i, theta_o <= 80 degrees (K counts those), and the lse of the
  * stats' grid and refined optima and of the rows is the value SPEC §10
- * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S. */
+ * reports (bf_objective_report: ngan's E); AIC and BIC use the sum S.
+ * Joint targets (bf_target.joint, SPEC §9.4) are fitted together: one
+ * shape, each channel's scales solved exactly (ngan only), S summed over
+ * the channels, each channel's row and stats holding the shape and its
+ * own scales, lse E = sqrt(S / (K C)), stats' n = K C; BF_EINVAL (err->msg
+ * why) under another objective or for a model without a free scale
+ * (bf_param.linear). bf_study_run refuses joint targets (BF_EINVAL): the
+ * paper's protocol max-normalises the scales away. */
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 
@@ -1643,7 +1658,8 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
  * its fitted noise model (stats[u].noise_power, noise_sigma), under
  * opts's objective, noise, level and bootstrap (opts->n_boot); n_sim simulations, seed. Errors as
  * bf_calibrate (BF_EDOM, err->msg naming the pair, when its noise could
- * not be estimated); BF_EINVAL for a pair that was not analysed. */
+ * not be estimated); BF_EINVAL for a pair that was not analysed or
+ * that is a joint fit's (bf_target.joint). */
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
                        const bf_study_row *rows, const bf_fit_stats *stats,
@@ -1751,6 +1767,10 @@ typedef enum {
 typedef struct {
     size_t row;              /* index into the study's rows */
     bf_fits_kind kind;
+    int joint;               /* 1: a shape parameter shared by the
+                                channels of a joint fit (--channel joint,
+                                SPEC §9.4): channel "joint", written once,
+                                at the fit's first channel's row */
     const char *model;       /* rows[row].type->name */
     const char *parameter;   /* NULL for BF_FITS_NONE */
     const char *unit;
@@ -1790,7 +1810,13 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
  * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
  * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
  * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
- * lines of bf_fits_lines. rows: from
+ * lines of bf_fits_lines. A joint fit (bf_target.joint, SPEC §9.4) writes
+ * its shape parameters once, on channel "joint", at its first channel's
+ * row, and each channel's scales (bf_param.linear) on the channel's name;
+ * every line's lse is the fit's E = sqrt(S / (K C)) over the K
+ * configurations of all C channels (SPEC §10), k is K, n_params, aic and
+ * bic those of the whole fit (K C values, the shape and C sets of
+ * scales). rows: from
  * bf_study_run or bf_study_analyse; stats: from bf_study_analyse, or NULL
  * (the analysis columns empty); opts: the analysis's, or NULL (objective
  * max, fit paper). Numbers with %.10g, NaN as an empty field; text fields

@@ -365,11 +365,6 @@ typedef struct {
  * per configuration for all models (bf__cset). */
 void bf__geom_trig(const bf_geom *g, bf__trig_t *tr);
 
-/* The 4-point Gauss-Legendre abscissae and weights WNO-R's rule uses on
- * each panel (src/models/wno_r.c; 2 positive abscissae, GSL's layout);
- * exposed for the test that they are GSL's. */
-void bf__wnor_gl4(const double **x, const double **w);
-
 /* ======================================================================
  * --- fitting (src/fit) ---
  * ====================================================================== */
@@ -407,6 +402,15 @@ double bf__sum_sq_diff(size_t n, const double *curve, const double *data);
  * BF_ENOTFOUND when an input is missing. */
 int bf__study_inputs(const bf_study_spec *spec, const bf_model_type *type,
                      size_t t, double *fixed);
+
+/* The joint fits of spec (bf_target.joint, --channel joint, SPEC §9.4)
+ * under the analysis's objective obj, or under the paper's protocol when
+ * analysed is 0 (src/fit/targets.c): BF_OK when no target is joint or
+ * every model can be fitted jointly; else BF_EINVAL with err->msg saying
+ * why not (the protocol max-normalises; only ngan solves the scales by
+ * least squares; a model without a free scale, bf_param.linear). */
+int bf__study_joint_check(const bf_study_spec *spec, int analysed,
+                          bf_objective obj, bf_error *err);
 
 /* Targets of a study that share a configuration set and selection, and so
  * the geometry and every model curve (src/fit/targets.c). */

@@ -188,7 +188,7 @@ void bf_test_model_brdf(const bf_model_type *type, const double *param,
 bf_fit_result bf_test_fit_one(const bf_dataset *ds, size_t m,
                               const bf_model_type *type, size_t *k)
 {
-    bf_target t = {m, BF_CHANNEL_MEAN};
+    bf_target t = {m, BF_CHANNEL_MEAN, 0};
     bf_study_row row;
     bf_study_spec spec;
     bf_error err;

@@ -15,9 +15,14 @@
 # full-data runs that repeat, tens of millions of times, code paths the
 # remaining tests already run under valgrind; at valgrind's ~50x slow-down
 # they would take most of an hour. ASan+UBSan runs all of them (make test).
-# WNO-R's quadrature (1152 facets per value) makes the two runs over every
-# fitted model on real data (grid/..._61_samples, test_refine) the slowest;
-# WNO-R itself runs under valgrind in test_wno_r and test_cli.
+# WNO-R's quadrature (about 6 400 facets per value, plain) makes the
+# runs over every fitted model on real data (grid/..._61_samples,
+# grid/round_trip_recovers_every_model..., whose WNO-R grid is the rule at
+# 448 points, test_refine) the slowest, and wno_r/the_engines_tables...
+# compares 40 of the rule's curves with both of the engine's tables; the
+# rule and the tables run under valgrind in test_wno_r's other tests (its
+# round trip builds and reads a table) and in test_cli; the other models'
+# grid round trips in grid/round_trip_with_fixed_seed_noise... and test_cli.
 # test_uncertainty repeats 200 fits per model for its coverage checks; the
 # profile and bootstrap code it covers runs under valgrind in test_cli_exact
 # (compare --fit exact --bootstrap 30: both intervals for every fit).
@@ -57,13 +62,16 @@
 # composite's recovery and Cornell tests fit composites through the CLI
 # (the Cornell one 20 fits on 1439 configurations, about 25 s of CPU
 # plain); the composites' values and the CLI's checks of their names run
-# under valgrind in composite's other tests.
+# under valgrind in composite's other tests; its dense recovery (72,000
+# configurations through the CLI) likewise.
 # specular_options' recovery and separable-height tests fit six composites
 # and lobes through the CLI (about 1.1 s of CPU plain); the same paths run
 # under valgrind in its fits.csv, description and bad-option tests.
 # The specular models' albedo checks (specular_models/ggx_without... and
 # ward_gmd...: 50 albedo quadratures) run the code of
 # specular_models/albedo_of_a_known_integral, which stays.
+# joint/report_draws... draws every figure of a joint fit's report; the
+# joint fit itself runs under valgrind in joint's other tests.
 # plane_abs/description_under_ngan runs the report through the CLI on a
 # Cornell file (1439 configurations, every figure); the figure data it
 # describes are checked under valgrind by plane_abs's library tests.
@@ -112,6 +120,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     intervals/the_bootstrap_covers_under_absolute_noise_and_max
     cli_analysis/results_do_not_depend_on_the_thread_count
     grid/study_path_finds_the_plain_optimum_on_all_61_samples
+    grid/round_trip_recovers_every_model_exactly_at_grid_values
+    wno_r/the_engines_tables_interpolate_the_rule_to_2e_10
     test_refine
     bk/every_variant_is_finite_and_non_negative_on_the_closed_hemisphere
     bk/vernold_harvey_and_fresnel_variants_peak_in_the_forward_plane
@@ -144,6 +154,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     composite/cornell_every_fit_at_most_the_peers_e
     specular_options/recovery_ngan_through_csv_and_cli
     specular_options/separable_and_height_fits_differ
+    composite/dense_recovery_through_the_subsample
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     grid/round_trip_recovers_every_model_exactly_at_grid_values
@@ -157,6 +168,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     spec_intervals/lambert_ggx_and_ward_cover_at_random_geometry
     spec_intervals/cornell_intervals_are_finite_and_hold_the_estimate
     spec_intervals/calibrate_runs_on_a_composite
+    joint/report_draws_every_channel_from_the_shared_shape
     report/writes_every_figure_valid_and_sized_as_the_page_says"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to

@@ -219,6 +219,7 @@ const char *bf_ci_method_name(bf_ci_method m);
 typedef struct {
     size_t material;
     size_t channel;
+    int joint;
 } bf_target;
 int bf_study_targets(const bf_dataset *ds, const size_t *materials,
                      size_t n_materials, const char *channel,
@@ -365,6 +366,7 @@ typedef enum { BF_FITS_PARAM = 0, BF_FITS_SCALE, BF_FITS_NONE } bf_fits_kind;
 typedef struct {
     size_t row;
     bf_fits_kind kind;
+    int joint;
     const char *model;
     const char *parameter;
     const char *unit;

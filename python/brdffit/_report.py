@@ -144,7 +144,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
             Models; default the paper's six (--models).
         samples: "paper", "all", a string "1,5-9" or numbers; default
             paper on CURET data, all otherwise (--samples).
-        channel: a channel name, "mean" or "each" (--channel).
+        channel: a channel name, "mean", "each" or "joint" (--channel).
         fit: "paper" or "exact" (--fit); objective, noise: names
             (--objective, --noise); stats (--stats); bootstrap (--bootstrap
             N); folds, seed (--folds, --seed).

@@ -548,8 +548,9 @@ class Study:
                     v = int(lib.bf_dataset_number(ds, t.material))
                 elif c == "name":
                     v = lib.bf_dataset_name(ds, t.material)
-                elif c == "channel":
-                    v = lib.bf_dataset_channel(ds, t.material, t.channel)
+                elif c == "channel":  # a joint fit's shape: "joint"
+                    v = "joint" if ln.joint else lib.bf_dataset_channel(
+                        ds, t.material, t.channel)
                 elif c in albedo:
                     v = float(ln.albedo[albedo.index(c)])
                 else:

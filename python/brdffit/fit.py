@@ -30,7 +30,8 @@ class FitResult:
         model: the Model fitted (the registry's; with fit="exact" its
             inputs with an exact-fit range were fitted too: see free).
         material: the Material (of the dataset given to fit).
-        channel: the channel fitted ("mean", or a channel name).
+        channel: the channel fitted ("mean", a channel name, or "joint":
+            one shape for every channel, the scales per channel, SPEC §9.4).
         fit: "paper" (the grid optimum, SPEC §7.4) or "exact" (refined).
         objective_name: "max" (the paper's LSE), "scale", "cosw", "log",
             "ngan", "cuberoot" or "log1p" (SPEC §10).
@@ -95,11 +96,19 @@ class FitResult:
             intervals are about (the scale free; under the max objective
             it differs from refined, doc/methods.md §3).
       Without the analysis these are None.
+      With channel="joint" (SPEC §9.4; fit="exact", objective="ngan", a
+      model with scales): parameters, free, bound, grid, refined,
+      intervals hold the shared shape only; scales: {channel: {scale:
+      value}} (rho_d, rho_s, A, Rd); per_channel: a FitResult per channel
+      (its full parameters, measured, predicted); objective, n_params,
+      aic, bic those of the whole fit (E over the K C values); measured
+      and predicted every channel's, channel-major. Otherwise scales and
+      per_channel are None.
     """
 
-    def __init__(self, study):
+    def __init__(self, study, t=0, whole=True):
         spec, rows, stats = study.spec, study.rows, study.stats
-        row = rows[0]
+        row = rows[t]
         self.model = m = spec.models[0]
         self._type = spec.types[0]
         self.material = spec.dataset[int(row.material)]
@@ -119,9 +128,9 @@ class FitResult:
                       if mask & (1 << j)}
         self.n_eval = int(row.fit.n_eval)
         self.k = int(row.k)
-        self.selected, self.measured = spec.target_data(0)
+        self.selected, self.measured = spec.target_data(t)
         self.angles = self.material.angles[self.selected]
-        self.predicted = spec.model_curve(0, self._type, p, self.selected)
+        self.predicted = spec.model_curve(t, self._type, p, self.selected)
         for a in (self.selected, self.measured, self.angles, self.predicted):
             a.flags.writeable = False
         self.grid = self.refined = self.grid_objective = None
@@ -133,8 +142,37 @@ class FitResult:
         self.ci_method = self.noise_power = self.ml_estimate = None
         self.bootstrap_failed = self.bootstrap_split = None
         self.bootstrap_method = None
+        self.scales = self.per_channel = None
         if stats is not None:
-            self._stats(m, stats[0], mask, int(study.opts.n_boot) > 0)
+            self._stats(m, stats[t], mask, int(study.opts.n_boot) > 0)
+        if whole and spec.spec.targets[t].joint:
+            self._joint(study)
+
+    def _joint(self, study):
+        """channel="joint" (SPEC §9.4): one result for the whole fit --
+        the shared shape in parameters (and grid, refined, intervals,
+        bound), each channel's scales in scales, each channel's own
+        result in per_channel; measured and predicted every channel's,
+        channel-major (what E sums over)."""
+        import numpy as np
+        per = tuple(FitResult(study, t, whole=False)
+                    for t in range(int(study.spec.spec.n_targets)))
+        linear = {q.name for q in self.model.parameters if q.linear}
+        self.per_channel = per
+        self.channel = "joint"
+        self.scales = {r.channel: {k: v for k, v in r.parameters.items()
+                                   if k in linear} for r in per}
+        for name in ("parameters", "bound", "grid", "refined", "intervals",
+                     "intervals_open", "bootstrap", "ml_estimate"):
+            d = getattr(self, name)
+            if d is not None:
+                setattr(self, name, {k: v for k, v in d.items()
+                                     if k not in linear})
+        self.free = tuple(k for k in self.free if k not in linear)
+        self.measured = np.concatenate([r.measured for r in per])
+        self.predicted = np.concatenate([r.predicted for r in per])
+        for a in (self.measured, self.predicted):
+            a.flags.writeable = False
 
     def _stats(self, m, st, mask, boot):
         self.grid = _by_name(m, st.grid.param, mask)
@@ -213,8 +251,10 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         model: a model name ("FC-E") or Model.
         material: the material -- its number (CURET's sample number), name
             or Material; may be left out when the dataset holds one.
-        channel: "mean" (default: the mean over the channels, SPEC §2) or
-            a channel name ("R", "550").
+        channel: "mean" (default: the mean over the channels, SPEC §2),
+            a channel name ("R", "550") or "joint" (one shape for every
+            channel, the scales per channel, SPEC §9.4: needs fit="exact",
+            objective="ngan" and a model with scales, e.g. "LAMBERT+GGX").
         fit: "paper" (the paper's grid, SPEC §7.4) or "exact" (the grid,
             then GSL refinement, with the library's exact-fit policy
             bf_model_variant_exact: FC's n over [1.2, 2.5] unless n or

@@ -72,8 +72,10 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
         samples: "paper" (the study's 24 CURET samples), "all", or
             material numbers, names or Materials; default: "paper" on
             CURET data, "all" otherwise (the CLI's --samples).
-        channel: "mean" (default), a channel name, or "each" (one target
-            per channel of each material).
+        channel: "mean" (default), a channel name, "each" (one target
+            per channel of each material) or "joint" (one shape for all
+            channels, the scales per channel, SPEC §9.4: fit="exact",
+            objective="ngan"; fits.csv's shape rows on channel "joint").
         fit, objective, stats, bootstrap, folds, seed, level, n, n_file,
         on_params, exclude, max_theta, cone, ranges, threads, progress,
         fresnel, smith: as in brdffit.fit (the CLI's --fit, --objective,

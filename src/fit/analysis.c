@@ -249,6 +249,91 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
     return BF_OK;
 }
 
+/* The joint fit (--channel joint, SPEC §9.4) led by unit u: the n_ch
+ * channels' data on the same configurations, one shape, each channel's
+ * scales solved exactly (varpro.c, ngan), S summed over the channels; its
+ * AIC and BIC on the K C values with the shape's and every channel's
+ * scales counted. Every channel's unit gets the fit with its own scales
+ * (the shape, S, AIC and BIC the same). */
+static int analyse_joint(run_t *r, size_t u, bf__fitctx *fc, size_t n_ch)
+{
+    const bf__job *job = r->job;
+    size_t t = u / job->n_models;
+    size_t n = fc->pm->n;
+    bf_fit_stats *st = &r->stats[u];
+    double *data = malloc((n * n_ch + 1) * sizeof *data);
+    double *grid_p = malloc((2 * n_ch + 1) * BF_MAX_PARAMS * sizeof *grid_p);
+    double *ref_p = grid_p != NULL ? grid_p + n_ch * BF_MAX_PARAMS : NULL;
+    bf__fitctx jc;
+    bf_problem pb;
+    unsigned lin = 0;
+    size_t n_lin = 0;
+    size_t c;
+    size_t j;
+    int rc = data != NULL && grid_p != NULL ? BF_OK : BF_ENOMEM;
+    memset(&jc, 0, sizeof jc);
+    if (rc == BF_OK) {
+        rc = bf__fitctx_init_blocks(&jc, fc->pm, n_ch);
+    }
+    if (rc != BF_OK) {
+        free(data);
+        free(grid_p);
+        return rc;
+    }
+    unit_problem(r, u, &pb);
+    for (c = 0; c < n_ch; c++) {
+        memcpy(data + c * n, job->data[t + c], n * sizeof *data);
+    }
+    pb.data = data;
+    bf__fitctx_use(&jc, &pb);
+    for (j = 0; j < pb.type->p; j++) {
+        if (((pb.free_mask >> j) & 1u) && pb.type->param[j].linear) {
+            lin |= 1u << j;
+            n_lin++;
+        }
+    }
+    st->objective = pb.objective;
+    st->free_mask = pb.free_mask;
+    st->n = n * n_ch;
+    st->k = bf_problem_nparams(&pb) + (n_ch - 1) * n_lin;
+    rc = bf__varpro_fit(&jc, &st->grid, &st->refined);
+    if (rc == BF_OK) {
+        rc = bf__varpro_scales(&jc, st->grid.param, grid_p);
+    }
+    if (rc == BF_OK) {
+        rc = bf__varpro_scales(&jc, st->refined.param, ref_p);
+    }
+    if (rc == BF_OK && st->refined.lse > 0.0) {
+        st->aic = bf_aic(st->refined.lse, st->n, st->k);
+        st->bic = bf_bic(st->refined.lse, st->n, st->k);
+    }
+    for (c = n_ch; rc == BF_OK && c-- > 0;) { /* the first channel last */
+        bf_fit_stats *sc = &r->stats[u + c * job->n_models];
+        if (c > 0) {
+            *sc = *st;
+        }
+        memcpy(sc->grid.param, grid_p + c * BF_MAX_PARAMS,
+               sizeof sc->grid.param);
+        memcpy(sc->refined.param, ref_p + c * BF_MAX_PARAMS,
+               sizeof sc->refined.param);
+        for (j = 0; j < pb.type->p; j++) { /* each channel's own scales */
+            if ((lin >> j) & 1u) {
+                unsigned bit = 1u << j;
+                sc->refined.bound_hit &= ~bit;
+                if (sc->refined.param[j] <= pb.lo[j] + BF_REFINE_TOL ||
+                    sc->refined.param[j] >= pb.hi[j] - BF_REFINE_TOL) {
+                    sc->refined.bound_hit |= bit;
+                }
+            }
+        }
+        sc->done = 1;
+    }
+    bf__fitctx_free(&jc);
+    free(data);
+    free(grid_p);
+    return rc;
+}
+
 /* Analyses unit u with the thread's context fc (pointed at the unit's
  * problem here). Returns BF_OK, a code for the row (BF_EDOM: the model
  * cannot fit these data), or BF_ENOMEM. */
@@ -263,6 +348,11 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     int cv;
     int rc;
 
+    if (job->joint_n != NULL && job->joint_n[u / job->n_models] > 0) {
+        size_t n_ch = job->joint_n[u / job->n_models];
+        /* a joint fit's other channels: its first channel's unit */
+        return n_ch == SIZE_MAX ? BF_OK : analyse_joint(r, u, fc, n_ch);
+    }
     unit_problem(r, u, &pb);
     bf__fitctx_use(fc, &pb);
     st->objective = pb.objective;
@@ -531,6 +621,13 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
     if (rc == BF_OK) {
         run_units(&r);
         rc = r.status;
+    }
+    for (u = 0; rc == BF_OK && job->joint_n != NULL && u < n_units; u++) {
+        size_t n_ch = job->joint_n[u / job->n_models];
+        size_t c;
+        for (c = 1; n_ch != SIZE_MAX && c < n_ch; c++) { /* its channels */
+            unit_status[u + c * job->n_models] = unit_status[u];
+        }
     }
     for (g = 0; g < r.n_groups; g++) {
         bf_grid_free(r.groups[g].gr);

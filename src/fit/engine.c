@@ -236,20 +236,35 @@ int bf__columns_scaled(const bf__prep *pm, const double *param, unsigned lin,
 
 int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm)
 {
+    return bf__fitctx_init_blocks(fc, pm, 1);
+}
+
+int bf__fitctx_init_blocks(bf__fitctx *fc, const bf__prep *pm,
+                           size_t blocks)
+{
+    int specular = pm->type->kind == BF_MODEL_SPECULAR;
+    size_t len;
     memset(fc, 0, sizeof *fc);
+    if (blocks == 0 || (blocks > 1 && !specular) ||
+        blocks > (SIZE_MAX / sizeof(double)) / (pm->n + BF_MAX_PARAMS) - 5) {
+        return BF_EINVAL;
+    }
     fc->pm = pm;
+    fc->blocks = blocks;
     fc->work = bf__work_alloc(pm);
-    /* a specular model's separable fit needs its columns (varpro.c) */
-    fc->curve = malloc((pm->type->kind == BF_MODEL_SPECULAR ? 6 : 3) *
-                       pm->n * sizeof *fc->curve);
+    /* curve (blocks x n), scratch, log_d, a specular model's columns
+     * (varpro.c: 3 n) and its scales per block */
+    len = (blocks + 2 + (specular ? 3 : 0)) * pm->n +
+          (specular ? blocks * BF_MAX_PARAMS : 0);
+    fc->curve = malloc(len * sizeof *fc->curve);
     if (fc->work == NULL || fc->curve == NULL) {
         bf__fitctx_free(fc);
         return BF_ENOMEM;
     }
-    fc->scratch = fc->curve + pm->n;
+    fc->scratch = fc->curve + blocks * pm->n;
     fc->log_d = fc->scratch + pm->n;
-    fc->cols = pm->type->kind == BF_MODEL_SPECULAR ? fc->log_d + pm->n
-                                                    : NULL;
+    fc->cols = specular ? fc->log_d + pm->n : NULL;
+    fc->block_lin = specular ? fc->cols + 3 * pm->n : NULL;
     return BF_OK;
 }
 

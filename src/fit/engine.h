@@ -200,10 +200,20 @@ typedef struct {
      * taking it from param (0: none is), and the values it solved. */
     unsigned lin_mask;
     double lin[BF_MAX_PARAMS];
+    /* A joint fit (--channel joint, SPEC §9.4; varpro.c): pb->data holds
+     * blocks x n values, channel-major, one shape for all and the scales
+     * solved per block into block_lin[c * BF_MAX_PARAMS + j] (lin: block
+     * 0's); curve holds blocks x n. 1 for every other fit. */
+    size_t blocks;
+    double *block_lin;
 } bf__fitctx;
 
 /* Scratch memory for pm. BF_OK or BF_ENOMEM. */
 int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm);
+/* The same for a joint fit of blocks >= 1 channels (a specular model's
+ * separable fit only). BF_OK, BF_ENOMEM, BF_EINVAL. */
+int bf__fitctx_init_blocks(bf__fitctx *fc, const bf__prep *pm,
+                           size_t blocks);
 void bf__fitctx_free(bf__fitctx *fc);
 
 /* Points fc at pb (same model and configurations as fc->pm; borrowed):
@@ -325,6 +335,13 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
 int bf__spec_weights(bf__fitctx *fc, const double *param, double p,
                      double *w, double *m);
 
+/* The scales the separable fit solves at param's other values, for each
+ * of fc->blocks channels: out[c * BF_MAX_PARAMS + j] = param[j] for the
+ * shape parameters, channel c's solved scale for the free linear ones
+ * (the joint fit's channels, SPEC §9.4; one block: the ordinary fit).
+ * BF_OK, BF_EDOM where the model is undefined, BF_EINVAL. */
+int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out);
+
 /* ======================================================================
  * --- exact refinement, minimisation (refine.c) ---
  * ====================================================================== */
@@ -359,6 +376,13 @@ typedef struct {
                                     (n_eval 0: none), or NULL */
     const bf_analysis_opts *opts;
     int n_threads;               /* 0 or 1: one */
+    const size_t *joint_n;       /* per target (NULL: none is joint): 0
+                                    for a target fitted on its own; the
+                                    first target of a joint fit (SPEC
+                                    §9.4) the number C of its channels,
+                                    targets t .. t + C - 1 on one
+                                    configuration set; SIZE_MAX for the
+                                    others (the first's unit fills them) */
 } bf__job;
 
 /* Analyses every unit of job into stats (cleared first; done = 1 where

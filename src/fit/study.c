@@ -295,6 +295,10 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
                                  spec->models[i]->name);
         }
     }
+    rc = bf__study_joint_check(spec, 0, BF_OBJ_MAX, err);
+    if (rc != BF_OK) {
+        return rc;
+    }
     rc = bf__study_groups(spec, &gs, err);
     for (i = 0; rc == BF_OK && i < gs.n; i++) {
         rc = run_group_of_targets(spec, &gs.g[i], rows);

@@ -8,6 +8,7 @@
  * [1] SPEC §2, §7 (data, configurations, grid), doc/methods.md §1-§5.
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
     const double **tdata = NULL;
     size_t *set_of = NULL;
     size_t *k_of = NULL;
+    size_t *joint_n = NULL;
     double *fixed = NULL;
     int *status = NULL;
     int *unit_status = NULL;
@@ -61,6 +63,9 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             return BF_EINVAL;
         }
     }
+    if (bf__study_joint_check(spec, 1, opts->objective, err) != BF_OK) {
+        return BF_EINVAL;
+    }
     /* SPEC §10: the objectives that keep the scale compare rho as
      * measured on the configurations with theta_i, theta_o <= 80 deg */
     rc = bf__study_groups_fit(spec, opts->objective, &gs, err);
@@ -71,12 +76,14 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
     tdata = malloc((spec->n_targets + 1) * sizeof *tdata);
     set_of = calloc(spec->n_targets + 1, sizeof *set_of);
     k_of = calloc(spec->n_targets + 1, sizeof *k_of);
+    joint_n = calloc(spec->n_targets + 1, sizeof *joint_n);
     fixed = calloc((n_units + 1) * BF_MAX_PARAMS, sizeof *fixed);
     status = malloc((n_units + 1) * sizeof *status);
     unit_status = malloc((n_units + 1) * sizeof *unit_status);
     grid = calloc(n_units + 1, sizeof *grid);
     sets = calloc(gs.n + 1, sizeof *sets);
-    if (tdata == NULL || set_of == NULL || k_of == NULL || fixed == NULL ||
+    if (tdata == NULL || set_of == NULL || k_of == NULL || joint_n == NULL ||
+        fixed == NULL ||
         status == NULL || unit_status == NULL || grid == NULL ||
         sets == NULL) {
         rc = STUDY_ERR(err, BF_ENOMEM, "out of memory");
@@ -97,6 +104,29 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             k_of[t] = g->n_sel;
             tdata[t] = g->data + s * g->n_sel;
         }
+    }
+    for (s = 0; s < spec->n_targets; s++) {
+        /* a joint fit (SPEC §9.4): the material's consecutive joint
+         * targets, on one configuration set (the mean's selection) */
+        const bf_target *tg = &spec->targets[s];
+        size_t e = s + 1;
+        if (!tg->joint || (s > 0 && joint_n[s - 1] > 0 &&
+                           spec->targets[s - 1].material == tg->material)) {
+            continue;
+        }
+        while (e < spec->n_targets && spec->targets[e].joint &&
+               spec->targets[e].material == tg->material) {
+            joint_n[e] = SIZE_MAX;
+            if (set_of[e] != set_of[s]) { /* never from bf_study_targets */
+                rc = STUDY_ERR(err, BF_EINVAL, "--channel joint: the "
+                               "channels of sample %d are not on the same "
+                               "configurations", bf_dataset_number(
+                                   spec->data, tg->material));
+                goto done;
+            }
+            e++;
+        }
+        joint_n[s] = e - s;
     }
     for (s = 0; s < spec->n_targets; s++) {
         for (m = 0; m < spec->n_models; m++) {
@@ -123,6 +153,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
     job.grid = grid;
     job.opts = opts;
     job.n_threads = spec->n_threads;
+    job.joint_n = joint_n;
     rc = bf__analyse(&job, stats, unit_status);
     if (rc != BF_OK) {
         rc = STUDY_ERR(err, rc, "out of memory");
@@ -146,9 +177,10 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
         }
     }
     for (s = 0; opts->objective == BF_OBJ_NGAN && s < n_units; s++) {
-        /* SPEC §10: the value reported is E = sqrt(S / K) */
+        /* SPEC §10: the value reported is E = sqrt(S / K); a joint fit's
+         * over its K C values (st->n) */
         bf_fit_stats *st = &stats[s];
-        double nk = (double)k_of[s / spec->n_models];
+        double nk = (double)st->n;
         if (st->done) {
             st->grid.lse = bf_objective_report(st->objective, st->grid.lse,
                                                nk);
@@ -169,6 +201,7 @@ done:
     free(tdata);
     free(set_of);
     free(k_of);
+    free(joint_n);
     free(fixed);
     free(status);
     free(unit_status);

@@ -39,6 +39,11 @@ int bf_study_calibrate(const bf_study_spec *spec,
     r = &rows[u];
     st = &stats[u];
     t = u / spec->n_models;
+    if (spec->targets[t].joint) { /* one channel's simulation is not it */
+        return STUDY_ERR(err, BF_EINVAL,
+                         "calibrate: a --channel joint fit (SPEC §9.4) is "
+                         "not simulated; calibrate one channel");
+    }
     if (st->ci_method != BF_CI_PROFILE_LIK || !isfinite(st->noise_sigma)) {
         return STUDY_ERR(err, BF_EDOM,
                          "calibrate: %s on material %d: its noise cannot be "

@@ -31,7 +31,8 @@ int bf_study_targets(const bf_dataset *ds, const size_t *materials,
                      bf_target **out, size_t *n_out, bf_error *err)
 {
     size_t n_mat = materials != NULL ? n_materials : bf_dataset_count(ds);
-    int each = channel != NULL && strcmp(channel, "each") == 0;
+    int joint = channel != NULL && strcmp(channel, "joint") == 0;
+    int each = joint || (channel != NULL && strcmp(channel, "each") == 0);
     size_t cap = 0;
     size_t n = 0;
     size_t i;
@@ -61,6 +62,7 @@ int bf_study_targets(const bf_dataset *ds, const size_t *materials,
         if (each) {
             for (c = 0; c < bf_dataset_nchannels(ds, m); c++) {
                 t[n].material = m;
+                t[n].joint = joint;
                 t[n++].channel = c;
             }
             continue;
@@ -75,10 +77,54 @@ int bf_study_targets(const bf_dataset *ds, const size_t *materials,
                                  number, bf_dataset_name(ds, m), channel);
         }
         t[n].material = m;
+        t[n].joint = 0;
         t[n++].channel = c;
     }
     *out = t;
     *n_out = n;
+    return BF_OK;
+}
+
+int bf__study_joint_check(const bf_study_spec *spec, int analysed,
+                          bf_objective obj, bf_error *err)
+{
+    size_t t;
+    size_t m;
+    size_t j;
+    for (t = 0; t < spec->n_targets && !spec->targets[t].joint; t++) {
+    }
+    if (t == spec->n_targets) {
+        return BF_OK;
+    }
+    bf__error_clear(err, "study");
+    if (!analysed || obj != BF_OBJ_NGAN) {
+        /* the paper's objectives divide the scales away (SPEC §2);
+         * cuberoot and log1p have no least-squares scales to solve */
+        return bf__error_set(err, BF_EINVAL, 0,
+                             "--channel joint fits one shape to every "
+                             "channel and each channel's scales by least "
+                             "squares (SPEC §9.4): it needs --fit exact "
+                             "--objective ngan%s%s",
+                             analysed ? ", not " : "",
+                             analysed ? bf_objective_name(obj) : "");
+    }
+    for (m = 0; m < spec->n_models; m++) {
+        const bf_model_type *type = spec->models[m];
+        for (j = 0; j < type->p; j++) {
+            if (type->param[j].fitted && type->param[j].linear) {
+                break;
+            }
+        }
+        if (type->kind != BF_MODEL_SPECULAR || j == type->p) {
+            return bf__error_set(err, BF_EINVAL, 0,
+                                 "--channel joint: %s has no scale "
+                                 "parameter to fit per channel (only the "
+                                 "specular models with rho_s, A or Rd and "
+                                 "the composites D+S have, SPEC §9.3, "
+                                 "§9.4); fit it with --channel each",
+                                 type->name);
+        }
+    }
     return BF_OK;
 }
 
@@ -117,7 +163,10 @@ static int target_data(const bf_study_spec *spec, size_t t, int raw,
         return bf__error_set(err, BF_EINVAL, 0, "invalid study target");
     }
     tg = &spec->targets[t];
-    rc = bf_dataset_select(spec->data, tg->material, tg->channel,
+    /* a joint fit's channels share one set of configurations: those
+     * valid on every channel, the mean's (SPEC §9.4) */
+    rc = bf_dataset_select(spec->data, tg->material,
+                           tg->joint ? BF_CHANNEL_MEAN : tg->channel,
                            &spec->select, sel, k, NULL);
     if (rc == BF_ENOTFOUND) {
         return target_error(err, spec->data, tg->material, rc,

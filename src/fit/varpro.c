@@ -21,13 +21,20 @@
  *      normal equations when it is >= 0, else the better of the two
  *      one-column solutions clamped at 0 -- the four active sets)
  *   ngan: S = sum w (rho_hat - rho)^2, reported E = sqrt(S / K) (SPEC §10)
+ *   joint (--channel joint, SPEC §9.4; Ngan et al. 2005): C channels'
+ *     rho^(c) on the same K configurations, one shape, the scales
+ *     theta^(c) solved per channel on the shared columns c_j,
+ *     S = sum_c sum_k w (rho_hat^(c) - rho^(c))^2, E = sqrt(S / (K C))
  * The other free parameters: a product grid over their domains (log-spaced
  * where the domain is positive and spans a factor 50 or more: alpha in
- * [1e-3, 2], the exponents), then Nelder-Mead from the grid's best local
- * minima in the same coordinates (ln x where the grid is log-spaced), the
- * scales re-solved at every trial point; every trial point clamped into
- * the domain. cuberoot, log1p: the ngan solution starts Nelder-Mead over
- * every free parameter, scales included.
+ * [1e-3, 2], the exponents), then Levenberg-Marquardt from the grid's
+ * best local minima in the same coordinates (ln x where the grid is
+ * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
+ * the scales re-solved at every trial point; every trial point clamped
+ * into the domain. Dense data: the grid and those descents on a regular
+ * subsample, one descent on all (doc/methods.md). cuberoot, log1p: the
+ * ngan solution starts Nelder-Mead over every free parameter, scales
+ * included.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
@@ -47,6 +54,8 @@
  * the domain), where no vertex leads anywhere. */
 #define NM_FLAT 10
 #define NM_SIZE 1e-7
+/* The one-sided step of the bound test, a fraction of the span. */
+#define KKT_STEP 1e-6
 #define UNDEFINED 1e300
 
 /* Grid points per parameter by the number of gridded parameters (log-
@@ -139,6 +148,7 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
     size_t n_l = 0;
     size_t j;
     size_t q;
+    size_t b;
     double t[MAX_LIN] = {0.0, 0.0};
     int rc;
     for (j = 0; j < pb->type->p; j++) {
@@ -172,22 +182,32 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
             }
         }
     }
-    nnls(pb, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
-    {
+    /* per block (a joint fit's channel, SPEC §9.4; one block otherwise):
+     * its scales by NNLS on the shared columns, its curve, its S; the
+     * blocks' S summed */
+    *value = 0.0;
+    for (b = 0; b < fc->blocks; b++) {
+        bf_problem sub = *pb;
+        double *curve = fc->curve + b * n;
         size_t k;
+        sub.data = pb->data + b * n;
+        nnls(&sub, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
         for (k = 0; k < n; k++) { /* the curve at the solved scales */
             double v = col[0][k];
             for (q = 0; q < n_l; q++) {
                 v += t[q] * col[q + 1][k];
             }
-            fc->curve[k] = v;
+            curve[k] = v;
         }
+        for (q = 0; q < n_l; q++) {
+            fc->block_lin[b * BF_MAX_PARAMS + lj[q]] = t[q];
+            if (b == 0) {
+                fc->lin[lj[q]] = t[q];
+            }
+        }
+        *value += bf__objective(&sub, fc->pm->cs->cti, NULL, curve,
+                                fc->scratch);
     }
-    for (q = 0; q < n_l; q++) {
-        fc->lin[lj[q]] = t[q];
-    }
-    *value = bf__objective(pb, fc->pm->cs->cti, NULL, fc->curve,
-                           fc->scratch);
     return isfinite(*value) ? BF_OK : BF_EDOM;
 }
 
@@ -387,16 +407,17 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     if (bf__fit_value(sp->fc, x, &v) != BF_OK || !isfinite(v)) {
         return GSL_EDOM;
     }
-    for (k = 0; k < pb->n; k++) {
-        double w = pb->weight != NULL ? sqrt(pb->weight[k]) : 1.0;
+    for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
+        double w = pb->weight != NULL ? sqrt(pb->weight[k % pb->n]) : 1.0;
         gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
     }
     return GSL_SUCCESS;
 }
 
 /* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
- * from x in the search coordinates; x is replaced when it ends lower. */
-static int levenberg(space_t *sp, double *x, double *f)
+ * from x in the search coordinates; x is replaced when it ends lower.
+ * *done (when not NULL): 1 when the driver met its tolerances. */
+static int levenberg(space_t *sp, double *x, double *f, int *done)
 {
     gsl_multifit_nlinear_parameters prm =
         gsl_multifit_nlinear_default_parameters();
@@ -407,11 +428,15 @@ static int levenberg(space_t *sp, double *x, double *f)
     double fy;
     int info;
     size_t a;
-    if (sp->m == 0 || sp->fc->pb->n <= sp->m) {
+    size_t n_res = sp->fc->pb->n * sp->fc->blocks;
+    if (done != NULL) {
+        *done = 0;
+    }
+    if (sp->m == 0 || n_res <= sp->m) {
         return BF_OK;
     }
-    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm,
-                                   sp->fc->pb->n, sp->m);
+    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n_res,
+                                   sp->m);
     u = gsl_vector_alloc(sp->m);
     if (w == NULL || u == NULL) {
         gsl_multifit_nlinear_free(w);
@@ -431,12 +456,15 @@ static int levenberg(space_t *sp, double *x, double *f)
     }
     memset(&fdf, 0, sizeof fdf);
     fdf.f = f_lm;
-    fdf.n = sp->fc->pb->n;
+    fdf.n = n_res;
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        (void)gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14, NULL,
-                                          NULL, &info, w);
+        int st = gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14,
+                                             NULL, NULL, &info, w);
+        if (done != NULL) {
+            *done = st == GSL_SUCCESS;
+        }
         memcpy(y, x, sizeof y);
         for (a = 0; a < sp->m; a++) {
             y[sp->idx[a]] =
@@ -591,22 +619,76 @@ static void grid_steps(const space_t *sp, double *step)
     }
 }
 
-/* 1 when a moving parameter of x lies on a bound of its domain (within
- * 1e-6 of the search coordinate's span). */
+/* -1 (+1) when moving parameter a of x lies on the lower (upper) bound of
+ * its domain (within 1e-6 of the search coordinate's span), else 0. */
+static int bound_side(const space_t *sp, const double *x, size_t a)
+{
+    double u = to_u(sp, a, x[sp->idx[a]]);
+    double lo = to_u(sp, a, sp->lo[a]);
+    double hi = to_u(sp, a, sp->hi[a]);
+    double tol = 1e-6 * (hi - lo);
+    if (u <= lo + tol || x[sp->idx[a]] <= sp->lo[a]) {
+        return -1;
+    }
+    return u >= hi - tol ? 1 : 0;
+}
+
+/* 1 when a moving parameter of x lies on a bound of its domain. */
 static int on_bound(const space_t *sp, const double *x)
 {
     size_t a;
     for (a = 0; a < sp->m; a++) {
-        double u = to_u(sp, a, x[sp->idx[a]]);
-        double lo = to_u(sp, a, sp->lo[a]);
-        double hi = to_u(sp, a, sp->hi[a]);
-        double tol = 1e-6 * (hi - lo);
-        if (u <= lo + tol || u >= hi - tol ||
-            x[sp->idx[a]] <= sp->lo[a]) {
+        if (bound_side(sp, x, a) != 0) {
             return 1;
         }
     }
     return 0;
+}
+
+/* 1 when x (f its value) on a bound is a Karush-Kuhn-Tucker point as far
+ * as one-sided differences tell: every coordinate on a bound, moved
+ * KKT_STEP of its span into the domain, gives a value >= f (a converged
+ * LM has minimised over the others: the clamp leaves them free), so
+ * Nelder-Mead has nothing to take off the bound. */
+static int bound_kkt(const space_t *sp, const double *x, double f)
+{
+    size_t a;
+    for (a = 0; a < sp->m; a++) {
+        int side = bound_side(sp, x, a);
+        double lo = to_u(sp, a, sp->lo[a]);
+        double hi = to_u(sp, a, sp->hi[a]);
+        double y[BF_MAX_PARAMS];
+        if (side == 0) {
+            continue;
+        }
+        memcpy(y, x, sizeof y);
+        y[sp->idx[a]] = from_u(sp, a, side < 0 ? lo + KKT_STEP * (hi - lo)
+                                               : hi - KKT_STEP * (hi - lo));
+        if (value_at(sp->fc, y) < f) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* From x (f its value; both replaced when it ends lower) to its basin's
+ * minimum: Levenberg-Marquardt; where it ends on a bound (the clamped
+ * coordinates' Jacobian vanishes there) and is not plainly the minimum
+ * there, Nelder-Mead, without derivatives, takes it off, and LM
+ * finishes. */
+static int descend(space_t *sp, const double *step, double *x, double *f)
+{
+    double fl;
+    int done;
+    int rc = levenberg(sp, x, f, &done);
+    fl = *f;
+    if (rc == BF_OK && on_bound(sp, x) && !(done && bound_kkt(sp, x, *f))) {
+        rc = polish(sp, x, step, f);
+    }
+    if (rc == BF_OK && *f < fl) {
+        rc = levenberg(sp, x, f, NULL);
+    }
+    return rc;
 }
 
 /* The separable ngan fit on fc (fc->pb's objective ngan). */
@@ -658,21 +740,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
-        double fl;
         point_of(&sp, best[g].idx, x);
         f = value_at(fc, x);
-        /* Levenberg-Marquardt to the basin's minimum; where it ends on a
-         * bound (the clamped coordinates' Jacobian vanishes there)
-         * Nelder-Mead, without derivatives, takes it off, and LM
-         * finishes */
-        rc = levenberg(&sp, x, &f);
-        fl = f;
-        if (rc == BF_OK && on_bound(&sp, x)) {
-            rc = polish(&sp, x, step, &f);
-        }
-        if (rc == BF_OK && f < fl) {
-            rc = levenberg(&sp, x, &f);
-        }
+        rc = descend(&sp, step, x, &f);
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);
@@ -685,16 +755,25 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     return rc;
 }
 
-unsigned bf__varpro_lin(const bf_problem *pb)
+/* The free scales of pb (bf_param.linear) as a mask; *n_lin their number. */
+static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
 {
     unsigned lin = 0;
     size_t j;
+    *n_lin = 0;
     for (j = 0; j < pb->type->p; j++) {
         if (((pb->free_mask >> j) & 1u) && pb->type->param[j].linear) {
             lin |= 1u << j;
+            (*n_lin)++;
         }
     }
     return lin;
+}
+
+unsigned bf__varpro_lin(const bf_problem *pb)
+{
+    size_t n_lin;
+    return lin_of(pb, &n_lin);
 }
 
 int bf__varpro_refine(bf__fitctx *fc, const double *start,
@@ -713,8 +792,8 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
     int rc;
     memset(result, 0, sizeof *result);
     if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
-        pb->objective != BF_OBJ_NGAN) {
-        return BF_EINVAL;
+        pb->objective != BF_OBJ_NGAN || fc->blocks > 1) {
+        return BF_EINVAL; /* not a joint fit's channels (no intervals) */
     }
     fc->lin_mask = lin;
     space_init(&sp, fc, pb->free_mask & ~lin);
@@ -723,7 +802,7 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
         x[sp.idx[j]] = start[sp.idx[j]];
     }
     f = value_at(fc, x);
-    rc = f < UNDEFINED ? levenberg(&sp, x, &f) : BF_EDOM;
+    rc = f < UNDEFINED ? levenberg(&sp, x, &f, NULL) : BF_EDOM;
     fl = f;
     if (rc == BF_OK && on_bound(&sp, x)) {
         /* LM's clamped Jacobian vanishes on a bound: Nelder-Mead */
@@ -731,7 +810,7 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
         rc = polish(&sp, x, step, &f);
     }
     if (rc == BF_OK && f < fl) {
-        rc = levenberg(&sp, x, &f);
+        rc = levenberg(&sp, x, &f, NULL);
     }
     if (rc == BF_OK) {
         fill_scales(fc, x);
@@ -743,13 +822,129 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
     return rc;
 }
 
+int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
+{
+    const bf_problem *pb = fc->pb;
+    size_t n_lin;
+    unsigned lin = lin_of(pb, &n_lin);
+    unsigned keep = fc->lin_mask;
+    size_t b;
+    size_t j;
+    double v;
+    int rc;
+    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
+        n_lin > MAX_LIN || n_lin == 0) {
+        return BF_EINVAL;
+    }
+    fc->lin_mask = lin;
+    rc = bf__varpro_value(fc, param, &v);
+    fc->lin_mask = keep;
+    for (b = 0; rc == BF_OK && b < fc->blocks; b++) {
+        for (j = 0; j < BF_MAX_PARAMS; j++) {
+            out[b * BF_MAX_PARAMS + j] =
+                j < pb->type->p && ((lin >> j) & 1u)
+                    ? fc->block_lin[b * BF_MAX_PARAMS + j]
+                    : param[j];
+        }
+    }
+    return rc;
+}
+
+/* ==== dense data ========================================================= */
+
+/* Above DENSE_K configurations (every cell of a MERL table, issue 17
+ * item 10) the grid and the descents from its minima run on about
+ * DENSE_SUB of them, every s-th in index order, and only their best end
+ * descends again on all of them: the grid and the starts only pick the
+ * basin, which a regular subsample of dense data shows as well, at 1/s
+ * of the cost. The grid's reported value is the full data's at its
+ * point. */
+#define DENSE_K 65536
+#define DENSE_SUB 16384
+
+/* varpro_ngan of fc's problem on its configurations 0, s, 2s, ... */
+static int ngan_subsample(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
+                          bf_fit_result *result)
+{
+    const bf_problem *pb = fc->pb;
+    size_t stride = (pb->n + DENSE_SUB - 1) / DENSE_SUB;
+    size_t n = (pb->n + stride - 1) / stride;
+    bf_geom *geom = malloc(n * sizeof *geom);
+    double *data = malloc(2 * n * sizeof *data);
+    bf_problem sub = *pb;
+    bf__cset cs;
+    bf__prep pm;
+    bf__fitctx sfc;
+    size_t i;
+    int rc = BF_ENOMEM;
+    if (geom != NULL && data != NULL) {
+        for (i = 0; i < n; i++) {
+            geom[i] = pb->geom[i * stride];
+            data[i] = pb->data[i * stride];
+            data[n + i] = pb->weight != NULL ? pb->weight[i * stride] : 1.0;
+        }
+        sub.n = n;
+        sub.geom = geom;
+        sub.data = data;
+        sub.weight = pb->weight != NULL ? data + n : NULL;
+        rc = bf__cset_init(&cs, n, geom);
+    }
+    if (rc == BF_OK) {
+        rc = bf__prep_init(&pm, pb->type, &cs);
+        if (rc == BF_OK) {
+            rc = bf__fitctx_init(&sfc, &pm);
+            if (rc == BF_OK) {
+                bf__fitctx_use(&sfc, &sub);
+                rc = varpro_ngan(&sfc, lin, grid, result);
+                fc->n_eval += sfc.n_eval;
+                bf__fitctx_free(&sfc);
+            }
+            bf__prep_free(&pm);
+        }
+        bf__cset_free(&cs);
+    }
+    free(geom);
+    free(data);
+    return rc;
+}
+
+/* The separable ngan fit of dense data: the subsample's, then one descent
+ * on every configuration. */
+static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
+                        bf_fit_result *result)
+{
+    space_t sp;
+    double step[BF_MAX_PARAMS];
+    double x[BF_MAX_PARAMS];
+    double f;
+    int rc = ngan_subsample(fc, lin, grid, result);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    fc->lin_mask = lin;
+    space_init(&sp, fc, fc->pb->free_mask & ~lin);
+    grid_steps(&sp, step);
+    if (grid != NULL) {
+        fill_scales(fc, grid->param);
+        grid->lse = value_at(fc, grid->param);
+    }
+    memcpy(x, result->param, sizeof x);
+    f = value_at(fc, x);
+    rc = descend(&sp, step, x, &f);
+    fill_scales(fc, x);
+    memcpy(result->param, x, sizeof x);
+    result->lse = f;
+    fc->lin_mask = 0;
+    return rc;
+}
+
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
                    bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
     bf_problem ngan;
-    unsigned lin = 0;
-    size_t n_lin = 0;
+    size_t n_lin;
+    unsigned lin = lin_of(pb, &n_lin);
     size_t eval0 = fc->n_eval;
     size_t j;
     int rc;
@@ -758,17 +953,18 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
         !bf_objective_keeps_scale(pb->objective)) {
         return BF_EINVAL;
     }
-    lin = bf__varpro_lin(pb);
-    for (j = 0; j < pb->type->p; j++) {
-        n_lin += (lin >> j) & 1u;
-    }
-    if (n_lin > MAX_LIN) {
+    if (n_lin > MAX_LIN ||
+        (fc->blocks > 1 && (n_lin == 0 || pb->objective != BF_OBJ_NGAN))) {
+        /* a joint fit solves each channel's scales by least squares */
         return BF_EINVAL;
     }
     ngan = *pb;
     ngan.objective = BF_OBJ_NGAN;
     bf__fitctx_use(fc, &ngan);
-    rc = varpro_ngan(fc, lin, grid, result);
+    /* dense data on a subsample; a joint fit's channels always whole
+     * (the subsample holds one channel) */
+    rc = (pb->n > DENSE_K && fc->blocks == 1 ? varpro_dense : varpro_ngan)(
+        fc, lin, grid, result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */

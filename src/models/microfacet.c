@@ -12,6 +12,7 @@
  *   [3] R. L. Cook, K. E. Torrance, ACM TOG 1(1), 1982 (V-cavity G).
  */
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "models/smith_lobe.h"
@@ -46,10 +47,39 @@ static void zeniths(const bf_geom *g, bf__mf_t *m)
     m->co = z->co;
 }
 
+/* sin(phi_s / 2), cos(phi_s / 2) and cos phi_s of the last PHI_MEMO
+ * azimuths of this thread, direct-mapped by a hash of phi_s's bits: the
+ * albedo's inner quadratures (albedo.c) evaluate the same Gauss-Kronrod
+ * nodes in phi_s at every theta_o. The same bits as computing them. */
+#define PHI_MEMO 2048u
+typedef struct {
+    uint64_t tag; /* the bits of phi_s plus 1; 0: empty */
+    double hs, hc, c;
+} phi_memo_t;
+static _Thread_local phi_memo_t phi_memo[PHI_MEMO];
+
+static void azimuth(double phi, double *hs, double *hc, double *c)
+{
+    uint64_t bits;
+    phi_memo_t *e;
+    memcpy(&bits, &phi, sizeof bits);
+    e = &phi_memo[(bits * UINT64_C(0x9E3779B97F4A7C15)) >> 53];
+    if (e->tag != bits + 1u) {
+        e->tag = bits + 1u;
+        e->hs = sin(0.5 * phi);
+        e->hc = cos(0.5 * phi);
+        e->c = cos(phi);
+    }
+    *hs = e->hs;
+    *hc = e->hc;
+    *c = e->c;
+}
+
 void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
 {
-    double hs = sin(0.5 * g->phi_s);
-    double hc = cos(0.5 * g->phi_s);
+    double hs;
+    double hc;
+    double cp;
     double dso;
     double hxy2;
     double hz;
@@ -57,7 +87,8 @@ void bf__mf_geom(const bf_geom *g, bf__mf_t *m)
     double dz;
     double dxy2;
     zeniths(g, m);
-    m->dxy = -(m->si * m->so) * cos(g->phi_s); /* ix ox + iy oy */
+    azimuth(g->phi_s, &hs, &hc, &cp);
+    m->dxy = -(m->si * m->so) * cp; /* ix ox + iy oy */
     dso = m->so - m->si;
     hz = m->ci + m->co; /* H = i + o */
     if (hz == 0.0) {
@@ -155,7 +186,7 @@ double bf__mf_d_ggx(const bf__mf_t *m, double alpha)
 double bf__mf_d_beckmann(const bf__mf_t *m, double alpha)
 {
     double a2 = alpha * alpha;
-    return exp(-m->t2h / a2) / (BF__PI * a2 * (m->c2h * m->c2h));
+    return bf__mf_exp_neg(-m->t2h / a2) / (BF__PI * a2 * (m->c2h * m->c2h));
 }
 
 /* cos theta Lambda of Walter et al. eq. 34 (SPEC §9.2), microfacet.h. */
@@ -167,7 +198,7 @@ double bf__mf_clambda_ggx(double c, double s, double alpha)
 
 /* cos theta Lambda of SPEC §9.2's exact Beckmann form (Walter et al.
  * eq. 26 before its rational approximation, eq. 27), microfacet.h. */
-double bf__mf_clambda_beckmann(double c, double s, double alpha)
+static double clambda_beckmann(double c, double s, double alpha)
 {
     double as = alpha * s;
     double a;
@@ -175,8 +206,42 @@ double bf__mf_clambda_beckmann(double c, double s, double alpha)
         return 0.0; /* the normal: Lambda = 0 */
     }
     a = c / as;
-    return fmax(0.0, 0.5 * ((as * exp(-(a * a)) * MF_1_SQRTPI)
+    if (a >= 28.0) {
+        return 0.0; /* erfc(a) and exp(-a^2) are +0 in double there */
+    }
+    return fmax(0.0, 0.5 * ((as * bf__mf_exp_neg(-(a * a)) * MF_1_SQRTPI)
                             - (c * erfc(a))));
+}
+
+/* The last two (c, s, alpha) of this thread and their values, the one
+ * used longer ago replaced: a lobe asks for Lambda(i) and Lambda(o) in
+ * turn, and both recur -- the albedo's quadrature over phi_s at fixed
+ * zeniths (albedo.c), measured data sorted by theta_i. The same bits as
+ * computing them (a pure function, its arguments compared bit for bit). */
+typedef struct {
+    double key[2][3];
+    double val[2];
+    int older;
+} lambda_memo_t;
+static _Thread_local lambda_memo_t lambda_memo = {
+    {{NAN, NAN, NAN}, {NAN, NAN, NAN}}, {0.0, 0.0}, 0};
+
+double bf__mf_clambda_beckmann(double c, double s, double alpha)
+{
+    lambda_memo_t *z = &lambda_memo;
+    const double key[3] = {c, s, alpha};
+    int e;
+    for (e = 0; e < 2; e++) {
+        if (memcmp(z->key[e], key, sizeof key) == 0) {
+            z->older = 1 - e;
+            return z->val[e];
+        }
+    }
+    e = z->older;
+    memcpy(z->key[e], key, sizeof key);
+    z->val[e] = clambda_beckmann(c, s, alpha);
+    z->older = 1 - e;
+    return z->val[e];
 }
 
 double bf__mf_lambda_ggx(double theta, double alpha)

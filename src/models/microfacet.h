@@ -41,6 +41,8 @@
 #ifndef BF_MODELS_MICROFACET_H
 #define BF_MODELS_MICROFACET_H
 
+#include <math.h>
+
 #include "fit/engine.h"
 
 /* The geometry of one configuration (SPEC §9.1). */
@@ -160,6 +162,15 @@ enum {
  * D = a^2 / (pi cos^4 th (a^2 + tan^2 th)^2) = a^2 / (pi (a^2 c2h + s2h)^2)
  * (multiplying out cos^4 th; finite wherever h is defined). */
 double bf__mf_d_ggx(const bf__mf_t *m, double alpha);
+
+/* e^x for x <= 0, the bits of exp(x): +0 below -746 without calling exp,
+ * whose result there underflows to +0 (its smallest subnormal is
+ * e^-744.4) through libm's slow error path (errno, the underflow flag);
+ * a narrow lobe's exp(-tan^2 th / a^2) is there at most configurations. */
+static inline double bf__mf_exp_neg(double x)
+{
+    return x < -746.0 ? 0.0 : exp(x);
+}
 
 /* Beckmann, Walter et al. eq. 25: D = exp(-tan^2 th / a^2) / (pi a^2
  * cos^4 th). */

@@ -27,7 +27,7 @@
 static double ward_lobe(const bf__mf_t *m, const double *p)
 {
     double a2 = p[1] * p[1];
-    return p[0] * exp(-m->t2h / a2) / (4.0 * BF__PI * a2);
+    return p[0] * bf__mf_exp_neg(-m->t2h / a2) / (4.0 * BF__PI * a2);
 }
 
 static double ward_value(const bf__mf_t *m, const double *p)

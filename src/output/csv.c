@@ -50,10 +50,18 @@ void bf__csv_num(FILE *fp, double x)
 
 void bf__csv_target(FILE *fp, const bf_study_spec *spec, size_t t)
 {
+    bf__csv_target_as(fp, spec, t, NULL);
+}
+
+void bf__csv_target_as(FILE *fp, const bf_study_spec *spec, size_t t,
+                       const char *as)
+{
     const bf_target *tg = &spec->targets[t];
     const char *name = bf_dataset_name(spec->data, tg->material);
-    const char *channel = bf_dataset_channel(spec->data, tg->material,
-                                             tg->channel);
+    const char *channel = as != NULL ? as
+                                     : bf_dataset_channel(spec->data,
+                                                          tg->material,
+                                                          tg->channel);
     fprintf(fp, "%d,", bf_dataset_number(spec->data, tg->material));
     bf__csv_field(fp, name != NULL ? name : "");
     fputc(',', fp);

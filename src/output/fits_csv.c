@@ -99,6 +99,15 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
     }
 }
 
+/* 1 when target t is a joint fit's (SPEC §9.4) first channel: its rows
+ * carry the shared shape parameters. */
+static int joint_first(const bf_study_spec *spec, size_t t)
+{
+    const bf_target *tg = &spec->targets[t];
+    return tg->joint && (t == 0 || !tg[-1].joint ||
+                         tg[-1].material != tg->material);
+}
+
 size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
                      const bf_fit_stats *stats, const bf_analysis_opts *opts,
                      bf_fits_line *out)
@@ -130,9 +139,15 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
             n++;
         }
         for (j = 0; j < r->type->p; j++) {
-            if (r->type->param[j].fitted) {
+            /* a joint fit (SPEC §9.4): its shape once, on channel
+             * "joint" at its first channel's row; the scales per channel */
+            int joint = spec->targets[r->target].joint &&
+                        !r->type->param[j].linear;
+            if (r->type->param[j].fitted &&
+                (!joint || joint_first(spec, r->target))) {
                 if (out != NULL) {
                     fill_line(&out[n], i, r, s, opts, j, albedo);
+                    out[n].joint = joint;
                 }
                 n++;
             }
@@ -169,7 +184,8 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
                        const bf_study_row *rows, const bf_fits_line *l)
 {
     size_t a;
-    bf__csv_target(fp, spec, rows[l->row].target);
+    bf__csv_target_as(fp, spec, rows[l->row].target,
+                      l->joint ? "joint" : NULL);
     csv_text(fp, l->model);
     csv_text(fp, l->parameter);
     csv_text(fp, l->unit);

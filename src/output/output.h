@@ -18,6 +18,10 @@ void bf__csv_num(FILE *fp, double x);
 
 /* Writes "sample,name,channel" of target t of spec (no trailing comma). */
 void bf__csv_target(FILE *fp, const bf_study_spec *spec, size_t t);
+/* The same with the channel field channel (NULL: the target's): a joint
+ * fit's shared parameters are on channel "joint" (SPEC §9.4). */
+void bf__csv_target_as(FILE *fp, const bf_study_spec *spec, size_t t,
+                       const char *channel);
 
 /* The common check of the writers: BF_EINVAL for a NULL fp, spec or rows
  * (or stats when need_stats). */

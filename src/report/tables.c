@@ -251,7 +251,13 @@ static const char *table3_label(bf_objective obj)
 static void table3_title(const bf_rep_study *st, int file, FILE *fp)
 {
     const char *label = table3_label(st->opts.objective);
-    if (bf_objective_keeps_scale(st->opts.objective)) {
+    if (st->opts.channel != NULL && strcmp(st->opts.channel, "joint") == 0) {
+        /* SPEC §9.4: one E per joint fit, the same on its channels' rows */
+        fprintf(fp, "Table 3: E = sqrt(S / (K C)) of the ngan objective "
+                    "of each joint fit, S over the K used configurations "
+                    "(theta_i, theta_o <= 80 deg) of all C channels; the "
+                    "same on every channel's row (SPEC §9.4, §10)\n\n");
+    } else if (bf_objective_keeps_scale(st->opts.objective)) {
         fprintf(fp, "Table 3: %s (over each sample's used configurations "
                     "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
                     "SPEC §10)\n\n",
@@ -335,7 +341,14 @@ int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
                     "by its maximum over the K used configurations (SPEC "
                     "§2)\n");
     }
-    if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
+    if (o->channel != NULL && strcmp(o->channel, "joint") == 0) {
+        fprintf(fp, "Channel: joint (SPEC §9.4) -- one shape (every "
+                    "parameter but the scales) for all channels, the "
+                    "scales (rho_d, rho_s, A, Rd) per channel; one E = "
+                    "sqrt(S / (K C)) over the K configurations of all C "
+                    "channels, S summed over them; fits.csv: the shape on "
+                    "channel 'joint', the scales on each channel's name\n");
+    } else if (o->channel != NULL && strcmp(o->channel, "mean") != 0) {
         fprintf(fp, "Channel: %s\n", o->channel);
     }
     if (!o->exact) {

@@ -356,7 +356,7 @@ Test(dataset, study_on_two_configuration_sets_fits_each_as_alone)
     bf_dataset *ds = small_dataset();
     bf_dataset *more = small_dataset();
     const bf_model_type *models[2] = {bf_model_lftg, bf_model_lambert};
-    bf_target t[2] = {{0, 0}, {1, BF_CHANNEL_MEAN}};
+    bf_target t[2] = {{0, 0, 0}, {1, BF_CHANNEL_MEAN, 0}};
     bf_study_row rows[4];
     bf_study_row alone[2];
     bf_study_spec spec;

@@ -732,7 +732,7 @@ Test(merl, models_are_fitted_back_within_the_lookup_error_elsewhere)
         bf_error err;
         bf_fit_result fit;
         bf_study_spec spec;
-        bf_target target = {0, BF_CHANNEL_MEAN};
+        bf_target target = {0, BF_CHANNEL_MEAN, 0};
         if (!cheap_fitted(type)) {
             bf_fit_free(w);
             continue;

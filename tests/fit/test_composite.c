@@ -195,6 +195,94 @@ Test(composite, recovery_ngan_through_csv_and_cli, .timeout = 300)
     }
 }
 
+/* ==== dense data: the subsample's grid (varpro.c, above 65536) ========== */
+
+/* theta_i, theta_o on 30 and 40 zeniths below 80 deg, phi_o on 60
+ * azimuths: K = 72,000, above the separable fit's dense threshold, so the
+ * grid and its starts run on a subsample and one descent on all of them.
+ * Noise-free LAMBERT+GGX must come back as exactly as the small set's. */
+#define DENSE_TI 30
+#define DENSE_TO 40
+#define DENSE_PHI 60
+#define DENSE_N (DENSE_TI * DENSE_TO * DENSE_PHI)
+
+Test(composite, dense_recovery_through_the_subsample, .timeout = 300)
+{
+    static const double truth[4] = {0.3, 0.8, 0.15, 0.05};
+    static const char *const name[4] = {"rho_d", "rho_s", "alpha", "F0"};
+    const bf_model_type *t = bf_model_find("LAMBERT+GGX");
+    const char *dir = bf_test_tmpdir();
+    double *at = malloc(4 * DENSE_N * sizeof *at);
+    double *v = malloc(DENSE_N * sizeof *v);
+    bf_geom *g = malloc(DENSE_N * sizeof *g);
+    bf_dataset *ds = bf_dataset_alloc();
+    bf_material_desc d;
+    const char *err = NULL;
+    char csv[512];
+    char out[512];
+    size_t set;
+    size_t n = 0;
+    size_t j;
+    int a;
+    int b;
+    int c;
+    int rc;
+    FILE *fp;
+    cr_assert(at != NULL && v != NULL && g != NULL && ds != NULL && t);
+    for (a = 0; a < DENSE_TI; a++) {
+        for (b = 0; b < DENSE_TO; b++) {
+            for (c = 0; c < DENSE_PHI; c++) {
+                at[4 * n + 0] = (1.0 + 78.0 * a / (DENSE_TI - 1)) * DEG;
+                at[4 * n + 1] = 0.0;
+                at[4 * n + 2] = (1.0 + 78.0 * b / (DENSE_TO - 1)) * DEG;
+                at[4 * n + 3] = 0.5 * DEG + 2.0 * PI * c / DENSE_PHI;
+                g[n] = bf_geom_from_measurement(at[4 * n], at[4 * n + 1],
+                                                at[4 * n + 2],
+                                                at[4 * n + 3]);
+                n++;
+            }
+        }
+    }
+    cr_assert_eq(bf_model_eval(t, truth, DENSE_N, g, v), BF_OK);
+    cr_assert_eq(bf_dataset_add_configs(ds, DENSE_N, at, &set, NULL), BF_OK);
+    memset(&d, 0, sizeof d);
+    d.name = "dense";
+    d.format = BF_FORMAT_MEMORY;
+    d.set = set;
+    d.n_channels = 1;
+    d.values = v;
+    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+    snprintf(csv, sizeof csv, "%s/dense.csv", dir);
+    snprintf(out, sizeof out, "%s/dense", dir);
+    fp = fopen(csv, "w");
+    cr_assert_not_null(fp);
+    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
+    cr_assert_eq(fclose(fp), 0);
+    bf_dataset_free(ds);
+    free(at);
+    free(v);
+    free(g);
+    {
+        const char *argv[] = {"compare", "--input", csv, "--models",
+                              "LAMBERT+GGX", "--fit", "exact",
+                              "--objective", "ngan", "--folds", "0",
+                              "--out", out, "--quiet", NULL};
+        rc = bf_test_run_cli(argv, NULL, &err);
+    }
+    cr_assert_eq(rc, 0, "brdffit compare: %s", err);
+    bf_test_csv_load(out, "fits.csv");
+    for (j = 0; j < 4; j++) {
+        size_t q = bf_test_csv_find("1", "LAMBERT+GGX", name[j]);
+        cr_assert_eq((size_t)bf_test_csv_num(q, "k"), DENSE_N);
+        cr_assert(bf_test_csv_num(q, "lse") < 1e-9, "E %g",
+                  bf_test_csv_num(q, "lse"));
+        /* the grid's value is the whole data's at its point */
+        cr_assert(bf_test_csv_num(q, "grid_lse") >=
+                  bf_test_csv_num(q, "lse"));
+        bf_assert_rel(bf_test_csv_num(q, "value"), truth[j], 1e-5);
+    }
+}
+
 /* ==== the Cornell paints against the numpy/scipy peer ==================== */
 
 /* ../shared/peers/glossy_peer.py FILE (its defaults: LAMBERT + GGX,
