@@ -7,7 +7,7 @@
  * normalised by their own maximum, as measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
- * [B]]]]]]]
+ * [B [CORNELL_FILE]]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
@@ -18,7 +18,16 @@
  * median width over the spread of the maximum-likelihood estimates
  * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
  * that of the ML ones, and the share of intervals flagged not identified
- * (open to a bound the estimate is not on). Never part of the tests. */
+ * (open to a bound the estimate is not on). Never part of the tests.
+ *
+ * The specular family (SPEC §9; issue 17 item 6): MODELS may name
+ * composites (LAMBERT+GGX, LAMBERT+WARD: the truths below; "all" means
+ * the diffuse table only), fitted under
+ * ngan at the Cornell geometry (argument 9, CORNELL_FILE, default
+ * ../shared/data/cornell-pbrt-v2/krylon_blue.brdf: its 1439
+ * configurations with theta_i, theta_o <= 80 deg) and at 300 random ones
+ * (half within 10 deg of the mirror direction), the data kept in sr^-1
+ * (bf_calibrate). */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -53,21 +62,31 @@ static size_t curet_geom(const char *dir, bf_geom *geom)
     return k;
 }
 
-/* Directions uniform on the hemisphere up to 80 degrees (fixed seed). */
-static size_t random_geom(bf_geom *geom)
+/* n directions uniform on the hemisphere up to 80 degrees (fixed seed
+ * seed); with mirror every second within 10 degrees of the mirror
+ * direction instead (where a lobe is measured). */
+static size_t random_geom(bf_geom *geom, size_t n, unsigned long seed,
+                          int mirror)
 {
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double cmin = cos(80.0 * M_PI / 180.0);
     size_t k;
-    gsl_rng_set(rng, 7);
-    for (k = 0; k < NCONF; k++) {
+    gsl_rng_set(rng, seed);
+    for (k = 0; k < n; k++) {
         geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
         geom[k].phi_i = M_PI;
-        geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        if (!mirror || k % 2 == 0) {
+            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        } else { /* phi_s = 0, theta_s = theta_i: the mirror (SPEC §1.2) */
+            double t = geom[k].theta_i +
+                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
+            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
+        }
     }
     gsl_rng_free(rng);
-    return NCONF;
+    return n;
 }
 
 /* 1 when name is in the comma-separated list (or the list is "all"). */
@@ -87,6 +106,111 @@ static int listed(const char *list, const char *name)
     return 0;
 }
 
+/* One row of the table: parameter j of cal. */
+static void print_row(const char *model, const char *param, const char *geom,
+                      const char *noise, const char *obj,
+                      const bf_calibration *cal, size_t j, size_t n_boot)
+{
+    double spread = 2.0 * 1.959964 * cal->ml_sd[j];
+    printf("| %s | %s | %s | %s | %s | %.3f | %.2f | %.2f | %.3f |", model,
+           param, geom, noise, obj, cal->coverage[j], cal->width[j] / spread,
+           cal->sd[j] / cal->ml_sd[j], cal->not_identified[j]);
+    if (n_boot >= 2) {
+        printf(" %.3f | %.2f |", cal->boot_coverage[j],
+               cal->boot_width[j] / spread);
+    }
+    printf("\n");
+    fflush(stdout);
+}
+
+#define MAX_SPEC_CONF 1500
+#define N_SPEC_RANDOM 300
+
+/* The Cornell file's configurations with theta_i, theta_o <= 80 deg. */
+static size_t cornell_geom(const char *path, bf_geom *geom)
+{
+    static size_t sel[MAX_SPEC_CONF];
+    bf_dataset *ds = NULL;
+    bf_error err;
+    bf_selection s;
+    size_t n = 0;
+    size_t k;
+    if (bf_dataset_load(path, NULL, &ds, &err) != BF_OK ||
+        bf_dataset_nconf(ds, 0) > MAX_SPEC_CONF) {
+        fprintf(stderr, "bench_coverage: cannot load %s\n", path);
+        exit(1);
+    }
+    bf_selection_init(&s);
+    s.max_theta = BF_KEEP_SCALE_THETA;
+    if (bf_dataset_select(ds, 0, BF_CHANNEL_MEAN, &s, sel, &n, NULL) != BF_OK) {
+        fprintf(stderr, "bench_coverage: cannot select %s\n", path);
+        exit(1);
+    }
+    for (k = 0; k < n; k++) {
+        geom[k] = bf_dataset_geom(ds, 0)[sel[k]];
+    }
+    bf_dataset_free(ds);
+    return n;
+}
+
+/* The specular rows: each composite with a truth below, both geometries,
+ * both noises, objective ngan. */
+static void specular_rows(const char *models, const char *cornell,
+                          size_t reps, bf_noise noise, unsigned long seed0,
+                          size_t n_boot)
+{
+    /* LAMBERT+GGX: krylon_blue's ngan fit, rounded; LAMBERT+WARD: a
+     * broader lobe than krylon_blue's alpha 0.019 */
+    static const struct {
+        const char *name;
+        double truth[BF_MAX_PARAMS];
+    } spec[] = {{"LAMBERT+GGX", {0.077, 0.76, 0.113, 0.059}},
+                {"LAMBERT+WARD", {0.1, 0.05, 0.08}}};
+    static bf_geom geoms[2][MAX_SPEC_CONF];
+    const char *gname[2] = {"Cornell", "random"};
+    const char *nname[2] = {"rel 5%", "abs 2%"};
+    const double npow[2] = {2.0, 0.0};
+    const double nsd[2] = {0.05, 0.02};
+    size_t n_geom[2] = {0, 0};
+    size_t i;
+    for (i = 0; i < sizeof spec / sizeof spec[0]; i++) {
+        const bf_model_type *t = bf_model_find(spec[i].name);
+        size_t g;
+        if (t == NULL || strcmp(models, "all") == 0 ||
+            !listed(models, spec[i].name)) {
+            continue;
+        }
+        if (n_geom[0] == 0) {
+            n_geom[0] = cornell_geom(cornell, geoms[0]);
+            n_geom[1] = random_geom(geoms[1], N_SPEC_RANDOM, 11, 1);
+        }
+        for (g = 0; g < 2; g++) {
+            size_t q;
+            for (q = 0; q < 2; q++) {
+                bf_problem pb;
+                bf_calibration cal;
+                size_t j;
+                int rc;
+                bf_problem_init(&pb, t, spec[i].truth, n_geom[g], geoms[g],
+                                NULL);
+                pb.objective = BF_OBJ_NGAN;
+                rc = bf_fit_calibrate(&pb, spec[i].truth, npow[q], nsd[q], noise,
+                                  reps, n_boot, seed0 + 10 * g + q, 0.95,
+                                  &cal);
+                for (j = 0; j < t->p; j++) {
+                    if (rc != BF_OK) {
+                        printf("| %s | | %s | %s | ngan | error %d | | | |\n",
+                               t->name, gname[g], nname[q], rc);
+                        break;
+                    }
+                    print_row(t->name, t->param[j].name, gname[g], nname[q],
+                              "ngan", &cal, j, n_boot);
+                }
+            }
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     static bf_geom geoms[2][NCONF];
@@ -104,6 +228,9 @@ int main(int argc, char **argv)
     const char *models = argc > 5 ? argv[5] : "all";
     unsigned long seed0 = argc > 6 ? strtoul(argv[6], NULL, 10) : 1000;
     size_t n_boot = argc > 7 ? (size_t)atol(argv[7]) : 0;
+    const char *cornell =
+        argc > 8 ? argv[8]
+                 : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -111,13 +238,14 @@ int main(int argc, char **argv)
         return 2;
     }
     n_geom[0] = curet_geom(dir, geoms[0]);
-    n_geom[1] = random_geom(geoms[1]);
+    n_geom[1] = random_geom(geoms[1], NCONF, 7, 0);
     printf("| model | param | geometry | noise | objective | covered | "
            "width / spread | sd obj / sd ML | not identified |%s\n"
            "|---|---|---|---|---|---|---|---|---|%s\n",
            n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
                        : "",
            n_boot >= 2 ? "---|---|" : "");
+    specular_rows(models, cornell, reps, noise, seed0, n_boot);
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
         size_t g;
@@ -162,21 +290,10 @@ int main(int argc, char **argv)
                         if (!((pb.free_mask >> j) & 1u)) {
                             continue;
                         }
-                        printf("| %s | %s | %s | %s | %s | %.3f | %.2f | "
-                               "%.2f | %.3f |",
-                               v.type.name, v.type.param[j].name, gname[g],
-                               nname[q], bf_objective_name(objs[o]),
-                               cal.coverage[j],
-                               cal.width[j] / (2.0 * 1.959964 * cal.ml_sd[j]),
-                               cal.sd[j] / cal.ml_sd[j],
-                               cal.not_identified[j]);
-                        if (n_boot >= 2) {
-                            printf(" %.3f | %.2f |", cal.boot_coverage[j],
-                                   cal.boot_width[j] /
-                                       (2.0 * 1.959964 * cal.ml_sd[j]));
-                        }
-                        printf("\n");
-                        fflush(stdout);
+                        print_row(v.type.name, v.type.param[j].name,
+                                  gname[g], nname[q],
+                                  bf_objective_name(objs[o]), &cal, j,
+                                  n_boot);
                     }
                 }
             }

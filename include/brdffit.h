@@ -1232,7 +1232,12 @@ int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
  *   BF_NOISE_OBJECTIVE the objective's own S as a constant-variance RSS
  *                      with the scale the objective gives it: the profile
  *                      intervals of the objective alone, kept to compare
- *                      with earlier results (they undercover under max). */
+ *                      with earlier results (they undercover under max).
+ * A specular model or composite (SPEC §9; its scales are parameters, in
+ * sr^-1): rho_k = rho_hat_k(theta) + e_k, var e_k = sigma^2 M^2
+ * max(rho_hat_k / M, BF_LOG_FLOOR)^p, M = max_k rho_hat_k, the variances
+ * held at the fit (generalised least squares, doc/methods.md §3); its
+ * scales are solved by NNLS at every point of a profile. */
 typedef enum {
     BF_NOISE_AUTO = 0,
     BF_NOISE_ABSOLUTE,
@@ -1320,8 +1325,10 @@ typedef struct {
 /* Simulates n_sim measurements of pb's model at truth on pb's
  * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
  * eps_k, eps ~ N(0, 1) (GSL mt19937 seeded with seed), normalised by
- * their maximum as measured data are -- fits each under pb's objective
- * (grid optimum, refinement) and computes its intervals under noise at
+ * their maximum as measured data are (a specular model's: rho_k =
+ * M (L_k + sigma max(L_k, f)^(p/2) eps_k), L = rho_hat(truth) / M, kept
+ * in sr^-1) -- fits each under pb's objective (grid optimum, refinement;
+ * a specular model's separable fit) and computes its intervals under noise at
  * level; out gets each free parameter's coverage, bias, spread and median
  * width (NaN for the others); with n_boot >= 2 also the coverage and
  * median width of each simulation's bootstrap interval (bf_fit_bootstrap,
@@ -1341,8 +1348,9 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
  * sqrt(v_k) u*_k, u* drawn with replacement from the centred residuals
  * standardised by the noise model's sd sqrt(v_k) and the leverage
  * sqrt(1 - h_k) (a GSL mt19937 seeded with seed), each refitted by
- * maximum likelihood at iv's noise power with the scale profiled.
- * low[j], high[j] get the (1 -+ level)/2 quantiles of the replicate
+ * maximum likelihood at iv's noise power with the scale profiled (a
+ * specular model: D* = rho_hat(ml) + sqrt(v_k) u*_k, refitted with its
+ * scales solved under the weights of iv's fit). low[j], high[j] get the (1 -+ level)/2 quantiles of the replicate
  * estimates of every free parameter j (NaN for the others). pb->weight
  * must be NULL. BF_EINVAL, BF_EDOM, BF_ENOMEM. */
 int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,

@@ -438,6 +438,12 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
  * normalised, SPEC §10) when raw is 1 (data then holds those values). */
 int bf__study_groups_data(const bf_study_spec *spec, int raw,
                           bf__groups_t *gs, bf_error *err);
+/* The groups with the data a fit under obj uses (as bf_study_fit_data):
+ * under the objectives that keep the scale rho as measured on the
+ * configurations with theta_i, theta_o <= 80 deg (SPEC §10), else the
+ * normalised radiances. The analysis and the calibration share them. */
+int bf__study_groups_fit(const bf_study_spec *spec, bf_objective obj,
+                         bf__groups_t *gs, bf_error *err);
 /* rho = BRDF x cos theta_i of material m, channel c on the n
  * configurations sel, as measured (bf_dataset_radiance before its
  * normalisation; src/data/select.c). */

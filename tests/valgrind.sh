@@ -87,6 +87,10 @@
 # wno_r/matches_the_integral..., cli_calibrate's error tests and
 # intervals/calibrate_reports..., report/stats_add...). test_stream's one
 # test streams a large K in blocks (seconds of fitting); ASan runs it.
+# spec_intervals' coverage tests simulate 200 fits per case (about 15 s
+# of CPU plain each), its CLI runs on krylon_blue (bootstrap, calibrate's
+# 10 simulations) repeat on 1439 configurations the code its library
+# tests (the flat F0 profile, the Cornell intervals) run under valgrind.
 # test_oom preloads its own allocator (tests/oom/oom_shim.c), which
 # valgrind's replaces; it runs in the plain build only.
 # test_cli_matrix runs report, compare and rank over every combination of
@@ -160,6 +164,10 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     test_stream
     cli_calibrate/writes_coverage_and_bias_of_every_fitted_parameter
     plane_abs/description_under_ngan
+    spec_intervals/lambert_ggx_covers_at_the_cornell_geometry
+    spec_intervals/lambert_ggx_and_ward_cover_at_random_geometry
+    spec_intervals/cornell_intervals_are_finite_and_hold_the_estimate
+    spec_intervals/calibrate_runs_on_a_composite
     joint/report_draws_every_channel_from_the_shared_shape
     report/writes_every_figure_valid_and_sized_as_the_page_says"}
 

@@ -167,3 +167,25 @@ def test_an_exception_in_progress_is_raised_after_the_call(curet):
         brdffit.fit(curet, "VH-E", material=1, progress=fail)
     with pytest.raises(TypeError, match="expected a callable"):
         brdffit.fit(curet, "VH-E", material=1, progress=3)
+
+
+def test_a_composite_has_intervals_bootstrap_and_cv():
+    # LAMBERT+GGX (SPEC §9.4) under ngan: its scales are parameters, solved
+    # exactly at every profile point (doc/methods.md §3); 2 % relative
+    # noise, a lobe broad enough for random directions (alpha 0.3)
+    true = {"rho_d": 0.3, "rho_s": 0.6, "alpha": 0.3, "F0": 0.2}
+    brdf = brdffit.evaluate("LAMBERT+GGX", true, *ANGLES.T)  # sr^-1
+    e = np.random.default_rng(9).standard_normal(N)
+    ds = brdffit.Dataset.from_arrays(ANGLES, brdf * (1.0 + 0.02 * e),
+                                     names="synthetic")
+    r = brdffit.fit(ds, "LAMBERT+GGX", fit="exact", objective="ngan",
+                    noise="relative", bootstrap=40)
+    for name, value in true.items():
+        lo, hi = r.intervals[name]
+        assert lo < value < hi, (name, lo, hi)
+        assert lo <= r.ml_estimate[name] <= hi
+        blo, bhi = r.bootstrap[name]
+        assert blo <= r.ml_estimate[name] <= bhi, (name, blo, bhi)
+    assert r.n_params == 4  # no scale beside rho_d and rho_s
+    assert np.isfinite(r.cv) and r.cv > 0 and r.not_identified == ()
+    assert not r.interval_failed and not r.bootstrap_failed

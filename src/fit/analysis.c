@@ -179,18 +179,71 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
     }
 }
 
-/* A specular model (SPEC §9.3, §9.4) under an objective that keeps the
- * scale: the separable fit (varpro.c) and its AIC and BIC. Its intervals,
- * bootstrap and cross-validation are not computed (NaN). */
-static int analyse_separable(bf__fitctx *fc, bf_fit_stats *st)
+/* What every fit gets after its optimum st->refined (fc->pb = pb): the
+ * intervals under the noise model, the bootstrap, AIC and BIC, the
+ * cross-validation (gr, fold_grid: the grid and the folds' grid optima;
+ * NULL for a specular model, whose folds have their own fits). */
+static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
+                        const bf_analysis_opts *opts, const size_t *fold,
+                        const bf__grid *gr, const bf_fit_result *fold_grid,
+                        bf_fit_stats *st)
 {
-    int rc = bf__varpro_fit(fc, &st->grid, &st->refined);
-    if (rc != BF_OK) {
-        return rc;
+    bf_interval iv;
+    size_t j;
+    int rc;
+    memset(&iv, 0, sizeof iv);
+    if (pb->free_mask != 0) {
+        rc = bf__intervals(fc, &st->refined, opts->noise, opts->level,
+                           &iv);
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+        if (rc != BF_OK) {
+            st->flags |= BF_STAT_CI_FAIL;
+        }
+        for (j = 0; j < pb->type->p; j++) {
+            if ((pb->free_mask >> j) & 1u) {
+                st->ci_low[j] = iv.low[j];
+                st->ci_high[j] = iv.high[j];
+                st->ml_param[j] = iv.ml.param[j];
+            }
+        }
+        st->ci_open = iv.open;
+        st->ci_method = iv.method;
+        st->noise_power = iv.noise_power;
+        st->noise_sigma = iv.sigma;
+        st->not_identified = iv.not_identified;
+    }
+    if (opts->n_boot >= 2 && pb->free_mask != 0) {
+        unsigned split = 0;
+        rc = bf__bootstrap(fc, &iv, opts->n_boot, opts->seed, opts->level,
+                           NULL, NULL, st->boot_low, st->boot_high, &split);
+        st->boot_split = split;
+        if (split != 0) {
+            st->flags |= BF_STAT_BOOT_SPLIT;
+        }
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+        if (rc != BF_OK) {
+            st->flags |= BF_STAT_BOOT_FAIL;
+        } else {
+            st->boot_method = BF_CI_RESIDUAL_BOOTSTRAP;
+        }
     }
     if (st->refined.lse > 0.0) {
-        st->aic = bf_criterion_aic(st->refined.lse, fc->pb->n, st->k);
-        st->bic = bf_criterion_bic(st->refined.lse, fc->pb->n, st->k);
+        st->aic = bf_criterion_aic(st->refined.lse, pb->n, st->k);
+        st->bic = bf_criterion_bic(st->refined.lse, pb->n, st->k);
+    }
+    if (opts->folds >= 2 && opts->folds <= pb->n) {
+        if (pb->free_mask == 0) {
+            st->cv = st->refined.lse; /* nothing to fit: CV = LSE */
+        } else {
+            rc = bf__cv(fc, gr, fold, opts->folds, fold_grid, &st->cv);
+            if (rc == BF_ENOMEM) {
+                return rc;
+            }
+        }
     }
     st->done = 1;
     return BF_OK;
@@ -292,8 +345,6 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     const group_t *gp = &r->groups[r->group_of[u]];
     bf_fit_stats *st = &r->stats[u];
     bf_problem pb;
-    bf_interval iv;
-    size_t j;
     int cv;
     int rc;
 
@@ -308,22 +359,31 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     st->free_mask = pb.free_mask;
     st->n = pb.n;
     st->k = bf_problem_nparams(&pb);
+    cv = opts->folds >= 2 && opts->folds <= pb.n && pb.free_mask != 0;
+    rc = cv ? bf_fit_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
+    if (rc != BF_OK) {
+        return rc;
+    }
     if (pb.type->kind == BF_MODEL_SPECULAR) {
-        return analyse_separable(fc, st);
+        /* SPEC §9.3, §9.4 under an objective that keeps the scale: the
+         * separable fit (varpro.c), its own grid; then as every model */
+        rc = bf__varpro_fit(fc, &st->grid, &st->refined);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        return analyse_rest(fc, &pb, opts, fold, NULL, NULL, st);
     }
     if (gp->gr == NULL) {
         return gp->status;
     }
     /* the grid optima of the data and of every fold's training set: from
      * the group's pass (phase 2), else one pass for this unit */
-    cv = opts->folds >= 2 && opts->folds <= pb.n && pb.free_mask != 0;
-    rc = cv ? bf_fit_cv_folds(pb.n, opts->folds, opts->seed, fold) : BF_OK;
-    if (rc == BF_OK && r->have[u]) {
+    if (r->have[u]) {
         memcpy(grids, r->grids + u * r->per, r->per * sizeof *grids);
-    } else if (rc == BF_OK && cv) {
+    } else if (cv) {
         rc = bf__grid_optima_folds(gp->gr, &pb, fc->pm->cs->cti, fold,
                                    opts->folds, grids);
-    } else if (rc == BF_OK) {
+    } else {
         const double *w[1] = {NULL};
         rc = bf__grid_optima(gp->gr, &pb, fc->pm->cs->cti, 1, w, grids);
     }
@@ -358,61 +418,7 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
             return rc;
         }
     }
-    if (pb.free_mask != 0) {
-        rc = bf__intervals(fc, &st->refined, opts->noise, opts->level,
-                           &iv);
-        if (rc == BF_ENOMEM) {
-            return rc;
-        }
-        if (rc != BF_OK) {
-            st->flags |= BF_STAT_CI_FAIL;
-        }
-        for (j = 0; j < pb.type->p; j++) {
-            if ((pb.free_mask >> j) & 1u) {
-                st->ci_low[j] = iv.low[j];
-                st->ci_high[j] = iv.high[j];
-                st->ml_param[j] = iv.ml.param[j];
-            }
-        }
-        st->ci_open = iv.open;
-        st->ci_method = iv.method;
-        st->noise_power = iv.noise_power;
-        st->noise_sigma = iv.sigma;
-        st->not_identified = iv.not_identified;
-    }
-    if (opts->n_boot >= 2 && pb.free_mask != 0) {
-        unsigned split = 0;
-        rc = bf__bootstrap(fc, &iv, opts->n_boot, opts->seed, opts->level,
-                           NULL, NULL, st->boot_low, st->boot_high, &split);
-        st->boot_split = split;
-        if (split != 0) {
-            st->flags |= BF_STAT_BOOT_SPLIT;
-        }
-        if (rc == BF_ENOMEM) {
-            return rc;
-        }
-        if (rc != BF_OK) {
-            st->flags |= BF_STAT_BOOT_FAIL;
-        } else {
-            st->boot_method = BF_CI_RESIDUAL_BOOTSTRAP;
-        }
-    }
-    if (st->refined.lse > 0.0) {
-        st->aic = bf_criterion_aic(st->refined.lse, pb.n, st->k);
-        st->bic = bf_criterion_bic(st->refined.lse, pb.n, st->k);
-    }
-    if (opts->folds >= 2 && opts->folds <= pb.n) {
-        if (pb.free_mask == 0) {
-            st->cv = st->refined.lse; /* nothing to fit: CV = LSE */
-        } else {
-            rc = bf__cv(fc, gp->gr, fold, opts->folds, grids + 1, &st->cv);
-            if (rc == BF_ENOMEM) {
-                return rc;
-            }
-        }
-    }
-    st->done = 1;
-    return BF_OK;
+    return analyse_rest(fc, &pb, opts, fold, gp->gr, grids + 1, st);
 }
 
 /* ==== the grid optima of a group, one pass (phase 2) ===================== */

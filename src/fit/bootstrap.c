@@ -125,11 +125,14 @@ static void percentiles(const bf_problem *pb, double *e, size_t n_boot,
  * Where Z'Z is singular (a parameter without effect) every h_k is the
  * mean leverage q / n. */
 static int leverages(bf__fitctx *fc, const bf_interval *iv, const double *fit,
-                     double *z, double *t0, double *t1, double *h)
+                     double top, double *z, double *t0, double *t1,
+                     double *h)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
-    size_t q = 1;
+    /* a specular model (SPEC §9): no scale beside its own parameters */
+    int spec = pb->type->kind == BF_MODEL_SPECULAR;
+    size_t q = spec ? 0 : 1;
     double a[(BF_MAX_PARAMS + 1) * (BF_MAX_PARAMS + 1)] = {0};
     double x[BF_MAX_PARAMS + 1];
     gsl_matrix_view av;
@@ -139,7 +142,8 @@ static int leverages(bf__fitctx *fc, const bf_interval *iv, const double *fit,
     size_t k;
     int rc = BF_OK;
     for (k = 0; k < n; k++) {
-        double l = fit[k] > BF_LOG_FLOOR ? fit[k] : BF_LOG_FLOOR;
+        double l = fit[k] / top;
+        l = l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR;
         h[k] = pow(l, -0.5 * iv->noise_power); /* 1 / sqrt(v_k) */
         z[k * (BF_MAX_PARAMS + 1)] = fit[k] * h[k];
     }
@@ -147,6 +151,9 @@ static int leverages(bf__fitctx *fc, const bf_interval *iv, const double *fit,
         double p0[BF_MAX_PARAMS];
         double p1[BF_MAX_PARAMS];
         double dx = LEV_STEP * (pb->hi[j] - pb->lo[j]);
+        if (spec) { /* domains up to 1e6 wide: relative to the value */
+            dx = LEV_STEP * fmax(fabs(iv->ml.param[j]), dx * LEV_STEP);
+        }
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
@@ -203,7 +210,7 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    double *fit = malloc((7 + BF_MAX_PARAMS) * n * sizeof *fit);
+    double *fit = malloc((8 + BF_MAX_PARAMS) * n * sizeof *fit);
     double *own = est == NULL ? malloc(n_boot * BF_MAX_PARAMS * sizeof *own)
                               : NULL;
     double *e = est != NULL ? est : own;
@@ -213,6 +220,9 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
     double *t1 = fit == NULL ? NULL : fit + 4 * n;
     double *sdv = fit == NULL ? NULL : fit + 5 * n;
     double *z = fit == NULL ? NULL : fit + 6 * n; /* n x (free + 1) */
+    double *wlik = fit == NULL ? NULL : fit + (7 + BF_MAX_PARAMS) * n;
+    int spec = pb->type->kind == BF_MODEL_SPECULAR;
+    double top = 1.0; /* the mean's maximum (specular models) */
     double mean = 0.0;
     bf_problem rep = *pb;
     bf_fit_result start;
@@ -240,12 +250,20 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
     rep.objective = BF__OBJ_LIK; /* [4], at the fitted power */
     rep.noise_power = iv->noise_power;
     rep.data = d;
-    rc = bf__curve(fc->pm, iv->ml.param, fc->work, fit);
+    if (spec) { /* its likelihood: weights held at the fit (noise.c) */
+        rep.objective = BF_OBJ_NGAN;
+        rep.weight = wlik;
+        rc = bf__spec_weights(fc, iv->ml.param, iv->noise_power, wlik,
+                              &top);
+    }
     if (rc == BF_OK) {
-        rc = leverages(fc, iv, fit, z, d, t1, lev);
+        rc = bf__curve(fc->pm, iv->ml.param, fc->work, fit);
+    }
+    if (rc == BF_OK) {
+        rc = leverages(fc, iv, fit, top, z, d, t1, lev);
     }
     for (i = 0; rc == BF_OK && i < n; i++) { /* [1] alg. 6.3 */
-        double l = fit[i] > BF_LOG_FLOOR ? fit[i] : BF_LOG_FLOOR;
+        double l = fit[i] / top > BF_LOG_FLOOR ? fit[i] / top : BF_LOG_FLOOR;
         double r = pb->data[i] - iv->scale * fit[i];
         sdv[i] = pow(l, 0.5 * iv->noise_power); /* sqrt(v_i) */
         fit[i] *= iv->scale;
@@ -266,10 +284,14 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
         for (i = 0; i < n; i++) { /* [1] alg. 6.3 */
             d[i] = fit[i] + sdv[i] * resid[gsl_rng_uniform_int(rng, n)];
         }
-        st = bf__fit_value(fc, start.param, &start.lse);
-        if (st == BF_OK) {
-            st = bf__refine(fc, &start, &r);
-            st = st == BF_ENOCONV ? BF_OK : st; /* the best point */
+        if (spec) { /* the scales solved, the others refined */
+            st = bf__varpro_refine(fc, start.param, &r);
+        } else {
+            st = bf__fit_value(fc, start.param, &start.lse);
+            if (st == BF_OK) {
+                st = bf__refine(fc, &start, &r);
+                st = st == BF_ENOCONV ? BF_OK : st; /* the best point */
+            }
         }
         if (st == BF_ENOMEM) {
             rc = st;

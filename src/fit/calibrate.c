@@ -23,9 +23,12 @@
 
 #include "fit/engine.h"
 
-/* One simulated data set into d (n values): false when not normalisable. */
-static int simulate(const bf_problem *pb, const double *curve, double p,
-                    double sigma, gsl_rng *rng, double *d)
+/* One simulated data set into d (n values): false when not normalisable.
+ * m > 0: a specular model's (SPEC §9), curve = rho_hat / m, the data
+ * m (L + sigma max(L, f)^(p/2) eps) kept in sr^-1 (noise.c), never
+ * normalised. */
+static int simulate(const bf_problem *pb, const double *curve, double m,
+                    double p, double sigma, gsl_rng *rng, double *d)
 {
     double top = -HUGE_VAL;
     size_t k;
@@ -33,6 +36,12 @@ static int simulate(const bf_problem *pb, const double *curve, double p,
         double l = curve[k] > BF_LOG_FLOOR ? curve[k] : BF_LOG_FLOOR;
         d[k] = curve[k] + sigma * pow(l, 0.5 * p) * gsl_ran_gaussian(rng, 1.0);
         top = d[k] > top ? d[k] : top;
+    }
+    if (m > 0.0) {
+        for (k = 0; k < pb->n; k++) {
+            d[k] *= m;
+        }
+        return 1;
     }
     if (!(top > 0.0)) {
         return 0;
@@ -110,6 +119,8 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
     size_t boot_cover[BF_MAX_PARAMS] = {0};
     double *curve = NULL;
     double *d = NULL;
+    double top = 0.0; /* a specular model's maximum (simulate) */
+    int spec = pb->type->kind == BF_MODEL_SPECULAR;
     size_t m = 0;
     size_t r;
     size_t j;
@@ -149,11 +160,19 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
         gsl_rng_set(rng, seed);
         rc = bf__curve(&so.pm, truth, so.fc.work, curve);
     }
-    if (rc == BF_OK) {
+    for (j = 0; rc == BF_OK && spec && j < pb->n; j++) {
+        top = curve[j] > top ? curve[j] : top;
+    }
+    if (rc == BF_OK && spec) { /* its own search, no stored grid */
+        for (j = 0; j < pb->n; j++) {
+            curve[j] /= top;
+        }
+        rc = top > 0.0 && isfinite(top) ? BF_OK : BF_EDOM;
+    } else if (rc == BF_OK) {
         rc = bf__grid_layout_range(pb->type, pb->fixed, pb->free_mask, pb->lo,
                                    pb->hi, &lay);
     }
-    if (rc == BF_OK) {
+    if (rc == BF_OK && !spec) {
         gr = bf__grid_make(&so.pm, &lay, &rc);
     }
     for (r = 0; rc == BF_OK && r < n_sim; r++) {
@@ -164,16 +183,20 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
         double blo[BF_MAX_PARAMS];
         double bhi[BF_MAX_PARAMS];
         int st;
-        if (!simulate(&sim, curve, noise_power, sigma, rng, d)) {
+        if (!simulate(&sim, curve, top, noise_power, sigma, rng, d)) {
             out->n_failed++;
             continue;
         }
         bf__fitctx_use(&so.fc, &sim);
-        rc = bf__grid_optima(gr, &sim, so.cs.cti, 1, w, &g);
-        if (rc != BF_OK) {
-            break;
+        if (spec) { /* the separable fit (varpro.c) */
+            st = bf__varpro_fit(&so.fc, NULL, &best);
+        } else {
+            rc = bf__grid_optima(gr, &sim, so.cs.cti, 1, w, &g);
+            if (rc != BF_OK) {
+                break;
+            }
+            st = isfinite(g.lse) ? bf__refine(&so.fc, &g, &best) : BF_EDOM;
         }
-        st = isfinite(g.lse) ? bf__refine(&so.fc, &g, &best) : BF_EDOM;
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
         }

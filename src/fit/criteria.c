@@ -68,19 +68,24 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
     double *w = malloc(n * sizeof *w);
-    bf_fit_result *g = fold_grid == NULL ? malloc((folds + 1) * sizeof *g)
-                                         : NULL;
+    /* a specular model (SPEC §9): each fold fitted by its own separable
+     * fit (varpro.c: grid, refinement), no stored grid */
+    int spec = pb->type->kind == BF_MODEL_SPECULAR;
+    bf_fit_result *g = fold_grid == NULL && !spec
+                           ? malloc((folds + 1) * sizeof *g)
+                           : NULL;
     double *resid = malloc(n * sizeof *resid);
     double sum = 0.0;
     size_t f;
     size_t k;
     int rc = BF_OK;
 
-    if (w == NULL || resid == NULL || (fold_grid == NULL && g == NULL)) {
+    if (w == NULL || resid == NULL ||
+        (fold_grid == NULL && g == NULL && !spec)) {
         rc = BF_ENOMEM;
         goto done;
     }
-    if (fold_grid == NULL) { /* every fold's grid optimum, one pass */
+    if (fold_grid == NULL && !spec) { /* every fold's grid optimum */
         rc = bf__grid_optima_folds(gr, pb, fc->pm->cs->cti, fold, folds, g);
         fold_grid = g + 1;
     }
@@ -92,8 +97,13 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         }
         train.weight = w;
         bf__fitctx_use(fc, &train);
-        rc = isfinite(fold_grid[f].lse) ? bf__refine(fc, &fold_grid[f], &r)
-                                        : BF_EDOM;
+        if (spec) {
+            rc = bf__varpro_fit(fc, NULL, &r);
+        } else {
+            rc = isfinite(fold_grid[f].lse)
+                     ? bf__refine(fc, &fold_grid[f], &r)
+                     : BF_EDOM;
+        }
         rc = rc == BF_ENOCONV ? BF_OK : rc;
         if (rc == BF_OK) {
             /* residuals under the training fit (its scale, for scale) */

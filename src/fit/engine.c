@@ -216,6 +216,12 @@ int bf__columns_scaled(const bf__prep *pm, const double *param, unsigned lin,
 {
     size_t q = 0;
     size_t j;
+    for (j = 0; j < pm->type->p; j++) {
+        if (pm->type->param[j].linear && !((lin >> j) & 1u)) {
+            /* a scale held (a profile's): c0 is not 0 */
+            return bf__columns_values(pm, param, lin, work, c0, col);
+        }
+    }
     memset(c0, 0, pm->n * sizeof *c0);
     for (j = 0; j < pm->type->p; j++) {
         if (((lin >> j) & 1u) &&

@@ -152,7 +152,8 @@ int bf__columns_values(const bf__prep *pm, const double *param, unsigned lin,
                        void *work, double *c0, double *const *col);
 /* The columns of a kernel whose values are linear in its linear
  * parameters without offset (value = sum_q theta_q f_q(others): the
- * specular lobes' rho_s, SPEC §9.3): c0 = 0, one values() per column. */
+ * specular lobes' rho_s, SPEC §9.3): c0 = 0, one values() per column;
+ * bf__columns_values when a linear parameter is not in lin (held). */
 int bf__columns_scaled(const bf__prep *pm, const double *param, unsigned lin,
                        void *work, double *c0, double *const *col);
 
@@ -341,6 +342,24 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
  * BF_EINVAL (more than two free scales, or not such a model). */
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
                    bf_fit_result *result);
+/* The free scales of pb (bf_param.linear): the mask the separable fit
+ * solves. */
+unsigned bf__varpro_lin(const bf_problem *pb);
+/* The separable fit of fc->pb (objective ngan, any weights) refined from
+ * start alone: Levenberg-Marquardt over the free non-scale parameters
+ * with the free scales solved at every point (Nelder-Mead off a bound),
+ * no grid; the profile intervals' inner fits, the bootstrap's refits
+ * (intervals.c, profile.c, bootstrap.c). result->param holds the solved
+ * scales. BF_OK, BF_EDOM (start undefined), BF_EINVAL, BF_ENOMEM. */
+int bf__varpro_refine(bf__fitctx *fc, const double *start,
+                      bf_fit_result *result);
+/* The likelihood's weights of a specular model (intervals.c): w_k =
+ * w0_k / v_k, v_k = max(rho_hat_k / M, f)^p at param (M = max_k
+ * rho_hat_k, f = BF_LOG_FLOOR; w0 = pb->weight or 1), scaled to the sum
+ * of w0 (so n of the profile criterion stays K). *m (may be NULL) gets M.
+ * Uses fc->curve. BF_OK or BF_EDOM (rho_hat not positive somewhere). */
+int bf__spec_weights(bf__fitctx *fc, const double *param, double p,
+                     double *w, double *m);
 
 /* The scales the separable fit solves at param's other values, for each
  * of fc->blocks channels: out[c * BF_MAX_PARAMS + j] = param[j] for the

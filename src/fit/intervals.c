@@ -21,6 +21,7 @@
  */
 #include <gsl/gsl_cdf.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fit/engine.h"
@@ -106,6 +107,109 @@ static int profiles(bf__fitctx *fc, double level, double thr,
     return BF_OK;
 }
 
+/* ==== the specular models (SPEC §9) ====================================== */
+
+/* The noise power at param of a specular model under fc->pb (its data and
+ * weights): bf__noise_power on the mean's shape rho_hat / max. */
+static int spec_power(bf__fitctx *fc, const double *param, double *p)
+{
+    double top = 0.0;
+    size_t k;
+    int rc = bf__curve(fc->pm, param, fc->work, fc->curve);
+    for (k = 0; rc == BF_OK && k < fc->pb->n; k++) {
+        top = fc->curve[k] > top ? fc->curve[k] : top;
+    }
+    if (rc != BF_OK || !(top > 0.0) || !isfinite(top)) {
+        return BF_EDOM;
+    }
+    for (k = 0; k < fc->pb->n; k++) {
+        fc->curve[k] /= top;
+    }
+    *p = bf__noise_power(fc->pb, fc->curve, fc->scratch);
+    return BF_OK;
+}
+
+/* A specular model's intervals: its scales are parameters, solved by NNLS
+ * (varpro.c) in every evaluation, the likelihood's variances held at the
+ * fit (noise.c, bf__spec_weights): from the objective's fit, p there, the
+ * maximum-likelihood fit under the weights of p, p again (NOISE_PASSES);
+ * then each free parameter's profile under the last weights, k = free
+ * parameters + [p estimated] (no scale beside the model's own). w: n
+ * doubles, the weights, borrowed by the profiles. */
+static int spec_intervals(bf__fitctx *fc, const bf_fit_result *best,
+                          bf_noise noise, double level, double *w,
+                          bf_interval *out)
+{
+    const bf_problem *pb = fc->pb;
+    bf_problem lik = *pb;
+    double n_w = bf__weight_sum(pb);
+    double nu = n_w - (double)bf_problem_nfree(pb) -
+                (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
+    double p = noise == BF_NOISE_RELATIVE ? 2.0 : 0.0;
+    double top = 0.0;
+    double rss = 0.0;
+    size_t pass;
+    size_t k;
+    int rc = BF_OK;
+    if (!(nu >= 1.0)) {
+        return BF_EDOM; /* K <= estimated parameters: no noise estimate */
+    }
+    lik.objective = BF_OBJ_NGAN;
+    lik.weight = w;
+    out->ml = *best;
+    if (noise == BF_NOISE_AUTO) {
+        rc = spec_power(fc, best->param, &p);
+    }
+    for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
+        double p_new;
+        bf_fit_result ml;
+        rc = bf__spec_weights(fc, out->ml.param, p, w, NULL);
+        if (rc == BF_OK) {
+            bf__fitctx_use(fc, &lik);
+            rc = bf__varpro_refine(fc, out->ml.param, &ml);
+            bf__fitctx_use(fc, pb);
+        }
+        if (rc != BF_OK) {
+            break;
+        }
+        out->ml = ml;
+        if (noise != BF_NOISE_AUTO) {
+            break;
+        }
+        rc = spec_power(fc, out->ml.param, &p_new);
+        if (rc != BF_OK || fabs(p_new - p) < NOISE_TOL ||
+            pass + 1 == NOISE_PASSES) {
+            break;
+        }
+        p = p_new;
+    }
+    if (rc == BF_OK) { /* sigma^2 = RSS_v / nu, relative to M */
+        rc = bf__curve(fc->pm, out->ml.param, fc->work, fc->curve);
+        for (k = 0; rc == BF_OK && k < pb->n; k++) {
+            top = fc->curve[k] > top ? fc->curve[k] : top;
+        }
+        for (k = 0; rc == BF_OK && k < pb->n; k++) {
+            double l = fc->curve[k] / top;
+            double r = fc->curve[k] - pb->data[k];
+            double wk = pb->weight != NULL ? pb->weight[k] : 1.0;
+            rss += wk * r * r /
+                   pow(l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR, p);
+        }
+    }
+    if (rc == BF_OK) {
+        out->noise_power = p;
+        out->scale = 1.0; /* the model's own scales */
+        out->sigma = sqrt(rss / nu) / top;
+        out->method = BF_CI_PROFILE_LIK;
+        bf__fitctx_use(fc, &lik);
+        rc = profiles(fc, level,
+                      n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu),
+                      out);
+        bf__fitctx_use(fc, pb);
+    }
+    return rc;
+}
+
 int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
                   double level, bf_interval *out)
 {
@@ -121,6 +225,13 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
     int rc = BF_OK;
 
     clear(out, noise);
+    if (pb->type->kind == BF_MODEL_SPECULAR && noise != BF_NOISE_OBJECTIVE) {
+        double *w = malloc((pb->n + 1) * sizeof *w);
+        rc = w == NULL ? BF_ENOMEM
+                       : spec_intervals(fc, best, noise, level, w, out);
+        free(w);
+        return rc;
+    }
     if (noise == BF_NOISE_OBJECTIVE) { /* the objective's own S */
         out->method = BF_CI_PROFILE;
         out->ml = *best;

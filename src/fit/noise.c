@@ -161,6 +161,50 @@ void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,
     *sigma2 = dof > 0.0 ? rss / dof : NAN;
 }
 
+/* ==== the specular models (SPEC §9): weights of the likelihood ========== */
+
+/* For a model whose scales are parameters (rho_hat = BRDF cos ti in sr^-1,
+ * the scales solved by NNLS, varpro.c) the noise model is the same with
+ * the mean's shape L_k = rho_hat_k / M (M its maximum): var e_k =
+ * sigma^2 M^2 max(L_k, f)^p. Its variances are held at the fit (Carroll &
+ * Ruppert [2] §2.1, generalised least squares with estimated weights:
+ * fit, weights from the fit, refit), so the likelihood is a weighted sum
+ * of squares whose scales NNLS solves exactly, and -2 ln L = n ln S +
+ * const as above. */
+int bf__spec_weights(bf__fitctx *fc, const double *param, double p,
+                     double *w, double *m)
+{
+    const bf_problem *pb = fc->pb;
+    double top = 0.0;
+    double sw = 0.0;
+    double sv = 0.0;
+    size_t k;
+    int rc = bf__curve(fc->pm, param, fc->work, fc->curve);
+    if (rc != BF_OK) {
+        return BF_EDOM;
+    }
+    for (k = 0; k < pb->n; k++) {
+        top = fc->curve[k] > top ? fc->curve[k] : top;
+    }
+    if (!(top > 0.0) || !isfinite(top)) {
+        return BF_EDOM;
+    }
+    for (k = 0; k < pb->n; k++) {
+        double l = fc->curve[k] / top;
+        double w0 = weight_of(pb, k);
+        w[k] = w0 / pow(l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR, p);
+        sw += w0;
+        sv += w[k];
+    }
+    for (k = 0; k < pb->n; k++) {
+        w[k] *= sw / sv; /* sum w = sum w0: n of the criterion */
+    }
+    if (m != NULL) {
+        *m = top;
+    }
+    return BF_OK;
+}
+
 /* ==== names ============================================================== */
 
 static const char *const noise_names[] = {"auto", "absolute", "relative",

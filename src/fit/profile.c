@@ -23,6 +23,13 @@
  * (the warm start followed a local minimum, so the end was too early), the
  * search goes on from there. The result is the end of the true profile
  * wherever the nuisance grid resolves its minima.
+ *
+ * A specular model or composite (SPEC §9; varpro.c): at every point its
+ * free scales are solved exactly (NNLS; a held scale joins the fixed part
+ * of the columns) and the other free parameters refined by
+ * bf__varpro_refine; the thorough fit refines them from the optimum's
+ * values as well (no stored grid). Its domains have no grid step: the
+ * first outward step is 5 % of the estimate.
  */
 #include <float.h>
 #include <gsl/gsl_cdf.h>
@@ -54,6 +61,7 @@ typedef struct {
     double start[BF_MAX_PARAMS]; /* nuisance optimum of the last point */
     double anchor[BF_MAX_PARAMS]; /* the root finder's start: the nuisance
                                     optimum at the bracket's inside end */
+    double est[BF_MAX_PARAMS];   /* the optimum */
     size_t j;
     double s_min;                /* objective at the optimum */
     double n_w;                  /* sum of the weights */
@@ -106,19 +114,15 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     return found ? BF_OK : BF_EDOM;
 }
 
-/* S_p(theta): the warm-started refinement, and with thorough also the
- * grid fit; *improved = 1 when the grid fit was lower. */
-static int inner(profile_t *p, double theta, int thorough, double *s,
-                 int *improved)
+/* The warm-started refinement of the nuisance parameters from the last
+ * point's optimum. A specular model (SPEC §9): its scales solved exactly
+ * (NNLS) at every point, the other free parameters refined (varpro.c). */
+static int warm_fit(profile_t *p, bf_fit_result *warm)
 {
-    bf_fit_result warm;
     bf_fit_result start;
     int rc;
-    *improved = 0;
-    p->sub.fixed[p->j] = theta;
-    p->start[p->j] = theta;
-    if (p->sub.free_mask == 0) {
-        return bf__fit_value(p->fc, p->sub.fixed, s);
+    if (p->sub.type->kind == BF_MODEL_SPECULAR) {
+        return bf__varpro_refine(p->fc, p->start, warm);
     }
     memset(&start, 0, sizeof start);
     memcpy(start.param, p->start, sizeof start.param);
@@ -126,16 +130,45 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     if (rc != BF_OK) {
         start.lse = HUGE_VAL; /* the refinement keeps a defined point */
     }
-    rc = bf__refine(p->fc, &start, &warm);
-    if (rc != BF_OK && rc != BF_ENOCONV) {
-        if (!thorough) {
+    rc = bf__refine(p->fc, &start, warm);
+    return rc == BF_ENOCONV ? BF_OK : rc;
+}
+
+/* The thorough fit: the grid fit; a specular model's refinement from the
+ * optimum's values (its grid is the fit's own, made for the whole domain;
+ * with the scales solved at most two parameters are left, and the two
+ * starts, this and the warm one, find the basins its grid would). */
+static int thorough_fit(profile_t *p, bf_fit_result *g)
+{
+    if (p->sub.type->kind == BF_MODEL_SPECULAR) {
+        return bf__varpro_refine(p->fc, p->est, g);
+    }
+    return grid_fit(p, g);
+}
+
+/* S_p(theta): the warm-started refinement, and with thorough also the
+ * thorough fit; *improved = 1 when that was lower. */
+static int inner(profile_t *p, double theta, int thorough, double *s,
+                 int *improved)
+{
+    bf_fit_result warm;
+    int rc;
+    *improved = 0;
+    p->sub.fixed[p->j] = theta;
+    p->start[p->j] = theta;
+    if (p->sub.free_mask == 0) {
+        return bf__fit_value(p->fc, p->sub.fixed, s);
+    }
+    rc = warm_fit(p, &warm);
+    if (rc != BF_OK) {
+        if (!thorough || rc == BF_ENOMEM) {
             return rc;
         }
         warm.lse = HUGE_VAL;
     }
     if (thorough) {
         bf_fit_result g;
-        rc = grid_fit(p, &g);
+        rc = thorough_fit(p, &g);
         if (rc == BF_ENOMEM) {
             return rc;
         }
@@ -324,6 +357,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     p.sub.free_mask &= ~(1u << j);
     memcpy(p.sub.fixed, best->param, sizeof p.sub.fixed);
     memcpy(p.start, best->param, sizeof p.start);
+    memcpy(p.est, best->param, sizeof p.est);
     p.j = j;
     p.n_w = bf__weight_sum(pb);
     p.chi2 = thr;
@@ -334,6 +368,13 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
         }
         bf__fitctx_use(fc, &p.sub);
         d0 = pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
+        if (pb->type->kind == BF_MODEL_SPECULAR) {
+            /* domains without a grid, the scales' up to 1e6 (SPEC §9.3):
+             * a first step of 5 % of the estimate (of 1e-3 of the domain,
+             * at most 1e-3, from 0) */
+            d0 = theta_hat > 0.0 ? 0.05 * theta_hat
+                                 : 1e-3 * fmin(pb->hi[j] - pb->lo[j], 1.0);
+        }
         rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
         if (rc == BF_OK) {
             rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);

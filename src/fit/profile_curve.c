@@ -14,12 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "fit/engine.h"
 
 /* S_p at theta: pb with parameter j held there (sub has j fixed), the other
  * free parameters minimised from start, which gets their optimum. */
 static int profile_value(bf_problem *sub, size_t j, double theta,
-                         double *start, double *work, double *s)
+                         double *start, double *work, bf__fitctx *fc,
+                         double *s)
 {
     bf_fit_result r;
     int rc;
@@ -28,7 +29,12 @@ static int profile_value(bf_problem *sub, size_t j, double theta,
     if (sub->free_mask == 0) {
         return bf_problem_value(sub, sub->fixed, work, s);
     }
-    rc = bf_fit_minimise(sub, start, &r);
+    if (fc != NULL) { /* a specular model: its scales solved (varpro.c) */
+        bf__fitctx_use(fc, sub);
+        rc = bf__varpro_refine(fc, start, &r);
+    } else {
+        rc = bf_fit_minimise(sub, start, &r);
+    }
     if (rc != BF_OK && rc != BF_ENOCONV) {
         return rc;
     }
@@ -42,8 +48,10 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
                          double *dev)
 {
     bf_problem sub;
+    bf__solo so;
     double start[BF_MAX_PARAMS];
     double *work;
+    int spec;
     double s_min;
     double n_w = 0.0;
     size_t mid = 0;
@@ -67,12 +75,23 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
     if (work == NULL) {
         return BF_ENOMEM;
     }
+    /* a specular model under ngan (SPEC §9, §10): as its intervals, the
+     * scales solved exactly at every point (profile.c) */
+    spec = pb->type->kind == BF_MODEL_SPECULAR &&
+           pb->objective == BF_OBJ_NGAN;
+    if (spec && (rc = bf__solo_init(&so, pb)) != BF_OK) {
+        free(work);
+        return rc;
+    }
     for (k = 0; k < pb->n; k++) {
         n_w += pb->weight != NULL ? pb->weight[k] : 1.0;
     }
     rc = bf_problem_value(pb, best->param, work, &s_min);
     if (rc != BF_OK) {
         free(work);
+        if (spec) {
+            bf__solo_free(&so);
+        }
         return rc;
     }
     s_min = fmax(s_min, DBL_MIN); /* an exact fit */
@@ -83,21 +102,25 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
     }
     /* outward from the optimum, each point warm-started from its inner
      * neighbour (the nuisance optimum moves smoothly with theta) */
-    for (side = 0; side < 2; side++) {
+    for (side = 0; side < 2 && rc == BF_OK; side++) {
         memcpy(sub.fixed, best->param, sizeof sub.fixed);
         memcpy(start, best->param, sizeof start);
         for (k = 0; side == 0 ? k < n - mid : k < mid; k++) {
             size_t at = side == 0 ? mid + k : mid - 1 - k;
             double s;
-            int e = profile_value(&sub, j, theta[at], start, work, &s);
+            int e = profile_value(&sub, j, theta[at], start, work,
+                                  spec ? &so.fc : NULL, &s);
             if (e == BF_ENOMEM) {
-                free(work);
-                return e;
+                rc = e;
+                break;
             }
             /* S_p >= S_min up to the minimiser's tolerance: D >= 0 */
             dev[at] = e == BF_OK ? n_w * log(fmax(s, s_min) / s_min) : NAN;
         }
     }
     free(work);
-    return BF_OK;
+    if (spec) {
+        bf__solo_free(&so);
+    }
+    return rc;
 }

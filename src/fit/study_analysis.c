@@ -66,16 +66,9 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
     if (bf__study_joint_check(spec, 1, opts->objective, err) != BF_OK) {
         return BF_EINVAL;
     }
-    {
-        /* SPEC §10: the objectives that keep the scale compare rho as
-         * measured on the configurations with theta_i, theta_o <= 80 deg */
-        bf_study_spec keep = *spec;
-        int raw = bf_objective_keeps_scale(opts->objective);
-        if (raw && keep.select.max_theta > BF_KEEP_SCALE_THETA) {
-            keep.select.max_theta = BF_KEEP_SCALE_THETA;
-        }
-        rc = bf__study_groups_data(&keep, raw, &gs, err);
-    }
+    /* SPEC §10: the objectives that keep the scale compare rho as
+     * measured on the configurations with theta_i, theta_o <= 80 deg */
+    rc = bf__study_groups_fit(spec, opts->objective, &gs, err);
     if (rc != BF_OK) {
         return rc;
     }

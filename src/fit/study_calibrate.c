@@ -51,7 +51,7 @@ int bf_study_calibrate(const bf_study_spec *spec,
                          "parameters, the scale and the noise power)",
                          r->type->name, r->sample, st->n, st->k);
     }
-    rc = bf__study_groups(spec, &gs, err);
+    rc = bf__study_groups_fit(spec, opts->objective, &gs, err); /* as fitted */
     if (rc != BF_OK) {
         return rc;
     }

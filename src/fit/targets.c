@@ -258,6 +258,17 @@ int bf__study_groups(const bf_study_spec *spec, bf__groups_t *gs,
     return bf__study_groups_data(spec, 0, gs, err);
 }
 
+int bf__study_groups_fit(const bf_study_spec *spec, bf_objective obj,
+                         bf__groups_t *gs, bf_error *err)
+{
+    bf_study_spec keep = *spec;
+    int raw = bf_objective_keeps_scale(obj);
+    if (raw && keep.select.max_theta > BF_KEEP_SCALE_THETA) {
+        keep.select.max_theta = BF_KEEP_SCALE_THETA; /* SPEC §10 */
+    }
+    return bf__study_groups_data(&keep, raw, gs, err);
+}
+
 int bf__study_groups_data(const bf_study_spec *spec, int raw,
                           bf__groups_t *gs, bf_error *err)
 {

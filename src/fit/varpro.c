@@ -770,6 +770,58 @@ static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
     return lin;
 }
 
+unsigned bf__varpro_lin(const bf_problem *pb)
+{
+    size_t n_lin;
+    return lin_of(pb, &n_lin);
+}
+
+int bf__varpro_refine(bf__fitctx *fc, const double *start,
+                      bf_fit_result *result)
+{
+    const bf_problem *pb = fc->pb;
+    unsigned lin = bf__varpro_lin(pb);
+    unsigned saved = fc->lin_mask;
+    size_t eval0 = fc->n_eval;
+    space_t sp;
+    double x[BF_MAX_PARAMS];
+    double step[BF_MAX_PARAMS];
+    double f;
+    double fl;
+    size_t j;
+    int rc;
+    memset(result, 0, sizeof *result);
+    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
+        pb->objective != BF_OBJ_NGAN || fc->blocks > 1) {
+        return BF_EINVAL; /* not a joint fit's channels (no intervals) */
+    }
+    fc->lin_mask = lin;
+    space_init(&sp, fc, pb->free_mask & ~lin);
+    memcpy(x, pb->fixed, sizeof x);
+    for (j = 0; j < sp.m; j++) { /* the free values from start */
+        x[sp.idx[j]] = start[sp.idx[j]];
+    }
+    f = value_at(fc, x);
+    rc = f < UNDEFINED ? levenberg(&sp, x, &f, NULL) : BF_EDOM;
+    fl = f;
+    if (rc == BF_OK && on_bound(&sp, x)) {
+        /* LM's clamped Jacobian vanishes on a bound: Nelder-Mead */
+        grid_steps(&sp, step);
+        rc = polish(&sp, x, step, &f);
+    }
+    if (rc == BF_OK && f < fl) {
+        rc = levenberg(&sp, x, &f, NULL);
+    }
+    if (rc == BF_OK) {
+        fill_scales(fc, x);
+        memcpy(result->param, x, sizeof x);
+        result->lse = f;
+    }
+    result->n_eval = fc->n_eval - eval0;
+    fc->lin_mask = saved;
+    return rc;
+}
+
 int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
 {
     const bf_problem *pb = fc->pb;

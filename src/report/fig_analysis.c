@@ -369,13 +369,22 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 /* The problem of sample index s and model m as the analysis posed it: the
  * model's free parameters over their search ranges, the others at the
  * fitted row's values, under the run's objective. */
-static void problem_of(const bf_fig_data *D, size_t s, size_t m,
-                       bf_problem *pb)
+/* The problem model m was fitted as on sample s: its configurations and
+ * data (bf_fig_fit_data: rho under the objectives that keep the scale). */
+static int problem_of(const bf_fig_data *D, size_t s, size_t m,
+                      bf_fig_desc *d, bf_problem *pb)
 {
     const bf_study_row *row = bf_fig_row(D->st, s, m);
-    const bf_fig_sample *r = &D->smp[s];
-    bf_problem_init(pb, row->type, row->fit.param, r->K, r->geom, r->data);
-    pb->objective = D->st->opts.objective;
+    const bf_geom *geom;
+    const double *data;
+    size_t K;
+    int abs;
+    int rc = bf_fig_fit_data(D, s, d, &K, &geom, &data, &abs);
+    if (rc == BF_OK) {
+        rc = bf_problem_init(pb, row->type, row->fit.param, K, geom, data);
+        pb->objective = D->st->opts.objective;
+    }
+    return rc;
 }
 
 int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
@@ -419,7 +428,12 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         if (!f->done || f->free_mask == 0) {
             continue;
         }
-        problem_of(D, s, m, &pb);
+        {
+            int rc = problem_of(D, s, m, d, &pb);
+            if (rc != BF_OK) {
+                return rc;
+            }
+        }
         for (j = 0; j < t->p; j++) {
             double *theta = &v[(2 * PROFILE_POINTS + 8) * q];
             double *dev = theta + PROFILE_POINTS;
@@ -431,6 +445,11 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             double step = t->param[j].grid_n > 0 ? t->param[j].grid_step
                                                  : (pb.hi[j] - pb.lo[j]) /
                                                        100.0;
+            if (t->kind == BF_MODEL_SPECULAR) {
+                /* no grid, scales up to 1e6 (SPEC §9.3): a share of the
+                 * estimate, as the profile's first step (profile.c) */
+                step = est > 0.0 ? 0.05 * est : 1e-3;
+            }
             double x0;
             double x1;
             size_t k;

@@ -61,6 +61,14 @@ const char *bf_fig_value_name(bf_objective obj);
 
 /* The study row of sample index s and model index m. */
 const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m);
+/* The configurations and data sample index s was fitted on: the figure
+ * data's (bf_fig_sample, normalised) under the paper's objectives, the
+ * fit's rho (bf_study_fit_data, SPEC §10; memory of d) under the
+ * objectives that keep the scale. *abs = 1 for the latter. BF_OK or
+ * BF_ENOMEM / the data's error (src/report/fig_plane.c). */
+int bf_fig_fit_data(const bf_fig_data *D, size_t s, bf_fig_desc *d,
+                    size_t *K, const bf_geom **geom, const double **data,
+                    int *abs);
 /* 1 when model m was evaluated (status BF_OK) for at least one sample of
  * st: ON without tabulated parameters is evaluated for none. */
 int bf_fig_evaluated_anywhere(const bf_rep_study *st, size_t m);

@@ -52,10 +52,9 @@ typedef struct {
     bf_problem pb[BF_FIG_MAX_MODELS];
 } plane_src;
 
-/* ps for sample index s: the figure data's (bf_fig_sample) under the
- * paper's objectives, the fit's rho (SPEC §10) under the others. */
-static int src_init(const bf_fig_data *D, size_t s, bf_fig_desc *d,
-                    plane_src *ps)
+int bf_fig_fit_data(const bf_fig_data *D, size_t s, bf_fig_desc *d,
+                    size_t *K, const bf_geom **geom, const double **data,
+                    int *abs)
 {
     const bf_rep_study *st = D->st;
     const bf_fig_sample *r = &D->smp[s];
@@ -64,38 +63,50 @@ static int src_init(const bf_fig_data *D, size_t s, bf_fig_desc *d,
     size_t nconf = bf_dataset_nconf(st->in.ds, mat);
     const bf_geom *all = bf_dataset_geom(st->in.ds, mat);
     size_t *sel;
-    bf_geom *geom;
-    double *data;
+    bf_geom *g;
+    double *v;
     bf_error err;
     size_t k;
+    int rc;
+    *K = r->K;
+    *geom = r->geom;
+    *data = r->data;
+    *abs = 0;
+    if (!bf_objective_keeps_scale(obj)) {
+        return BF_OK;
+    }
+    *abs = 1;
+    sel = bf_fig_alloc(d, (nconf + 1) * sizeof *sel);
+    g = bf_fig_alloc(d, (nconf + 1) * sizeof *g);
+    v = bf_fig_alloc(d, (nconf + 1) * sizeof *v);
+    if (sel == NULL || g == NULL || v == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = bf_study_fit_data(&st->spec, obj, s, sel, K, v, &err);
+    for (k = 0; rc == BF_OK && k < *K; k++) {
+        g[k] = all[sel[k]];
+    }
+    *geom = g;
+    *data = v;
+    return rc;
+}
+
+/* ps for sample index s: the figure data's (bf_fig_sample) under the
+ * paper's objectives, the fit's rho (SPEC §10) under the others. */
+static int src_init(const bf_fig_data *D, size_t s, bf_fig_desc *d,
+                    plane_src *ps)
+{
+    const bf_rep_study *st = D->st;
     size_t b;
     int rc;
 
     memset(ps, 0, sizeof *ps);
-    ps->K = r->K;
-    ps->geom = r->geom;
-    ps->data = r->data;
-    if (!bf_objective_keeps_scale(obj)) {
-        return BF_OK;
-    }
-    ps->abs = 1;
-    sel = bf_fig_alloc(d, (nconf + 1) * sizeof *sel);
-    geom = bf_fig_alloc(d, (nconf + 1) * sizeof *geom);
-    data = bf_fig_alloc(d, (nconf + 1) * sizeof *data);
-    if (sel == NULL || geom == NULL || data == NULL) {
-        return BF_ENOMEM;
-    }
-    rc = bf_study_fit_data(&st->spec, obj, s, sel, &ps->K, data, &err);
-    for (k = 0; rc == BF_OK && k < ps->K; k++) {
-        geom[k] = all[sel[k]];
-    }
-    ps->geom = geom;
-    ps->data = data;
-    for (b = 0; rc == BF_OK && b < D->nm; b++) {
+    rc = bf_fig_fit_data(D, s, d, &ps->K, &ps->geom, &ps->data, &ps->abs);
+    for (b = 0; rc == BF_OK && ps->abs && b < D->nm; b++) {
         const bf_study_row *row = bf_fig_row(st, s, D->idx[b]);
         rc = bf_problem_init(&ps->pb[b], row->type, row->fit.param, ps->K,
                              ps->geom, ps->data);
-        ps->pb[b].objective = obj;
+        ps->pb[b].objective = st->opts.objective;
     }
     return rc;
 }
