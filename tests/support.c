@@ -306,11 +306,9 @@ void bf_test_glossy_configs(double *at)
     cr_assert_eq(n, BF_TEST_GLOSSY_NCONF);
 }
 
-void bf_test_write_glossy_csv(const char *path, size_t n,
-                              const bf_test_material *mat)
+void bf_test_write_model_csv(const char *path, size_t K, const double *at,
+                             size_t n, const bf_test_material *mat)
 {
-    enum { K = BF_TEST_GLOSSY_NCONF };
-    double *at = malloc(4 * K * sizeof *at);
     double *v = malloc((n + 1) * K * sizeof *v);
     bf_geom *g = malloc(K * sizeof *g);
     bf_dataset *ds = bf_dataset_alloc();
@@ -318,8 +316,7 @@ void bf_test_write_glossy_csv(const char *path, size_t n,
     size_t i;
     size_t k;
     FILE *fp;
-    cr_assert(at != NULL && v != NULL && g != NULL && ds != NULL);
-    bf_test_glossy_configs(at);
+    cr_assert(v != NULL && g != NULL && ds != NULL);
     cr_assert_eq(bf_dataset_add_configs(ds, K, at, &set, NULL), BF_OK);
     for (k = 0; k < K; k++) {
         g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
@@ -345,5 +342,14 @@ void bf_test_write_glossy_csv(const char *path, size_t n,
     bf_dataset_free(ds);
     free(g);
     free(v);
+}
+
+void bf_test_write_glossy_csv(const char *path, size_t n,
+                              const bf_test_material *mat)
+{
+    double *at = malloc(4 * BF_TEST_GLOSSY_NCONF * sizeof *at);
+    cr_assert_not_null(at);
+    bf_test_glossy_configs(at);
+    bf_test_write_model_csv(path, BF_TEST_GLOSSY_NCONF, at, n, mat);
     free(at);
 }

@@ -118,9 +118,14 @@ typedef struct {
     const double *param;
 } bf_test_material;
 
-/* Writes the n materials at bf_test_glossy_configs as one dataset (one
- * channel, material i + 1 is mat[i]) through the library's tidy CSV
- * writer (bf_csv_write) to path; fails the test on any error. */
+/* Writes the n materials at the K configurations at (measurement frame,
+ * radians, 4 angles each) as one dataset (one channel, material i + 1 is
+ * mat[i]) through the library's tidy CSV writer (bf_csv_write) to path;
+ * fails the test on any error. */
+void bf_test_write_model_csv(const char *path, size_t K, const double *at,
+                             size_t n, const bf_test_material *mat);
+
+/* The same at bf_test_glossy_configs. */
 void bf_test_write_glossy_csv(const char *path, size_t n,
                               const bf_test_material *mat);
 

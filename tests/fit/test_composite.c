@@ -213,22 +213,17 @@ Test(composite, dense_recovery_through_the_subsample, .timeout = 300)
     const bf_model_type *t = bf_model_find("LAMBERT+GGX");
     const char *dir = bf_test_tmpdir();
     double *at = malloc(4 * DENSE_N * sizeof *at);
-    double *v = malloc(DENSE_N * sizeof *v);
-    bf_geom *g = malloc(DENSE_N * sizeof *g);
-    bf_dataset *ds = bf_dataset_alloc();
-    bf_material_desc d;
+    const bf_test_material mat = {"dense", t, truth};
     const char *err = NULL;
     char csv[512];
     char out[512];
-    size_t set;
     size_t n = 0;
     size_t j;
     int a;
     int b;
     int c;
     int rc;
-    FILE *fp;
-    cr_assert(at != NULL && v != NULL && g != NULL && ds != NULL && t);
+    cr_assert(at != NULL && t != NULL);
     for (a = 0; a < DENSE_TI; a++) {
         for (b = 0; b < DENSE_TO; b++) {
             for (c = 0; c < DENSE_PHI; c++) {
@@ -236,32 +231,14 @@ Test(composite, dense_recovery_through_the_subsample, .timeout = 300)
                 at[4 * n + 1] = 0.0;
                 at[4 * n + 2] = (1.0 + 78.0 * b / (DENSE_TO - 1)) * DEG;
                 at[4 * n + 3] = 0.5 * DEG + 2.0 * PI * c / DENSE_PHI;
-                g[n] = bf_geom_from_measurement(at[4 * n], at[4 * n + 1],
-                                                at[4 * n + 2],
-                                                at[4 * n + 3]);
                 n++;
             }
         }
     }
-    cr_assert_eq(bf_model_eval(t, truth, DENSE_N, g, v), BF_OK);
-    cr_assert_eq(bf_dataset_add_configs(ds, DENSE_N, at, &set, NULL), BF_OK);
-    memset(&d, 0, sizeof d);
-    d.name = "dense";
-    d.format = BF_FORMAT_MEMORY;
-    d.set = set;
-    d.n_channels = 1;
-    d.values = v;
-    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
     snprintf(csv, sizeof csv, "%s/dense.csv", dir);
     snprintf(out, sizeof out, "%s/dense", dir);
-    fp = fopen(csv, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_model_csv(csv, DENSE_N, at, 1, &mat);
     free(at);
-    free(v);
-    free(g);
     {
         const char *argv[] = {"compare", "--input", csv, "--models",
                               "LAMBERT+GGX", "--fit", "exact",
