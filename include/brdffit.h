@@ -1341,6 +1341,41 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      size_t n_sim, size_t n_boot, unsigned long seed,
                      double level, bf_calibration *out);
 
+/* The band of bf_calibration_summarise: the central share of the
+ * coverages that calibrated intervals give by chance. */
+#define BF_CALIBRATION_BAND 0.99
+
+/* What a calibration says of parameter j's intervals, as the tables show
+ * it (`brdffit calibrate`, `brdffit report --calibrate`; doc/methods.md
+ * §3), from c (bf_fit_calibrate) at the intervals' level. */
+typedef struct {
+    size_t n;              /* simulations fitted (c->n_sim) */
+    double coverage;       /* c->coverage[j] */
+    double coverage_sd;    /* sd of the coverage of calibrated intervals
+                              over n simulations: sqrt(level (1 - level)
+                              / n) */
+    double band_low;       /* the band: the shares x/n of the counts x */
+    double band_high;      /*   whose lower and upper tail probabilities
+                              under Binomial(n, level) are both at least
+                              (1 - BF_CALIBRATION_BAND) / 2 */
+    int verdict;           /* -1 coverage below the band (the intervals
+                              cover less than they say), 1 above it, 0
+                              inside */
+    double bias_sd;        /* c->ml_bias[j] / c->ml_sd[j]: the bias of the
+                              estimate the intervals are about, in sds */
+    double width_spread;   /* c->width[j] / (2 z c->ml_sd[j]), z the
+                              standard normal quantile of (1 + level) / 2:
+                              1 when the median interval is as wide as the
+                              estimates' spread asks */
+    double not_identified; /* c->not_identified[j] */
+} bf_calibration_summary;
+
+/* Fills out for parameter j of c at level. BF_EINVAL for a parameter
+ * that was not calibrated (NaN coverage, no simulation), j out of range
+ * or level outside (0, 1). */
+int bf_calibration_summarise(const bf_calibration *c, size_t j, double level,
+                             bf_calibration_summary *out);
+
 /* The residual bootstrap under a fit's noise model (doc/methods.md §3,
  * ci_method "residual-bootstrap"): iv from bf_fit_intervals(pb, ...) (its
  * maximum-likelihood estimate, scale and noise power; BF_EDOM unless
@@ -1503,6 +1538,36 @@ int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_study_row *rows, const bf_fit_stats *stats,
                        size_t u, size_t n_sim, unsigned long seed,
                        bf_calibration *out, bf_error *err);
+
+/* The calibration of a whole analysed study (bf_study_calibrate_all). */
+typedef struct {
+    size_t n;             /* pairs calibrated */
+    size_t *pair;         /* their indices u (as rows, target-major),
+                             increasing */
+    bf_calibration *cal;  /* cal[i]: pair[i]'s */
+    size_t n_sim;         /* simulations asked per pair */
+    double *ml_est;       /* the maximum-likelihood estimate of free
+                             parameter j in the r-th simulation of pair[i]
+                             fitted, at ml_est[(i * BF_MAX_PARAMS + j) *
+                             n_sim + r], r < cal[i].n_sim; NaN elsewhere */
+} bf_study_calibration;
+
+/* bf_study_calibrate(spec, opts, rows, stats, u, n_sim, seed) for every
+ * pair u that was analysed (stats[u].done) and has free parameters, in
+ * parallel on spec->n_threads threads (the same numbers for any count:
+ * every pair is simulated from seed), opts->progress called after each
+ * simulation (done of out->n x n_sim: its units are simulations), into
+ * out (zeroed first; free it with
+ * bf_study_calibration_free, also after an error). Errors as
+ * bf_study_calibrate's for the first pair that fails (err->msg naming
+ * it); BF_ENOMEM. */
+int bf_study_calibrate_all(const bf_study_spec *spec,
+                           const bf_analysis_opts *opts,
+                           const bf_study_row *rows,
+                           const bf_fit_stats *stats, size_t n_sim,
+                           unsigned long seed, bf_study_calibration *out,
+                           bf_error *err);
+void bf_study_calibration_free(bf_study_calibration *c);
 
 /* ---- model selection: ranks, ties, the best model (§5) ---- */
 
@@ -1887,6 +1952,10 @@ typedef struct {
     size_t folds;          /* cross-validation folds (0: none) */
     unsigned long seed;
     int stats;             /* the analysis with the paper's fit */
+    size_t calibrate;      /* simulations per (sample, model) pair that
+                              check the intervals (bf_study_calibrate_all,
+                              calibrate.csv; runs the analysis); 0: none,
+                              else at least BF_CALIBRATE_MIN_SIM */
     int threads;           /* 0: one per core; also drawing processes */
     /* the figures */
     unsigned formats;      /* bits 1 << BF_REPORT_PNG, _SVG, _PDF */

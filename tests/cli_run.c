@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -131,6 +132,32 @@ const char *bf_test_slurp(const char *path, size_t *len)
         *len = n;
     }
     return buf;
+}
+
+char *bf_test_copy(const char *path, size_t *len)
+{
+    const char *s = bf_test_slurp(path, len);
+    char *c;
+    cr_assert_not_null(s, "%s missing", path);
+    c = malloc(*len + 1);
+    cr_assert_not_null(c);
+    memcpy(c, s, *len + 1);
+    return c;
+}
+
+const char *bf_test_join(const char *dir, const char *name)
+{
+    static char path[4][2048];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
+    return path[k];
+}
+
+int bf_test_exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
 }
 
 /* ==== CSV outputs, found by header name ================================== */

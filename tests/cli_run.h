@@ -27,6 +27,17 @@ const char *bf_test_tmpdir(void);
 /* Reads a whole file into a static buffer; NULL when it does not exist. */
 const char *bf_test_slurp(const char *path, size_t *len);
 
+/* A heap copy of a whole file (the caller frees it), *len its bytes;
+ * fails the test when it does not exist. */
+char *bf_test_copy(const char *path, size_t *len);
+
+/* "dir/name" in one of four static buffers used in turn (so that up to
+ * four paths are alive at once). */
+const char *bf_test_join(const char *dir, const char *name);
+
+/* 1 when path exists. */
+int bf_test_exists(const char *path);
+
 /* A CSV output of the CLI (dir/name), read whole into static storage
  * (quoted fields unquoted); returns its number of lines (header included). Its
  * cells are found by header name: bf_test_csv_cell (borrowed until the

@@ -2,6 +2,8 @@
 #include "support.h"
 
 #include <criterion/criterion.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -309,6 +311,14 @@ void bf_test_glossy_configs(double *at)
 void bf_test_write_model_csv(const char *path, size_t K, const double *at,
                              size_t n, const bf_test_material *mat)
 {
+    bf_test_write_noisy_csv(path, K, at, n, mat, 0.0, 0);
+}
+
+void bf_test_write_noisy_csv(const char *path, size_t K, const double *at,
+                             size_t n, const bf_test_material *mat,
+                             double noise, unsigned long seed)
+{
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double *v = malloc((n + 1) * K * sizeof *v);
     bf_geom *g = malloc(K * sizeof *g);
     bf_dataset *ds = bf_dataset_alloc();
@@ -316,7 +326,8 @@ void bf_test_write_model_csv(const char *path, size_t K, const double *at,
     size_t i;
     size_t k;
     FILE *fp;
-    cr_assert(v != NULL && g != NULL && ds != NULL);
+    cr_assert(v != NULL && g != NULL && ds != NULL && rng != NULL);
+    gsl_rng_set(rng, seed);
     cr_assert_eq(bf_dataset_add_configs(ds, K, at, &set, NULL), BF_OK);
     for (k = 0; k < K; k++) {
         g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
@@ -327,6 +338,9 @@ void bf_test_write_model_csv(const char *path, size_t K, const double *at,
         cr_assert_eq(bf_model_eval(mat[i].type, mat[i].param, K, g,
                                    v + i * K),
                      BF_OK, "%s", mat[i].name);
+        for (k = 0; noise > 0.0 && k < K; k++) { /* relative noise */
+            v[i * K + k] *= 1.0 + noise * gsl_ran_gaussian(rng, 1.0);
+        }
         memset(&d, 0, sizeof d);
         d.name = mat[i].name;
         d.format = BF_FORMAT_MEMORY;
@@ -340,6 +354,7 @@ void bf_test_write_model_csv(const char *path, size_t K, const double *at,
     cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
     cr_assert_eq(fclose(fp), 0);
     bf_dataset_free(ds);
+    gsl_rng_free(rng);
     free(g);
     free(v);
 }

@@ -125,6 +125,13 @@ typedef struct {
 void bf_test_write_model_csv(const char *path, size_t K, const double *at,
                              size_t n, const bf_test_material *mat);
 
+/* The same with relative noise: each value times 1 + noise eps, eps
+ * standard normal (GSL mt19937 seeded with seed), as radiance measured
+ * with a relative error of sd noise. */
+void bf_test_write_noisy_csv(const char *path, size_t K, const double *at,
+                             size_t n, const bf_test_material *mat,
+                             double noise, unsigned long seed);
+
 /* The same at bf_test_glossy_configs. */
 void bf_test_write_glossy_csv(const char *path, size_t n,
                               const bf_test_material *mat);

@@ -311,11 +311,38 @@ typedef struct {
     double boot_coverage[8];
     double boot_width[8];
 } bf_calibration;
+typedef struct {
+    size_t n;
+    double coverage;
+    double coverage_sd;
+    double band_low;
+    double band_high;
+    int verdict;
+    double bias_sd;
+    double width_spread;
+    double not_identified;
+} bf_calibration_summary;
+int bf_calibration_summarise(const bf_calibration *c, size_t j, double level,
+                             bf_calibration_summary *out);
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
                        const bf_study_row *rows, const bf_fit_stats *stats,
                        size_t u, size_t n_sim, unsigned long seed,
                        bf_calibration *out, bf_error *err);
+typedef struct {
+    size_t n;
+    size_t *pair;
+    bf_calibration *cal;
+    size_t n_sim;
+    double *ml_est;
+} bf_study_calibration;
+int bf_study_calibrate_all(const bf_study_spec *spec,
+                           const bf_analysis_opts *opts,
+                           const bf_study_row *rows,
+                           const bf_fit_stats *stats, size_t n_sim,
+                           unsigned long seed, bf_study_calibration *out,
+                           bf_error *err);
+void bf_study_calibration_free(bf_study_calibration *c);
 
 /* --- the exact fit's policy, ranking, output files --- */
 typedef struct {
@@ -477,6 +504,7 @@ typedef struct {
     size_t folds;
     unsigned long seed;
     int stats;
+    size_t calibrate;
     int threads;
     unsigned formats;
     int single_column;

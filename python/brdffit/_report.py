@@ -132,7 +132,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
            on_params=None, exclude=None, max_theta=90.0,
            exclude_specular=None, ranges=None, threads=1, format="png,pdf",
            size="double", log=False, per_sample=False, incidence=None,
-           fresnel=None, smith=None):
+           fresnel=None, smith=None, calibrate=0):
     """Runs the study of `brdffit report` on dataset and writes its report
     into folder out (created, one level, if missing): fits.csv, table2.md,
     table3.md, report.html and figures/ -- the same files as the CLI with
@@ -147,7 +147,11 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         channel: a channel name, "mean", "each" or "joint" (--channel).
         fit: "paper" or "exact" (--fit); objective, noise: names
             (--objective, --noise); stats (--stats); bootstrap (--bootstrap
-            N); folds, seed (--folds, --seed).
+            N); folds, seed (--folds, --seed); calibrate: N simulated
+            measurements of every fit checking its intervals, 0 none,
+            else at least 10; runs the analysis (--calibrate N: the
+            report's calibrate.csv, table and calibration_sampleN
+            figures; brdffit.calibrate is the same for one fit).
         n: refractive index (--n); n_file, on_params: file paths (--n-file,
             --on-params).
         exclude: configuration numbers (--exclude); max_theta and
@@ -214,6 +218,10 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
     o.folds = int(folds)
     o.seed = int(seed)
     o.stats = bool(stats)
+    if int(calibrate) < 0:
+        raise InvalidArgumentError("calibrate: %r is not a number of "
+                                   "simulations (0: none)" % (calibrate,), 1)
+    o.calibrate = int(calibrate)
     o.threads = int(threads)
     o.formats = _formats(format)
     o.single_column = size == "single"

@@ -88,3 +88,27 @@ def test_a_bad_option_raises_and_writes_nothing(cornell_dir, tmp_path):
     with pytest.raises(brdffit.InvalidArgumentError, match="CURET"):
         brdffit.report(ds, out=tmp_path / "bad", samples="paper")
     assert not (tmp_path / "bad").exists()
+
+
+def test_calibrate_writes_the_clis_calibration(cli, curet, curet_dir,
+                                               tmp_path):
+    # report(calibrate=N) is `brdffit report --calibrate N`: the same
+    # calibrate.csv (and every other file), the table on the page and a
+    # calibration figure; N < 10 is refused as the CLI refuses it
+    want = cli_report(cli, tmp_path, ["--data", curet_dir, "--samples",
+                                      "12", "--models", "VH-E,FC-E",
+                                      "--calibrate", "10", "--format",
+                                      "png"])
+    brdffit.report(curet, out=tmp_path / "py", samples=[12],
+                   models="VH-E,FC-E", calibrate=10, format="png")
+    got = files(tmp_path / "py")
+    assert_same(want, got)
+    lines = got["calibrate.csv"].decode().splitlines()
+    assert lines[0].startswith("sample,name,channel,model,parameter,")
+    assert len(lines) == 3  # VH-E m, FC-E m (--fit paper: n given)
+    assert "figures/calibration_sample12.png" in got
+    assert '<table id="calibration">' in got["report.html"].decode()
+    with pytest.raises(brdffit.InvalidArgumentError, match="at least 10"):
+        brdffit.report(curet, out=tmp_path / "bad", samples=[12],
+                       models="VH-E", calibrate=5)
+    assert not (tmp_path / "bad").exists()

@@ -103,10 +103,37 @@ static void clear(bf_calibration *out, const double *truth, size_t p)
     }
 }
 
+/* Copies the maximum-likelihood estimates of the m simulations fitted
+ * into ml_est (n_sim x BF_MAX_PARAMS, parameter-major; NaN for the
+ * simulations not fitted and the parameters not free). */
+static void keep_estimates(const bf_problem *pb, const tally_t *t, size_t m,
+                           size_t n_sim, double *ml_est)
+{
+    size_t j;
+    size_t r;
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
+        int fitted = j < pb->type->p && ((pb->free_mask >> j) & 1u);
+        for (r = 0; r < n_sim; r++) {
+            ml_est[j * n_sim + r] = fitted && r < m ? t->ml[j * n_sim + r]
+                                                  : NAN;
+        }
+    }
+}
+
 int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      double noise_power, double sigma, bf_noise noise,
                      size_t n_sim, size_t n_boot, unsigned long seed,
                      double level, bf_calibration *out)
+{
+    return bf__fit_calibrate(pb, truth, noise_power, sigma, noise, n_sim,
+                             n_boot, seed, level, NULL, NULL, out);
+}
+
+int bf__fit_calibrate(const bf_problem *pb, const double *truth,
+                      double noise_power, double sigma, bf_noise noise,
+                      size_t n_sim, size_t n_boot, unsigned long seed,
+                      double level, double *ml_est,
+                      const bf__tick *tick, bf_calibration *out)
 {
     bf__solo so;
     bf__grid_layout_t lay;
@@ -183,6 +210,9 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
         double blo[BF_MAX_PARAMS];
         double bhi[BF_MAX_PARAMS];
         int st;
+        if (r > 0 && tick != NULL) {
+            tick->fn(tick->ctx); /* the previous simulation's */
+        }
         if (!simulate(&sim, curve, top, noise_power, sigma, rng, d)) {
             out->n_failed++;
             continue;
@@ -227,6 +257,12 @@ int bf_fit_calibrate(const bf_problem *pb, const double *truth,
             }
         }
         m++;
+    }
+    if (rc == BF_OK && tick != NULL) {
+        tick->fn(tick->ctx); /* the last simulation's */
+    }
+    if (rc == BF_OK && ml_est != NULL) {
+        keep_estimates(pb, &t, m, n_sim, ml_est);
     }
     if (rc == BF_OK) {
         out->n_sim = m;

@@ -479,6 +479,21 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
 int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
+/* A call after each unit of work (progress). */
+typedef struct {
+    void (*fn)(void *ctx);
+    void *ctx;
+} bf__tick;
+/* bf_fit_calibrate keeping each simulation's maximum-likelihood estimate:
+ * ml_est (NULL: not kept; else n_sim x BF_MAX_PARAMS, parameter-major)
+ * gets the estimate of free parameter j in the r-th simulation fitted at
+ * ml_est[j * n_sim + r], r < out->n_sim, NaN elsewhere; tick (NULL: none)
+ * is called after each simulation, fitted or not. */
+int bf__fit_calibrate(const bf_problem *pb, const double *truth,
+                      double noise_power, double sigma, bf_noise noise,
+                      size_t n_sim, size_t n_boot, unsigned long seed,
+                      double level, double *ml_est, const bf__tick *tick,
+                      bf_calibration *out);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
  * bf__grid_optima_folds), or NULL to compute them. */

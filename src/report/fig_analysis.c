@@ -48,10 +48,7 @@ static void rows_width(bf_fig_desc *d, double want, unsigned cap)
     }
 }
 
-/* A parameter's label for an axis, its unit added unless dimensionless,
- * Greek names written as letters and n_d with its subscript: "σ/T (G)",
- * "σ (rad)". */
-static void param_label(const bf_param *p, char *buf, size_t len)
+void bf_fig_param_label(const bf_param *p, char *buf, size_t len)
 {
     static const char *const from[] = {"sigma", "rho", "theta", "n_d"};
     static const char *const to[] = {"\xcf\x83", "\xcf\x81", "\xce\xb8",
@@ -214,7 +211,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[2].n = N;
         sq[2].style = sq[0].style;
         sq[2].label = "exact optimum";
-        param_label(&t->param[j], xl[q], sizeof xl[q]);
+        bf_fig_param_label(&t->param[j], xl[q], sizeof xl[q]);
         panel[q].xmin = xmin - 0.04 * (xmax - xmin);
         panel[q].xmax = xmax + 0.04 * (xmax - xmin);
         panel[q].ymin = 0.3;
@@ -514,7 +511,7 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             thr_x[2] = 0.0;
             sq[3].n = 1;
             sq[3].style = sq[1].style;
-            param_label(&t->param[j], xl[q], sizeof xl[q]);
+            bf_fig_param_label(&t->param[j], xl[q], sizeof xl[q]);
             panel[q].xmin = x0;
             panel[q].xmax = x1;
             panel[q].ymin = -0.8;

@@ -69,6 +69,10 @@ const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m);
 int bf_fig_fit_data(const bf_fig_data *D, size_t s, bf_fig_desc *d,
                     size_t *K, const bf_geom **geom, const double **data,
                     int *abs);
+/* A parameter's label for an axis, its unit added unless dimensionless,
+ * Greek names written as letters and n_d with its subscript: "σ/T (G)",
+ * "σ (rad)". (fig_analysis.c) */
+void bf_fig_param_label(const bf_param *p, char *buf, size_t len);
 /* 1 when model m was evaluated (status BF_OK) for at least one sample of
  * st: ON without tabulated parameters is evaluated for none. */
 int bf_fig_evaluated_anywhere(const bf_rep_study *st, size_t m);
@@ -93,6 +97,12 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                      int full);
 int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full);
+/* (fig_calibration.c) */
+int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
+                       bf_fig_desc *d, int full);
+/* Whether sample index s has a calibrated pair (it gets a calibration
+ * figure). */
+int bf_fig_has_calibration(const bf_rep_study *st, size_t s);
 
 /* Samples per scatter figure (Figures 3-6 hold six each, as the paper). */
 #define BF_FIG_SCATTER_SAMPLES 6

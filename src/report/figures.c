@@ -369,7 +369,8 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 }
 
 /* The figures of the analysis (st->stats): delta BIC, a forest plot per
- * model with fitted parameters, a profile per sample. */
+ * model with fitted parameters, a profile per sample and, with
+ * --calibrate, a calibration figure per sample. */
 static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
 {
     const bf_rep_study *st = D->st;
@@ -383,6 +384,10 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
     }
     for (s = 0; s < st->n_samples && ok; s++) {
         ok = add_entry(set, BF_FIG_PROFILE, s, st->samples[s]) != NULL;
+    }
+    for (s = 0; s < st->n_samples && ok; s++) {
+        ok = !bf_fig_has_calibration(st, s) ||
+             add_entry(set, BF_FIG_CALIBRATION, s, st->samples[s]) != NULL;
     }
     return ok ? BF_OK : BF_ENOMEM;
 }
@@ -401,6 +406,7 @@ static int describe(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     case BF_FIG_PLANE:
     case BF_FIG_POLAR: return bf_fig_plane(D, e, d, full);
     case BF_FIG_PROFILE: return bf_fig_profile(D, e, d, full);
+    case BF_FIG_CALIBRATION: return bf_fig_calibration(D, e, d, full);
     }
     return BF_EINVAL;
 }

@@ -44,7 +44,9 @@ typedef enum {
     BF_FIG_SAMPLE,    /* one sample's scatter panels (--per-sample) */
     BF_FIG_PLANE,     /* one sample, plane of incidence, Cartesian */
     BF_FIG_POLAR,     /* one sample, plane of incidence, polar */
-    BF_FIG_PROFILE    /* analysis: one sample's objective profiles */
+    BF_FIG_PROFILE,   /* analysis: one sample's objective profiles */
+    BF_FIG_CALIBRATION /* --calibrate: one sample's simulated estimates
+                          against the intervals */
 } bf_fig_kind;
 
 /* One figure: drawn in every requested format as BF_FIG_DIR/base.ext. */

@@ -2,6 +2,7 @@
  * data it was given, tables, figures with captions, the analysis, the
  * per-sample figures in collapsible sections, conventions (SPEC §1.4, §2,
  * §4, §7) and provenance, in one page that opens from disk. */
+#include "calibration.h"
 #include "report_html.h"
 #include "texttable.h"
 
@@ -448,6 +449,35 @@ static void conventions(FILE *fp, const bf_rep_study *st,
     free(text);
 }
 
+/* --calibrate: the table, then each sample's figure (collapsed when
+ * there are several samples). */
+static void calibration(FILE *fp, const bf_rep_study *st,
+                        const bf_fig_set *figs)
+{
+    size_t i;
+    fputs("<h3 id=\"calibration-section\">Are the intervals calibrated? "
+          "Simulated measurements</h3>\n", fp);
+    if (bf_report_calibration(fp, st) != 0) {
+        page_oom = 1;
+    }
+    for (i = 0; i < figs->n; i++) {
+        const bf_fig_entry *e = &figs->fig[i];
+        char who[256];
+        if (e->kind != BF_FIG_CALIBRATION) {
+            continue;
+        }
+        if (st->n_samples > 1) {
+            fputs("<details>\n<summary>", fp);
+            bf_tt_html_text(fp, bf_fig_sample_label(st, e->index, who,
+                                                    sizeof who));
+            fputs(": simulated estimates against the interval</summary>\n",
+                  fp);
+        }
+        figure(fp, figs, e);
+        fputs(st->n_samples > 1 ? "</details>\n" : "", fp);
+    }
+}
+
 /* The analysis beyond the paper: model selection and intervals. */
 static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
 {
@@ -474,6 +504,9 @@ static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
           fp);
     bf_report_intervals(fp, st);
     fputs("</details>\n", fp);
+    if (st->opts.calibrate > 0) {
+        calibration(fp, st, figs);
+    }
 }
 
 /* One collapsible section per sample with its figures. */
@@ -515,6 +548,10 @@ static void contents(FILE *fp, const bf_rep_study *st)
     if (st->stats != NULL) {
         fputs(": <a href=\"#selection\">model selection</a>, <a href=\""
               "#intervals-section\">fitted parameters and intervals</a>",
+              fp);
+        fputs(st->opts.calibrate > 0 ? ", <a href=\"#calibration-section\">"
+                                       "calibration</a>"
+                                     : "",
               fp);
     }
     fputs("</li>\n<li><a href=\"#samples\">Per sample</a></li>\n"

@@ -36,6 +36,8 @@ typedef struct {
                                    before --fit exact and --range) */
     bf_analysis_opts analysis;  /* the analysis run (with stats) */
     bf_fit_stats *stats;  /* analysis of each row, or NULL */
+    bf_study_calibration cal; /* opts.calibrate > 0: the calibration of
+                                 every analysed pair (calibration.h) */
 } bf_rep_study;
 
 /* Loads the inputs and resolves the selections of st->opts. Returns

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "calibration.h"
 #include "study.h"
 
 #define DEG (M_PI / 180.0)
@@ -280,7 +281,10 @@ int bf_rep_study_prepare(bf_rep_study *st)
     int rc;
 
     snprintf(hint, sizeof hint, "%s ", st->cmd);
-    rc = select_models(hint, o, &st->models, &st->n_models);
+    rc = bf_rep_calibrate_check(hint, o);
+    if (rc == BF_REPORT_OK) {
+        rc = select_models(hint, o, &st->models, &st->n_models);
+    }
     if (rc == BF_REPORT_OK) {
         rc = make_variants(hint, st); /* --fit exact, --range */
     }
@@ -475,16 +479,18 @@ static int run_analysis(bf_rep_study *st)
 
 int bf_rep_study_run_analysis(bf_rep_study *st)
 {
-    /* The analysis runs with --fit exact, --stats or --bootstrap: the
-     * paper's protocol alone stays the fast default of compare and
-     * report. */
-    if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0) {
-        int rc = run_analysis(st);
-        if (rc != BF_REPORT_OK) {
-            return rc;
-        }
+    /* The analysis runs with --fit exact, --stats, --bootstrap or
+     * --calibrate: the paper's protocol alone stays the fast default of
+     * compare and report. */
+    int rc = BF_REPORT_OK;
+    if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0 ||
+        st->opts.calibrate > 0) {
+        rc = run_analysis(st);
     }
-    return st->opts.exact ? check_rows(st) : BF_REPORT_OK;
+    if (rc == BF_REPORT_OK && st->opts.exact) {
+        rc = check_rows(st);
+    }
+    return rc == BF_REPORT_OK ? bf_rep_study_calibrate(st) : rc;
 }
 
 int bf_rep_study_run(bf_rep_study *st)
@@ -504,6 +510,7 @@ void bf_rep_study_free(bf_rep_study *st)
     free(st->models);
     free(st->samples);
     free(st->targets);
+    bf_study_calibration_free(&st->cal);
     st->rows = NULL;
     st->stats = NULL;
     st->variants = NULL;

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "calibration.h"
 #include "tables.h"
 #include "texttable.h"
 
@@ -620,6 +621,9 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
         goto done;
     }
     rc = write_outputs(st, t2, t3);
+    if (rc == BF_REPORT_OK) {
+        rc = bf_rep_calibration_write(st); /* --calibrate */
+    }
     if (rc != BF_REPORT_OK || st->opts.echo == NULL) {
         goto done;
     }
@@ -638,8 +642,15 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     table3_title(st, 0, fp);
     bf_tt_print(t3, fp);
     on_compare(st, fp);
-    fprintf(fp, "\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md\n",
+    if (st->opts.calibrate > 0) {
+        rc = bf_rep_calibration_print(st, fp);
+    }
+    fprintf(fp, "\nWritten: %s/fits.csv, %s/table2.md, %s/table3.md",
            st->out_dir, st->out_dir, st->out_dir);
+    if (st->opts.calibrate > 0) {
+        fprintf(fp, ", %s/calibrate.csv", st->out_dir);
+    }
+    fputc('\n', fp);
 done:
     bf_tt_free(t2);
     bf_tt_free(t3);

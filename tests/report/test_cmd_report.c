@@ -10,7 +10,6 @@
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli_run.h"
 #include "formats.h"
@@ -22,21 +21,6 @@
  * has 150 pixels per inch. */
 #define CSS_PER_PT 2
 #define PNG_DPI 150
-
-static const char *join(const char *dir, const char *name)
-{
-    static char path[4][1024];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
-    return path[k];
-}
-
-static int exists(const char *path)
-{
-    struct stat sb;
-    return stat(path, &sb) == 0;
-}
 
 /* Runs report on the given samples into dir with extra arguments. */
 static int run_report(const char *dir, const char *samples,
@@ -56,7 +40,7 @@ static int run_report(const char *dir, const char *samples,
 /* A copy of the page (bf_test_slurp's buffer is reused). */
 static char *page_of(const char *dir)
 {
-    const char *html = bf_test_slurp(join(dir, "report.html"), NULL);
+    const char *html = bf_test_slurp(bf_test_join(dir, "report.html"), NULL);
     char *page;
     cr_assert_not_null(html, "no report.html in %s", dir);
     page = strdup(html);
@@ -91,7 +75,7 @@ static void check_references(const char *dir, const char *html)
             cr_expect(strstr(ref, "://") == NULL && strncmp(ref, "//", 2) &&
                           ref[0] != '/',
                       "report.html refers outside its folder: %s", ref);
-            cr_expect(exists(join(dir, ref)),
+            cr_expect(bf_test_exists(bf_test_join(dir, ref)),
                       "report.html refers to a missing file: %s", ref);
         }
     }
@@ -115,7 +99,7 @@ static void img_size(const char *page, const char *base, const char *ext,
  * returns their number. */
 static size_t check_figures(const char *dir, const char *page)
 {
-    DIR *d = opendir(join(dir, "figures"));
+    DIR *d = opendir(bf_test_join(dir, "figures"));
     struct dirent *de;
     size_t n = 0;
     cr_assert_not_null(d);
@@ -138,22 +122,24 @@ static size_t check_figures(const char *dir, const char *page)
                  de->d_name);
         /* the page shows the PNG (or the SVG without PNG) */
         img_size(page, base,
-                 exists(join(dir, "figures/fig2b.png")) ? "png" : "svg", &w,
-                 &h);
+                 bf_test_exists(bf_test_join(dir, "figures/fig2b.png"))
+                     ? "png"
+                     : "svg",
+                 &w, &h);
         w /= CSS_PER_PT;
         h /= CSS_PER_PT;
         snprintf(ref, sizeof ref, "figures/%s", de->d_name);
         if (strcmp(ext, ".png") == 0) {
-            fmt_check_png(join(dir, ref), (w * PNG_DPI + 36) / 72,
+            fmt_check_png(bf_test_join(dir, ref), (w * PNG_DPI + 36) / 72,
                           (h * PNG_DPI + 36) / 72);
-            fmt_check_png_plain(join(dir, ref));
+            fmt_check_png_plain(bf_test_join(dir, ref));
         } else if (strcmp(ext, ".svg") == 0) {
-            fmt_check_svg(join(dir, ref), w, h);
-            fmt_check_svg_plain(join(dir, ref));
+            fmt_check_svg(bf_test_join(dir, ref), w, h);
+            fmt_check_svg_plain(bf_test_join(dir, ref));
         } else {
             cr_assert_str_eq(ext, ".pdf");
-            fmt_check_pdf(join(dir, ref), w, h);
-            fmt_check_pdf_plain(join(dir, ref));
+            fmt_check_pdf(bf_test_join(dir, ref), w, h);
+            fmt_check_pdf_plain(bf_test_join(dir, ref));
         }
         n++;
     }
@@ -205,7 +191,7 @@ static void check_valid_html(const char *dir)
  * and fitted parameter of the analysis. */
 static size_t csv_interval_rows(const char *dir)
 {
-    const char *csv = bf_test_slurp(join(dir, "fits.csv"), NULL);
+    const char *csv = bf_test_slurp(bf_test_join(dir, "fits.csv"), NULL);
     const char *line;
     size_t col = 0;
     size_t n = 0;
@@ -252,9 +238,9 @@ Test(report, writes_every_figure_valid_and_sized_as_the_page_says,
     for (i = 0; i < 4; i++) {
         char base[64];
         snprintf(base, sizeof base, "figures/plane_sample%d.png", samples[i]);
-        cr_expect(exists(join(dir, base)), "%s", base);
+        cr_expect(bf_test_exists(bf_test_join(dir, base)), "%s", base);
     }
-    cr_expect(!exists(join(dir, "figures/delta_bic.png")));
+    cr_expect(!bf_test_exists(bf_test_join(dir, "figures/delta_bic.png")));
     /* the tables, as HTML tables with a row per sample */
     cr_expect_eq(table_rows(page, "table2"), 4u);
     cr_expect_eq(table_rows(page, "table3"), 4u);
@@ -298,15 +284,16 @@ Test(report, stats_add_the_analysis_figures_and_tables, .timeout = 600)
     /* 2 + 1 scatter + delta BIC + 5 forests + 3 x (plane, polar, profile),
      * PNG and PDF (the default formats) */
     cr_expect_eq(check_figures(dir, page), (2 + 1 + 1 + 5 + 3 * 3) * 2);
-    cr_expect(exists(join(dir, "figures/delta_bic.pdf")));
+    cr_expect(bf_test_exists(bf_test_join(dir, "figures/delta_bic.pdf")));
     for (i = 0; i < 5; i++) {
         char f[64];
         snprintf(f, sizeof f, "figures/forest_%s.png", fitted[i]);
-        cr_expect(exists(join(dir, f)), "%s", f);
+        cr_expect(bf_test_exists(bf_test_join(dir, f)), "%s", f);
     }
-    cr_expect(!exists(join(dir, "figures/forest_ON.png")),
+    cr_expect(!bf_test_exists(bf_test_join(dir, "figures/forest_ON.png")),
               "ON fits nothing under the paper's protocol");
-    cr_expect(exists(join(dir, "figures/profile_sample34.png")));
+    cr_expect(
+        bf_test_exists(bf_test_join(dir, "figures/profile_sample34.png")));
     cr_expect_eq(table_rows(page, "wins-table"), 3u, "AIC, BIC, CV");
     cr_expect_eq(table_rows(page, "bic-table"), 3u);
     cr_expect_eq(table_rows(page, "intervals"), csv_interval_rows(dir));
@@ -314,18 +301,6 @@ Test(report, stats_add_the_analysis_figures_and_tables, .timeout = 600)
     cr_expect_not_null(strstr(page, "<details id=\"sample44\">"));
     cr_expect_null(strstr(page, "Not computed"));
     free(page);
-}
-
-/* Copies a file's bytes (bf_test_slurp's buffer is reused). */
-static char *copy_of(const char *path, size_t *len)
-{
-    const char *s = bf_test_slurp(path, len);
-    char *c;
-    cr_assert_not_null(s, "%s missing", path);
-    c = malloc(*len + 1);
-    cr_assert_not_null(c);
-    memcpy(c, s, *len + 1);
-    return c;
 }
 
 /* Removes the line that starts with "<li>Command:" (the command line,
@@ -346,7 +321,7 @@ static void same_outputs(const char *a, const char *b)
 {
     static const char *const files[] = {"fits.csv", "table2.md", "table3.md",
                                         "report.html"};
-    DIR *d = opendir(join(a, "figures"));
+    DIR *d = opendir(bf_test_join(a, "figures"));
     struct dirent *de;
     size_t n = 0;
     size_t i;
@@ -368,8 +343,8 @@ static void same_outputs(const char *a, const char *b)
             snprintf(name, sizeof name, "figures/%s", de->d_name);
             n++;
         }
-        x = copy_of(join(a, name), &la);
-        y = copy_of(join(b, name), &lb);
+        x = bf_test_copy(bf_test_join(a, name), &la);
+        y = bf_test_copy(bf_test_join(b, name), &lb);
         if (i == 3) {
             drop_command(x, &la);
             drop_command(y, &lb);
@@ -428,7 +403,7 @@ Test(report, draws_single_column_figures_on_request)
     cr_expect_eq(w, 252u * CSS_PER_PT);
     img_size(page, "plane_sample44", "svg", &w, &h);
     cr_expect_eq(w, 252u * CSS_PER_PT);
-    cr_expect(!exists(join(dir, "figures/fig2b.png")));
+    cr_expect(!bf_test_exists(bf_test_join(dir, "figures/fig2b.png")));
     check_figures(dir, page);
     free(page);
 }
@@ -445,14 +420,14 @@ Test(report, refuses_a_bad_format_size_or_incidence_before_writing_anything)
     size_t i;
     for (i = 0; i < sizeof bad / sizeof *bad; i++) {
         const char *dir = bf_test_tmpdir();
-        const char *out = join(dir, "out");
+        const char *out = bf_test_join(dir, "out");
         const char *err = NULL;
         cr_expect_eq(run_report(out, "44", bad[i], &err), EXIT_BADVALUE,
                      "%s %s", bad[i][0], bad[i][1]);
         cr_expect_not_null(strstr(err, bad[i][0]), "message names %s: %s",
                            bad[i][0], err);
-        cr_expect(!exists(out), "%s %s created the output folder", bad[i][0],
-                  bad[i][1]);
+        cr_expect(!bf_test_exists(out), "%s %s created the output folder",
+                  bad[i][0], bad[i][1]);
     }
 }
 
@@ -464,7 +439,8 @@ Test(report, leaves_no_partial_output_when_the_figures_cannot_be_written,
     const char *err = NULL;
     DIR *d;
     struct dirent *de;
-    FILE *fp = fopen(join(dir, "figures"), "w"); /* a file, not a folder */
+    /* a file, not a folder */
+    FILE *fp = fopen(bf_test_join(dir, "figures"), "w");
     cr_assert_not_null(fp);
     fclose(fp);
     cr_assert_eq(run_report(dir, "44", extra, &err), EXIT_CANTCREAT);

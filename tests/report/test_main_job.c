@@ -11,28 +11,12 @@
 #include <criterion/criterion.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli_run.h"
 #include "support.h"
 
 /* CURET's published location, as the script names it when offline. */
 #define CURET_URL "https://www.cs.columbia.edu/CAVE/software/curet/data"
-
-static int exists(const char *path)
-{
-    struct stat sb;
-    return stat(path, &sb) == 0;
-}
-
-static const char *join(const char *dir, const char *name)
-{
-    static char path[4][2048];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
-    return path[k];
-}
 
 /* A copy of the source tree (without build and output folders) in
  * root/clone; root has nothing else, so the clone's ../shared is
@@ -47,8 +31,9 @@ static void make_clone(const char *root)
              "--exclude=./.git -cf - . | tar -C '%s/clone' -xf -",
              root, BF_SOURCE_DIR, root);
     cr_assert_eq(bf_test_run_sh(cmd, &out), 0, "%s", out);
-    cr_assert(!exists(join(root, "shared")));
-    cr_assert(exists(join(root, "clone/data/oren_nayar_params.tsv")));
+    cr_assert(!bf_test_exists(bf_test_join(root, "shared")));
+    cr_assert(bf_test_exists(
+        bf_test_join(root, "clone/data/oren_nayar_params.tsv")));
 }
 
 /* A mirror of CURET's two files in root/name; with corrupt, one byte of
@@ -140,21 +125,21 @@ Test(main_job, runs_from_a_bare_clone_with_the_curet_files_fetched_and_verified,
     cr_assert_eq(rc, 0, "make run failed:\n%s", out);
     cr_expect_not_null(strstr(out, "downloading"), "%s", out);
     /* the cache holds both files, as the repository's sums say */
-    sums(join(cache, "brdffit/curet/abrdf.dat"), join(root, "clone"),
-         "abrdf.dat", got, want);
+    sums(bf_test_join(cache, "brdffit/curet/abrdf.dat"),
+         bf_test_join(root, "clone"), "abrdf.dat", got, want);
     cr_expect_str_eq(got, want);
     cr_expect_eq(strlen(want), 64u);
-    sums(join(cache, "brdffit/curet/table.txt"), join(root, "clone"),
-         "table.txt", got, want);
+    sums(bf_test_join(cache, "brdffit/curet/table.txt"),
+         bf_test_join(root, "clone"), "table.txt", got, want);
     cr_expect_str_eq(got, want);
     /* the report: from the cached data and the shipped ON parameters */
-    page = bf_test_slurp(join(root, "out/report.html"), NULL);
+    page = bf_test_slurp(bf_test_join(root, "out/report.html"), NULL);
     cr_assert_not_null(page, "no report.html:\n%s", out);
     cr_expect_not_null(strstr(page, "brdffit/curet/abrdf.dat"));
     cr_expect_not_null(strstr(page, "data/oren_nayar_params.tsv"));
     cr_expect_not_null(strstr(page, "24 samples"));
-    cr_expect(exists(join(root, "out/figures/fig2b.png")));
-    cr_expect(exists(join(root, "out/figures/delta_bic.pdf")));
+    cr_expect(bf_test_exists(bf_test_join(root, "out/figures/fig2b.png")));
+    cr_expect(bf_test_exists(bf_test_join(root, "out/figures/delta_bic.pdf")));
 
     /* again, with the mirror gone: the cache is used as it is */
     {
@@ -182,10 +167,12 @@ Test(main_job, refuses_a_mirror_whose_files_do_not_match_their_sums,
     cr_expect_not_null(strstr(out, "abrdf.dat is not CURET's abrdf.dat"),
                        "%s", out);
     cr_expect_not_null(strstr(out, "refused"), "%s", out);
-    cr_expect(!exists(join(cache, "brdffit/curet/abrdf.dat")),
+    cr_expect(!bf_test_exists(bf_test_join(cache, "brdffit/curet/abrdf.dat")),
               "the bad file was kept");
-    cr_expect(!exists(join(cache, "brdffit/curet/.abrdf.dat.part")));
-    cr_expect(!exists(join(root, "out")), "output written from bad data");
+    cr_expect(!bf_test_exists(
+        bf_test_join(cache, "brdffit/curet/.abrdf.dat.part")));
+    cr_expect(!bf_test_exists(bf_test_join(root, "out")),
+              "output written from bad data");
     free(root);
 }
 
@@ -203,6 +190,6 @@ Test(main_job, says_which_files_to_get_and_where_to_put_them_when_offline,
     snprintf(where, sizeof where, "%s/brdffit/curet/", cache);
     cr_expect_not_null(strstr(out, where), "%s", out);
     cr_expect_not_null(strstr(out, "data/curet.sha256"), "%s", out);
-    cr_expect(!exists(join(root, "out")));
+    cr_expect(!bf_test_exists(bf_test_join(root, "out")));
     free(root);
 }
