@@ -57,7 +57,7 @@ static void usage(FILE *fp)
 "  plane_sampleN   fitted model curves and the measurements in the plane\n"
 "  polar_sampleN   of incidence, Cartesian and polar, per incidence angle\n"
 "  scatter_sampleN one sample's scatter panels (--per-sample)\n"
-"With the analysis (--stats, --fit exact, --bootstrap):\n"
+"With the analysis (--stats, --fit exact, --bootstrap, --calibrate):\n"
 "  delta_bic       samples x models, BIC minus each sample's best\n"
 "  forest_MODEL    each sample's fitted parameters with their 95%\n"
 "                  profile (and bootstrap) intervals\n"
