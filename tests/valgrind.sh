@@ -97,6 +97,9 @@
 # samples, models, --stats and data set (over a hundred CLI runs); each
 # code path it reaches runs under valgrind in test_cli, test_cli_inputs and
 # test_cmd_report, and ASan runs a diagonal of the matrix.
+# report_calibrate/covers_a_known_material... simulates 200 measurements
+# twice (report and calibrate); the same code runs under valgrind in
+# report_calibrate's thread test (20 simulations, two reports).
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -108,6 +111,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
     test_oom
     test_cli_matrix
+    report_calibrate/covers_a_known_material_as_calibrate_says
     test_uncertainty
     test_coverage
     test_before

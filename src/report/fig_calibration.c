@@ -26,18 +26,24 @@
  * width) until the panels fit a page. */
 #define MIN_AXES 130.0
 static const double aspects[] = {0.42, 0.3, 0.2};
+/* Most panels a figure holds (the rest go to the sample's next part). */
+#define MAX_PANELS 15
 /* Series per panel. */
 #define SERIES 5
 
-int bf_fig_has_calibration(const bf_rep_study *st, size_t s)
+size_t bf_fig_calibration_panels(const bf_rep_study *st, size_t s)
 {
+    size_t np = 0;
     size_t i;
     for (i = 0; i < st->cal.n; i++) {
         if (st->cal.pair[i] / st->n_models == s) {
-            return 1;
+            unsigned mask = st->stats[st->cal.pair[i]].free_mask;
+            for (; mask != 0; mask &= mask - 1) {
+                np++;
+            }
         }
     }
-    return 0;
+    return np;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -97,6 +103,24 @@ typedef struct {
     char note[96];
 } panel_data;
 
+/* The series of a panel (ser[0..SERIES)) over q's n estimates. */
+static void fill_series(bf_plot_series *ser, panel_data *q, size_t n)
+{
+    series(&ser[0], BF_SERIES_POINTS, q->x, NULL, q->y, n, SIM_STYLE,
+           "simulated ML estimates");
+    series(&ser[1], BF_SERIES_INTERVALS, &q->v[0], &q->v[1], &q->v[2], 1,
+           SIM_STYLE, "their central 95%");
+    series(&ser[2], BF_SERIES_INTERVALS, &q->v[3], &q->v[4], &q->v[5], 1,
+           BF_PLOT_INK, "the fit's 95% interval");
+    ser[2].open = &q->open;
+    ser[2].weight = 1.6;
+    series(&ser[3], BF_SERIES_LINE, &q->v[6], NULL, &q->v[8], 2, BF_PLOT_REF,
+           "value simulated");
+    ser[3].dash = BF_DASH_DASHED;
+    series(&ser[4], BF_SERIES_POINTS, &q->v[10], NULL, &q->v[5], 1,
+           BF_PLOT_INK, "its ML estimate");
+}
+
 /* Fills panel p (series ser[0..SERIES)) for parameter j of calibrated
  * pair i. */
 static void fill(const bf_rep_study *st, size_t i, size_t j, panel_data *q,
@@ -154,28 +178,15 @@ static void fill(const bf_rep_study *st, size_t i, size_t j, panel_data *q,
         hi = lo + 2.0 * w;
     }
     if (bf_calibration_summarise(c, j, level, &s) == BF_OK) {
-        snprintf(q->note, sizeof q->note, "%s %s: covered %.2f (%s)",
-                 t->name, t->param[j].name, s.coverage,
-                 verdict[s.verdict + 1]);
+        snprintf(q->note, sizeof q->note, "%s %s: %.2f %s", t->name,
+                 t->param[j].name, s.coverage, verdict[s.verdict + 1]);
     } else {
         snprintf(q->note, sizeof q->note, "%s %s", t->name,
                  t->param[j].name);
     }
     bf_fig_param_label(&t->param[j], q->xl, sizeof q->xl);
 
-    series(&ser[0], BF_SERIES_POINTS, q->x, NULL, q->y, n, SIM_STYLE,
-           "simulated estimates (maximum likelihood)");
-    series(&ser[1], BF_SERIES_INTERVALS, &q->v[0], &q->v[1], &q->v[2], 1,
-           SIM_STYLE, "their central 95%");
-    series(&ser[2], BF_SERIES_INTERVALS, &q->v[3], &q->v[4], &q->v[5], 1,
-           BF_PLOT_INK, "95% interval of the fit");
-    ser[2].open = &q->open;
-    ser[2].weight = 1.6;
-    series(&ser[3], BF_SERIES_LINE, &q->v[6], NULL, &q->v[8], 2, BF_PLOT_REF,
-           "fitted value (the truth simulated)");
-    ser[3].dash = BF_DASH_DASHED;
-    series(&ser[4], BF_SERIES_POINTS, &q->v[10], NULL, &q->v[5], 1,
-           BF_PLOT_INK, "maximum-likelihood estimate on the data");
+    fill_series(ser, q, n);
     p->xmin = lo - 0.05 * (hi - lo);
     p->xmax = hi + 0.05 * (hi - lo);
     p->ymin = 0.4;
@@ -186,6 +197,70 @@ static void fill(const bf_rep_study *st, size_t i, size_t j, panel_data *q,
     p->n_series = SERIES;
 }
 
+/* Lays out fig's panels (its width set) in the grid and aspect with the
+ * widest axes, up to MIN_AXES wide, that fit a page. BF_OK, or BF_EINVAL
+ * when none fits. */
+static int lay_out(bf_plot_figure *fig)
+{
+    int rc = BF_EINVAL;
+    size_t a;
+    fig->share_y = 1;
+    fig->legend = BF_LEGEND_TOP;
+    for (a = 0; a < sizeof aspects / sizeof *aspects; a++) {
+        fig->aspect = aspects[a];
+        rc = bf_plot_flow(fig, MIN_AXES);
+        if (rc == BF_OK && bf_plot_fits(fig, MIN_AXES)) {
+            return BF_OK;
+        }
+    }
+    return rc;
+}
+
+size_t bf_fig_calibration_per_figure(const bf_fig_data *D)
+{
+    static const char *const rows[2] = {"simulated", "data"};
+    static const double x[2] = {0.0, 1.0};
+    static const double y[2] = {1.0, 2.0};
+    bf_plot_panel panel[MAX_PANELS];
+    bf_plot_series ser[SERIES];
+    panel_data q;
+    bf_plot_figure fig;
+    size_t k;
+    size_t i;
+    /* the series of a panel, with their legend labels */
+    memset(&q, 0, sizeof q);
+    fill_series(ser, &q, 1);
+    for (i = 0; i < SERIES; i++) {
+        ser[i].x = x;
+        ser[i].x2 = x + 1;
+        ser[i].y = y;
+        ser[i].open = NULL;
+    }
+    memset(panel, 0, sizeof panel);
+    for (i = 0; i < MAX_PANELS; i++) { /* a long name and label */
+        panel[i].xmin = 0.0;
+        panel[i].xmax = 1.0;
+        panel[i].ymin = 0.4;
+        panel[i].ymax = YMAX;
+        panel[i].ytick_labels = rows;
+        panel[i].n_yticks = 2;
+        panel[i].note = "LAMBERT+GGX alpha: 0.95 high";
+        panel[i].xlabel = "refractive index n";
+        panel[i].series = ser;
+        panel[i].n_series = SERIES;
+    }
+    for (k = 2; k <= MAX_PANELS; k++) {
+        memset(&fig, 0, sizeof fig);
+        fig.width = D->o->width;
+        fig.panels = panel;
+        fig.n_panels = k;
+        if (lay_out(&fig) != BF_OK || !bf_plot_fits(&fig, MIN_AXES)) {
+            break;
+        }
+    }
+    return k - 1;
+}
+
 int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
                        bf_fig_desc *d, int full)
 {
@@ -193,12 +268,13 @@ int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
     const bf_rep_study *st = D->st;
     size_t s = e->index;
     size_t n = st->cal.n_sim;
-    size_t np = 0;
+    size_t np;
     size_t K = 0;
     size_t i;
     size_t j;
     size_t q = 0;
-    size_t a;
+    size_t all = 0;
+    size_t per;
     bf_plot_panel *panel;
     bf_plot_series *ser;
     panel_data *pd;
@@ -206,18 +282,17 @@ int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
     double *work;
     char who[256];
     char key[64];
-    int rc = BF_EINVAL;
+    const char *k;
+    char part[64] = "";
+    int rc;
 
     (void)full;
     for (i = 0; i < st->cal.n; i++) {
         if (st->cal.pair[i] / st->n_models == s) {
-            unsigned mask = st->stats[st->cal.pair[i]].free_mask;
-            for (; mask != 0; mask &= mask - 1) {
-                np++;
-            }
             K = st->stats[st->cal.pair[i]].n;
         }
     }
+    np = e->count;
     panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
     ser = bf_fig_alloc(d, SERIES * (np + 1) * sizeof *ser);
     pd = bf_fig_alloc(d, (np + 1) * sizeof *pd);
@@ -227,10 +302,7 @@ int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
         work == NULL) {
         return BF_ENOMEM;
     }
-    if (np == 0) {
-        return BF_EINVAL; /* listed only with a calibrated pair */
-    }
-    for (i = 0; i < st->cal.n; i++) {
+    for (i = 0; i < st->cal.n; i++) { /* the sample's panels, in order */
         const bf_fit_stats *f = &st->stats[st->cal.pair[i]];
         if (st->cal.pair[i] / st->n_models != s) {
             continue;
@@ -239,31 +311,44 @@ int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
             if (!((f->free_mask >> j) & 1u)) {
                 continue;
             }
-            pd[q].x = xy + 2 * n * q;
-            pd[q].y = pd[q].x + n;
-            fill(st, i, j, &pd[q], work, &panel[q], &ser[SERIES * q]);
-            panel[q].ytick_labels = rows;
-            panel[q].n_yticks = 2;
-            q++;
+            if (all >= e->first && all < e->first + np) {
+                pd[q].x = xy + 2 * n * q;
+                pd[q].y = pd[q].x + n;
+                fill(st, i, j, &pd[q], work, &panel[q], &ser[SERIES * q]);
+                panel[q].ytick_labels = rows;
+                panel[q].n_yticks = 2;
+                q++;
+            }
+            all++;
         }
     }
+    if (q == 0) {
+        return BF_EINVAL; /* listed only with calibrated panels */
+    }
     d->fig.width = D->o->width;
-    d->fig.share_y = 1;
-    d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = panel;
     d->fig.n_panels = q;
-    for (a = 0; a < sizeof aspects / sizeof *aspects && rc != BF_OK; a++) {
-        d->fig.aspect = aspects[a];
-        rc = bf_plot_flow(&d->fig, MIN_AXES);
-    }
+    rc = lay_out(&d->fig);
     if (rc != BF_OK) {
         return rc;
     }
     bf_fig_sample_label(st, s, who, sizeof who);
-    snprintf(e->base, sizeof e->base, "calibration_%s",
-             bf_fig_target_key(st, s, key, sizeof key));
+    k = bf_fig_target_key(st, s, key, sizeof key);
+    /* part k of e->parts, each but the last of per panels */
+    per = (bf_fig_calibration_panels(st, s) + e->parts - 1) / e->parts;
+    if (e->first == 0) {
+        snprintf(e->base, sizeof e->base, "calibration_%s", k);
+    } else { /* the sample's further parts: _2, _3, ... */
+        snprintf(e->base, sizeof e->base, "calibration_%s_%zu", k,
+                 e->first / per + 1);
+    }
+    if (e->parts > 1) {
+        snprintf(part, sizeof part, " (part %zu of %zu)", e->first / per + 1,
+                 e->parts);
+    }
     snprintf(e->title, sizeof e->title,
-             "%.160s: the intervals checked on simulated measurements", who);
+             "%.160s: the intervals checked on simulated measurements%s",
+             who, part);
     snprintf(e->caption, sizeof e->caption,
              "For each fitted parameter of each model (panels; above each, "
              "the share of the simulations' %.0f%% intervals that hold the "

@@ -97,12 +97,16 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                      int full);
 int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full);
-/* (fig_calibration.c) */
+/* (fig_calibration.c) One sample's calibration figure: panels [first,
+ * first + count) of its bf_fig_calibration_panels, part of parts. */
 int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
                        bf_fig_desc *d, int full);
-/* Whether sample index s has a calibrated pair (it gets a calibration
- * figure). */
-int bf_fig_has_calibration(const bf_rep_study *st, size_t s);
+/* Panels of sample index s's calibration: one per fitted parameter of
+ * each calibrated pair (0: no figure). */
+size_t bf_fig_calibration_panels(const bf_rep_study *st, size_t s);
+/* The most panels one calibration figure holds at D's width (at least
+ * 1): those whose axes are still MIN_AXES wide on a page. */
+size_t bf_fig_calibration_per_figure(const bf_fig_data *D);
 
 /* Samples per scatter figure (Figures 3-6 hold six each, as the paper). */
 #define BF_FIG_SCATTER_SAMPLES 6

@@ -374,6 +374,7 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
 {
     const bf_rep_study *st = D->st;
+    size_t per = st->cal.n > 0 ? bf_fig_calibration_per_figure(D) : 1;
     size_t m;
     size_t s;
     int ok = add_entry(set, BF_FIG_DELTA_BIC, 0, 0) != NULL;
@@ -385,9 +386,22 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
     for (s = 0; s < st->n_samples && ok; s++) {
         ok = add_entry(set, BF_FIG_PROFILE, s, st->samples[s]) != NULL;
     }
-    for (s = 0; s < st->n_samples && ok; s++) {
-        ok = !bf_fig_has_calibration(st, s) ||
-             add_entry(set, BF_FIG_CALIBRATION, s, st->samples[s]) != NULL;
+    for (s = 0; s < st->n_samples && ok && st->cal.n > 0; s++) {
+        /* a sample's panels in parts of at most per, as even as can be */
+        size_t np = bf_fig_calibration_panels(st, s);
+        size_t parts = (np + per - 1) / per;
+        size_t each = parts > 0 ? (np + parts - 1) / parts : 0;
+        size_t p;
+        for (p = 0; p < parts && ok; p++) {
+            bf_fig_entry *e = add_entry(set, BF_FIG_CALIBRATION, s,
+                                        st->samples[s]);
+            ok = e != NULL;
+            if (ok) {
+                e->first = p * each;
+                e->count = p + 1 < parts ? each : np - p * each;
+                e->parts = parts;
+            }
+        }
     }
     return ok ? BF_OK : BF_ENOMEM;
 }

@@ -449,31 +449,34 @@ static void conventions(FILE *fp, const bf_rep_study *st,
     free(text);
 }
 
-/* --calibrate: the table, then each sample's figure (collapsed when
+/* --calibrate: the table, then each sample's figures (collapsed when
  * there are several samples). */
 static void calibration(FILE *fp, const bf_rep_study *st,
                         const bf_fig_set *figs)
 {
+    size_t s;
     size_t i;
     fputs("<h3 id=\"calibration-section\">Are the intervals calibrated? "
           "Simulated measurements</h3>\n", fp);
     if (bf_report_calibration(fp, st) != 0) {
         page_oom = 1;
     }
-    for (i = 0; i < figs->n; i++) {
-        const bf_fig_entry *e = &figs->fig[i];
+    for (s = 0; s < st->n_samples; s++) {
         char who[256];
-        if (e->kind != BF_FIG_CALIBRATION) {
-            continue;
+        for (i = 0; i < figs->n && (figs->fig[i].kind != BF_FIG_CALIBRATION ||
+                                    figs->fig[i].index != s);
+             i++) {
+        }
+        if (i == figs->n) {
+            continue; /* nothing calibrated */
         }
         if (st->n_samples > 1) {
             fputs("<details>\n<summary>", fp);
-            bf_tt_html_text(fp, bf_fig_sample_label(st, e->index, who,
-                                                    sizeof who));
+            bf_tt_html_text(fp, bf_fig_sample_label(st, s, who, sizeof who));
             fputs(": simulated estimates against the interval</summary>\n",
                   fp);
         }
-        figure(fp, figs, e);
+        figures_of(fp, figs, BF_FIG_CALIBRATION, s);
         fputs(st->n_samples > 1 ? "</details>\n" : "", fp);
     }
 }

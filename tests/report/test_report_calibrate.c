@@ -5,7 +5,8 @@
  * (computed here) and are as wide as the estimates spread;
  * calibrate.csv is `brdffit calibrate`'s, byte for byte, and the same for
  * 1 and 2 threads; the page's table holds calibrate.csv's numbers; the
- * figure exists, fits a page and is on the page; and the bad values of
+ * figure exists, fits a page and is on the page, and a sample with more
+ * panels than a page holds gets several; and the bad values of
  * --calibrate are refused before any work. (The verdicts low and high:
  * tests/fit/test_calibration_summary.c.) */
 #include <criterion/criterion.h>
@@ -144,6 +145,21 @@ static size_t table_cells(const char *page, char cells[16][12][64])
     return n;
 }
 
+/* Asserts that the PNG at path fits a page (BF_PLOT_MAX_TALL). */
+static void fits_a_page(const char *path)
+{
+    size_t len;
+    unsigned char *png = (unsigned char *)bf_test_copy(path, &len);
+    unsigned long w;
+    unsigned long h;
+    cr_assert_gt(len, 24u);
+    w = fmt_be32(png + 16);
+    h = fmt_be32(png + 20);
+    cr_expect(w > 0 && (double)h <= BF_PLOT_MAX_TALL * (double)w + 1.0,
+              "%s: %lu x %lu pixels", path, w, h);
+    free(png);
+}
+
 Test(report_calibrate, covers_a_known_material_as_calibrate_says,
      .timeout = 300)
 {
@@ -163,9 +179,6 @@ Test(report_calibrate, covers_a_known_material_as_calibrate_says,
     double lo;
     double hi;
     double cov;
-    unsigned char *png;
-    unsigned long w;
-    unsigned long h;
     size_t r;
 
     cr_assert_eq(run("report", input, bf_test_join(a, "rep"), rep, &err), 0,
@@ -222,14 +235,7 @@ Test(report_calibrate, covers_a_known_material_as_calibrate_says,
     cr_expect_not_null(strstr(page, "<img src=\"figures/calibration_sample1"
                                     ".png\""));
     cr_expect_not_null(strstr(page, "<a href=\"calibrate.csv\">"));
-    png = (unsigned char *)bf_test_copy(
-        bf_test_join(a, "rep/figures/calibration_sample1.png"), &len);
-    cr_assert_gt(len, 24u);
-    w = fmt_be32(png + 16);
-    h = fmt_be32(png + 20);
-    cr_expect(w > 0 && (double)h <= BF_PLOT_MAX_TALL * (double)w + 1.0,
-              "%lu x %lu pixels", w, h);
-    free(png);
+    fits_a_page(bf_test_join(a, "rep/figures/calibration_sample1.png"));
     free(page);
     free(a);
     free(b);
@@ -256,6 +262,30 @@ Test(report_calibrate, the_same_for_one_and_two_threads, .timeout = 300)
               bf_test_join(dir, "two/calibrate.csv"));
     same_file(bf_test_join(dir, "one/figures/calibration_sample2.png"),
               bf_test_join(dir, "two/figures/calibration_sample2.png"));
+}
+
+Test(report_calibrate, many_panels_are_split_into_figures_that_fit_a_page)
+{
+    /* six panels (--fit exact frees FC's n: FC-G and FC-E m, n, VH-E m,
+     * LFTG n_d) at the single column width: more than one figure holds */
+    static const char *const rep[] = {"--models", "FC-G,FC-E,VH-E,LFTG",
+                                      "--samples", "2", "--size", "single",
+                                      "--format", "png", "--calibrate",
+                                      "10", NULL};
+    const char *dir = bf_test_tmpdir();
+    const char *input = write_materials(dir);
+    const char *err = NULL;
+    char *page;
+    size_t len;
+    cr_assert_eq(run("report", input, bf_test_join(dir, "rep"), rep, &err),
+                 0, "%s", err);
+    page = bf_test_copy(bf_test_join(dir, "rep/report.html"), &len);
+    fits_a_page(bf_test_join(dir, "rep/figures/calibration_sample2.png"));
+    fits_a_page(bf_test_join(dir, "rep/figures/calibration_sample2_2.png"));
+    cr_expect_not_null(strstr(page, "figures/calibration_sample2.png"));
+    cr_expect_not_null(strstr(page, "figures/calibration_sample2_2.png"));
+    cr_expect_not_null(strstr(page, "(part 2 of "));
+    free(page);
 }
 
 Test(report_calibrate, bad_values_are_refused_before_any_work)
