@@ -347,7 +347,7 @@ int bf_fig_calibration(const bf_fig_data *D, bf_fig_entry *e,
                  e->parts);
     }
     snprintf(e->title, sizeof e->title,
-             "%.160s: the intervals checked on simulated measurements%s",
+             "%.160s: the intervals checked on simulated measurements%.30s",
              who, part);
     snprintf(e->caption, sizeof e->caption,
              "For each fitted parameter of each model (panels; above each, "
