@@ -259,6 +259,11 @@ typedef struct bf_model_type {
      * an option does not apply; the same table in every variant. NULL:
      * the model takes none (bf_model_specular_variant). */
     const struct bf_model_type *const *variants;
+    /* 1 for a specular model with its own diffuse term (AS, SPEC §9.3):
+     * the complete glossy comparison (bf_study_models' "all" under an
+     * objective that keeps the scale) fits it alone; 0 for the others,
+     * which it fits as LAMBERT+S (SPEC §9.4). */
+    int own_diffuse;
 } bf_model_type;
 
 extern const bf_model_type *const bf_model_bk_g;   /* BK-G  SPEC §3.1 */
@@ -942,9 +947,9 @@ int bf_study_targets(const bf_dataset *ds, const size_t *materials,
 extern const int bf_study_samples[BF_STUDY_NSAMPLES];
 
 /* The models of a study from list, a comma-separated list of registry
- * names (bf_model_find_why: composites D+S too), "all" (every diffuse
- * model of the registry, in order) or NULL (bf_model_set_names(defaults)),
- * into out (room for cap; bf_model_count() + 1 is enough), under the
+ * names (bf_model_find_why: composites D+S too), "all" or NULL
+ * (bf_model_set_names(defaults)), into out (room for cap;
+ * bf_model_count() + 1 is enough), under the
  * options of SPEC §9.2: with fresnel or smith not DEFAULT, every specular
  * model and the S part of every composite is its variant
  * (bf_model_specular_variant: GGX under BF_FRESNEL_DIELECTRIC has rho_s,
@@ -959,7 +964,12 @@ extern const int bf_study_samples[BF_STUDY_NSAMPLES];
  * ("unknown model 'XX'", "'ON' listed twice", "GGX gives absolute BRDF
  * values (SPEC §9)", "WARD has no Fresnel term (SPEC §9.3): --fresnel
  * applies to GGX, BECKMANN and CT"), for the caller to prefix with its own
- * option's name. */
+ * option's name. "all" is every diffuse model of the registry, in
+ * order; under an objective that keeps the scale (bf_objective_keeps_scale:
+ * ngan, cuberoot, log1p) it is the complete glossy comparison: those, then
+ * for every specular model of the registry (SPEC §9.3), in order, LAMBERT+S
+ * (SPEC §9.4), or S alone when it has its own diffuse term (own_diffuse:
+ * AS) -- bf_model_count() models. */
 int bf_study_models(const char *list, bf_model_set defaults,
                     bf_objective objective, bf_fresnel_kind fresnel,
                     bf_smith_kind smith, const bf_model_type **out,

@@ -92,6 +92,7 @@ typedef struct {
     const char *masking;
     const char *fresnel_term;
     const void *const *variants;
+    int own_diffuse;
 } bf_model_type;
 size_t bf_model_count(void);
 const bf_model_type *bf_model_get(size_t i);

@@ -155,7 +155,9 @@ def _ranges(ranges):
 def _models(models, defaults, objective, fresnel=None, smith=None):
     """([Model], [bf_model_type *]) of models (bf_study_models): None (the
     library's model set called defaults, e.g. "BF_MODELS_PAPER"), "all"
-    (every diffuse registry model), a comma-separated string or a sequence
+    (every diffuse registry model; under ngan, cuberoot, log1p also
+    LAMBERT+S for every specular model S, AS alone: the complete glossy
+    comparison), a comma-separated string or a sequence
     of names or Models; under fresnel, smith (SPEC §9.2: None each model's
     own) the specular models and the S of composites are their variants,
     whose Models have the variants' parameters (n in F0's place)."""

@@ -6,6 +6,7 @@
  * a study wrote (SPEC §2, §7, §9; doc/methods.md §6). Callers word the
  * messages with their own option names.
  */
+#include <stdio.h>
 #include <string.h>
 
 #include "internal.h"
@@ -105,24 +106,53 @@ int bf_study_models(const char *list, bf_model_set defaults,
     return rc;
 }
 
+/* The model t enters "all" as: a diffuse model itself; a specular model
+ * (SPEC §9.3) LAMBERT+t (SPEC §9.4), or t when it has its own diffuse term
+ * (own_diffuse: AS), so that every model of the comparison explains the
+ * whole BRDF. */
+static const bf_model_type *complete_form(const bf_model_type *t)
+{
+    char name[64];
+    if (t->kind == BF_MODEL_DIFFUSE || t->own_diffuse) {
+        return t;
+    }
+    snprintf(name, sizeof name, "%s+%s", bf_model_lambert->name, t->name);
+    return bf_model_find(name);
+}
+
+/* "all" of bf_study_models: every diffuse model of the registry, in order,
+ * and under an objective that keeps the scale (SPEC §10) the complete
+ * glossy comparison's form of every specular model (complete_form). */
+static int resolve_all(bf_objective objective, const bf_model_type **out,
+                       size_t cap, size_t *n, bf_error *err)
+{
+    size_t i;
+    for (i = 0; i < bf_model_count(); i++) {
+        const bf_model_type *t = bf_model_get(i);
+        int rc = BF_OK;
+        if (t->kind == BF_MODEL_DIFFUSE
+            || bf_objective_keeps_scale(objective)) {
+            t = complete_form(t);
+            rc = t != NULL ? add_model(t, objective, out, cap, n, err)
+                           : bf__error_set(err, BF_ENOTFOUND, 0,
+                                           "no composite LAMBERT+%s",
+                                           bf_model_get(i)->name);
+        }
+        if (rc != BF_OK) {
+            return rc;
+        }
+    }
+    return BF_OK;
+}
+
 /* The model list of bf_study_models, every model as the registry has it. */
 static int resolve_list(const char *list, bf_model_set defaults,
                         bf_objective objective, const bf_model_type **out,
                         size_t cap, size_t *n, bf_error *err)
 {
     const char *p;
-    size_t i;
     if (list != NULL && strcmp(list, "all") == 0) {
-        for (i = 0; i < bf_model_count(); i++) {
-            const bf_model_type *t = bf_model_get(i);
-            int rc = t->kind == BF_MODEL_DIFFUSE /* the study's models */
-                         ? add_model(t, objective, out, cap, n, err)
-                         : BF_OK;
-            if (rc != BF_OK) {
-                return rc;
-            }
-        }
-        return BF_OK;
+        return resolve_all(objective, out, cap, n, err);
     }
     p = list != NULL ? list : bf_model_set_names(defaults);
     if (p == NULL || *p == '\0') {

@@ -68,6 +68,7 @@ static const bf_model_type as_type = {
     .ndf = "Phong in theta_h (cos^n theta_h)",
     .masking = "none (1 / (cos theta_d max(cos theta_i, cos theta_o)))",
     .fresnel_term = "Schlick (Rs), part of the model",
+    .own_diffuse = 1, /* fitted alone in the complete comparison */
 };
 
 const bf_model_type *const bf_model_as = &as_type;
