@@ -23,6 +23,8 @@
 #define ROW_PT 10.5
 /* Room of the legend, the x numbers and labels of those figures. */
 #define FRAME_PT 64.0
+/* Room of the longest model names written upwards (composites). */
+#define NAMES_PT 110.0
 /* Profile panels: points per curve, the window around the interval (in
  * half-widths of the interval), panels per row and their shape. */
 #define PROFILE_POINTS 41
@@ -46,6 +48,24 @@ static void rows_width(bf_fig_desc *d, double want, unsigned cap)
         d->fig.width = (unsigned)fmin((double)cap,
                                       ceil(1.2 * (double)d->fig.width));
     }
+}
+
+/* Makes d's figure of rows taller, up to BF_PLOT_MAX_TALL times its
+ * width, until it lays out: names written upwards below many columns. */
+static void rows_height(bf_fig_desc *d)
+{
+    double cap = BF_PLOT_MAX_TALL * (double)d->fig.width;
+    while (!bf_plot_fits(&d->fig, 0.0) && (double)d->fig.height + 1 < cap) {
+        d->fig.height = (unsigned)fmin(cap, d->fig.height + 2.0 * ROW_PT);
+    }
+}
+
+size_t bf_fig_delta_bic_rows(const bf_fig_data *D)
+{
+    /* a page's height less the frame and the model names upwards */
+    double room = BF_PLOT_MAX_TALL * (double)D->o->width - FRAME_PT
+                  - NAMES_PT;
+    return room > ROW_PT ? (size_t)(room / ROW_PT) : 1;
 }
 
 void bf_fig_param_label(const bf_param *p, char *buf, size_t len)
@@ -276,7 +296,8 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         "\xce\x94" "BIC = 0 (best)", "\xe2\x89\xa4 2", "2\xe2\x80\x93" "6",
         "6\xe2\x80\x93" "10", "> 10"};
     const bf_rep_study *st = D->st;
-    size_t N = st->n_samples;
+    size_t N0 = e->count > 0 ? e->first : 0; /* this page's rows */
+    size_t N = e->count > 0 ? e->count : st->n_samples;
     size_t M = st->n_models;
     const char **names = sample_names(st, d);
     const char **models = bf_fig_alloc(d, M * sizeof *models);
@@ -300,12 +321,13 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     for (s = 0; s < N; s++) {
         double best = HUGE_VAL;
         size_t r = N - 1 - s; /* the first sample on top */
+        size_t row = N0 + s;
         for (m = 0; m < M; m++) {
-            double b = bf_rep_rank_value(st, s * M + m, BF_REP_BIC);
+            double b = bf_rep_rank_value(st, row * M + m, BF_REP_BIC);
             best = isfinite(b) ? fmin(best, b) : best;
         }
         for (m = 0; m < M; m++) {
-            double b = bf_rep_rank_value(st, s * M + m, BF_REP_BIC);
+            double b = bf_rep_rank_value(st, row * M + m, BF_REP_BIC);
             double delta = b - best;
             size_t c = r * M + m;
             cls[c] = bic_class(delta);
@@ -315,8 +337,11 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                 snprintf(buf[c], sizeof buf[c], "0");
             } else if (delta < 9.95) {
                 snprintf(buf[c], sizeof buf[c], "%.1f", delta);
-            } else {
+            } else if (delta < 999.5) {
                 snprintf(buf[c], sizeof buf[c], "%.0f", delta);
+            } else { /* four digits and more, in thousands: "15k" */
+                snprintf(buf[c], sizeof buf[c], "%.0fk", fmin(delta / 1e3,
+                                                             999.0));
             }
             text[c] = buf[c];
         }
@@ -333,7 +358,7 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     p->ymax = (double)N + 0.5;
     p->xtick_labels = models;
     p->n_xticks = M;
-    p->ytick_labels = names;
+    p->ytick_labels = names + (st->n_samples - N0 - N); /* bottom up */
     p->n_yticks = N;
     p->cells = cells;
     d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
@@ -342,7 +367,13 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.panels = p;
     d->fig.n_panels = 1;
     rows_width(d, want, D->o->width);
-    snprintf(e->base, sizeof e->base, "delta_bic");
+    rows_height(d);
+    if (e->first == 0) {
+        snprintf(e->base, sizeof e->base, "delta_bic");
+    } else { /* the further pages: _2, _3, ... */
+        snprintf(e->base, sizeof e->base, "delta_bic_%zu",
+                 e->first / ((st->n_samples + e->parts - 1) / e->parts) + 1);
+    }
     snprintf(e->title, sizeof e->title,
              "Model selection at a glance: \xce\x94" "BIC per sample");
     snprintf(e->caption, sizeof e->caption,
@@ -384,6 +415,20 @@ static int problem_of(const bf_fig_data *D, size_t s, size_t m,
     return rc;
 }
 
+size_t bf_fig_profile_panels(const bf_rep_study *st, size_t s, int family)
+{
+    size_t M = st->n_models;
+    size_t np = 0;
+    size_t m;
+    for (m = 0; m < M; m++) {
+        const bf_fit_stats *f = &st->stats[s * M + m];
+        if (bf_fig_in_family(st, m, family) && f->done) {
+            np += popcount(f->free_mask);
+        }
+    }
+    return np;
+}
+
 int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                    int full)
 {
@@ -401,13 +446,12 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     unsigned *open;
     char who[256];
     char key[64];
+    char part[32];
     size_t rows;
     static const double thr_y[2] = {CHI2_95, CHI2_95};
 
-    for (m = 0; m < M; m++) {
-        const bf_fit_stats *f = &st->stats[s * M + m];
-        np += f->done ? popcount(f->free_mask) : 0;
-    }
+    size_t all = 0; /* the family's panels so far */
+    np = bf_fig_profile_panels(st, s, e->family);
     panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
     ser = bf_fig_alloc(d, 4 * (np + 1) * sizeof *ser);
     v = bf_fig_alloc(d, (2 * PROFILE_POINTS + 8) * (np + 1) * sizeof *v);
@@ -422,7 +466,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         const bf_fit_stats *f = &st->stats[s * M + m];
         const bf_model_type *t = bf_fig_row(st, s, m)->type;
         bf_problem pb;
-        if (!f->done || f->free_mask == 0) {
+        if (!f->done || f->free_mask == 0 ||
+            !bf_fig_in_family(st, m, e->family)) {
             continue;
         }
         {
@@ -454,6 +499,12 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             if (!((f->free_mask >> j) & 1u)) {
                 continue;
             }
+            if (e->count > 0 && (all < e->first ||
+                                 all >= e->first + e->count)) {
+                all++;
+                continue; /* on another page of the family's panels */
+            }
+            all++;
             /* the window: the interval widened PROFILE_SPAN times on each
              * side (at least 3 grid steps), within the search range */
             x0 = est - PROFILE_SPAN * fmax(isfinite(lo) ? est - lo : 0.0,
@@ -542,8 +593,16 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = panel;
     d->fig.n_panels = q;
-    snprintf(e->base, sizeof e->base, "profile_%s",
-             bf_fig_target_key(st, s, key, sizeof key));
+    /* the specular models' profiles beside the diffuse ones', each in
+     * pages of at most BF_FIG_PROFILE_PANELS panels */
+    bf_fig_family_suffix(e->family, bf_fig_profile_panels(st, s,
+                                                          BF_FIG_DIFFUSE) > 0,
+                         e->parts > 1 ? e->first / ((np + e->parts - 1) /
+                                                    e->parts) + 1
+                                      : 1,
+                         part, sizeof part);
+    snprintf(e->base, sizeof e->base, "profile_%s%s",
+             bf_fig_target_key(st, s, key, sizeof key), part);
     snprintf(e->title, sizeof e->title, "%.160s: profiles of the objective",
              who);
     snprintf(e->caption, sizeof e->caption,

@@ -10,8 +10,8 @@
 
 #include "figures.h"
 
-/* Most models in one figure (the registry has 11). */
-#define BF_FIG_MAX_MODELS 16
+/* Most models in one figure (the complete glossy comparison has 21). */
+#define BF_FIG_MAX_MODELS 32
 /* One degree, radians. */
 #define BF_FIG_DEG (M_PI / 180.0)
 /* A measured configuration is "in the plane of incidence" of a panel when
@@ -114,6 +114,30 @@ size_t bf_fig_calibration_per_figure(const bf_fig_data *D);
  * BF_FIG_SCATTER_SAMPLES, fewer when their grid would not fit a page
  * (many models), 1 at the least (its panels are then re-flowed). */
 size_t bf_fig_scatter_group(const bf_fig_data *D, size_t s0);
+
+/* The positions b in D->idx (into out, in order) of the models of
+ * family (BF_FIG_DIFFUSE, BF_FIG_SPECULAR; 0: all); returns their count.
+ * (figures.c) */
+size_t bf_fig_family(const bf_fig_data *D, int family, size_t *out);
+/* The file name suffix of page part (from 1) of a family's figures of a
+ * sample (diffuse: 1 when the sample has figures of the diffuse models):
+ * the sample's first figure none, then "_diffuse2", ..., "_specular",
+ * "_specular2", ... (figures.c) */
+void bf_fig_family_suffix(int family, int diffuse, size_t part, char *buf,
+                          size_t len);
+/* Most panels of one profile figure: more continue on a further page. */
+#define BF_FIG_PROFILE_PANELS 15
+/* 1 when model st->models[m] is of family (0: every model). */
+int bf_fig_in_family(const bf_rep_study *st, size_t m, int family);
+
+/* Panels of sample index s's profile figure of family (0: all): one per
+ * fitted parameter of each analysed model of the family.
+ * (fig_analysis.c) */
+size_t bf_fig_profile_panels(const bf_rep_study *st, size_t s, int family);
+
+/* Rows (samples) of one delta BIC page at D's width: more samples
+ * continue in delta_bic_2, ... (fig_analysis.c) */
+size_t bf_fig_delta_bic_rows(const bf_fig_data *D);
 
 /* Whether model m has free parameters analysed for some sample (it gets
  * a forest plot). */

@@ -111,6 +111,19 @@ static int src_init(const bf_fig_data *D, size_t s, bf_fig_desc *d,
     return rc;
 }
 
+/* 1 when a fitted curve y[0..n) is zero (or undefined) everywhere: a fit
+ * whose scales are all zero (SPEC §10), not drawn. */
+static int curve_zero(const double *y, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++) {
+        if (isfinite(y[k]) && y[k] != 0.0) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Fills pd for incidence theta_i of sample index s. Returns the largest
  * value drawn, or -1 on error (*rc set). */
 static double plane_compute(const bf_fig_data *D, size_t s,
@@ -156,9 +169,12 @@ static double plane_compute(const bf_fig_data *D, size_t s,
                                             CURVE_POINTS, cg, y)
                          : bf_fit_curve(row->type, row->fit.param, r->K,
                                         r->geom, CURVE_POINTS, cg, work, y);
+        if (e == BF_OK && r->abs && curve_zero(y, CURVE_POINTS)) {
+            e = BF_EDOM; /* zero scales: not drawn (a line on 0) */
+        }
         for (k = 0; k < CURVE_POINTS; k++) {
             if (e != BF_OK) {
-                y[k] = NAN; /* not evaluated for this sample */
+                y[k] = NAN; /* not evaluated, or zero, for this sample */
             } else if (isfinite(y[k])) {
                 top = fmax(top, y[k]);
             }
@@ -253,6 +269,37 @@ static void polar_log(double *v, size_t n, double lo)
     }
 }
 
+static int plane_describe(const bf_fig_data *D, const char *suffix,
+                          bf_fig_entry *e, bf_fig_desc *d, int full);
+
+/* 1 when curve b is drawn in none of pd[0..na) (plane_compute). */
+static int zero_everywhere(const plane_data *pd, size_t na, size_t b)
+{
+    size_t a;
+    for (a = 0; a < na; a++) {
+        if (!curve_zero(pd[a].cy[b], CURVE_POINTS)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Curves far beyond the axis range [lo, hi] (log: logy) held a factor
+ * CLIP_FAR beyond it: still cut at the axes, never extreme numbers to
+ * draw. */
+#define CLIP_FAR 1e3
+static void clip_far(double *y, size_t n, double lo, double hi, int logy)
+{
+    double top = logy ? hi * CLIP_FAR : hi + CLIP_FAR * (hi - lo);
+    double bot = logy ? lo / CLIP_FAR : lo - CLIP_FAR * (hi - lo);
+    size_t k;
+    for (k = 0; k < n; k++) {
+        if (isfinite(y[k])) {
+            y[k] = fmin(fmax(y[k], bot), top);
+        }
+    }
+}
+
 const char *bf_fig_value_name(bf_objective obj)
 {
     return obj == BF_OBJ_NGAN               ? "E"
@@ -260,8 +307,35 @@ const char *bf_fig_value_name(bf_objective obj)
                                            : "LSE";
 }
 
-int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
+int bf_fig_plane(const bf_fig_data *D0, bf_fig_entry *e, bf_fig_desc *d,
                  int full)
+{
+    bf_fig_data *D = bf_fig_alloc(d, sizeof *D);
+    size_t pos[BF_FIG_MAX_MODELS];
+    size_t nf;
+    size_t j;
+    char suffix[32];
+    if (D == NULL) {
+        return BF_ENOMEM;
+    }
+    /* the entry's models: those of its family, [first, first + count) */
+    *D = *D0;
+    nf = e->family != 0 ? bf_fig_family(D0, e->family, pos) : D0->nm;
+    D->nm = 0;
+    for (j = e->first; j < nf && (e->count == 0 || j < e->first + e->count);
+         j++) {
+        D->idx[D->nm++] = D0->idx[e->family != 0 ? pos[j] : j];
+    }
+    bf_fig_family_suffix(e->family,
+                         bf_fig_family(D0, BF_FIG_DIFFUSE, pos) > 0,
+                         e->first / BF_FIG_PLANE_CURVES + 1, suffix,
+                         sizeof suffix);
+    return plane_describe(D, suffix, e, d, full);
+}
+
+/* bf_fig_plane for the models of D, the file name ending in suffix. */
+static int plane_describe(const bf_fig_data *D, const char *suffix,
+                          bf_fig_entry *e, bf_fig_desc *d, int full)
 {
     const bf_rep_study *st = D->st;
     int polar = e->kind == BF_FIG_POLAR;
@@ -332,7 +406,10 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     }
     for (b = 0; b < nm; b++) {
         const bf_study_row *row = bf_fig_row(st, s, D->idx[b]);
-        if (row->status == BF_OK && src->abs) {
+        if (row->status == BF_OK && src->abs && zero_everywhere(pd, na, b)) {
+            snprintf(labels[b], sizeof labels[b], "%s (zero scale, not drawn)",
+                     row->type->name);
+        } else if (row->status == BF_OK && src->abs) {
             snprintf(labels[b], sizeof labels[b], "%s (%s %.3g)",
                      row->type->name, bf_fig_value_name(st->opts.objective),
                      row->fit.lse);
@@ -348,6 +425,9 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         bf_plot_panel *p = &panel[a];
         bf_plot_series *q = &ser[a * (nm + 1)];
         for (b = 0; b < nm; b++) {
+            if (!polar) {
+                clip_far(pd[a].cy[b], CURVE_POINTS, ymin, ymax, logy);
+            }
             q[b].kind = BF_SERIES_LINE;
             q[b].x = polar ? pd[a].cx : pd[a].cxd;
             q[b].y = pd[a].cy[b];
@@ -410,8 +490,8 @@ int bf_fig_plane(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.n_panels = na;
 
     bf_fig_model_list(st, D->idx, nm, models, sizeof models);
-    snprintf(e->base, sizeof e->base, "%s_%s", polar ? "polar" : "plane",
-             bf_fig_target_key(st, s, key, sizeof key));
+    snprintf(e->base, sizeof e->base, "%s_%s%s", polar ? "polar" : "plane",
+             bf_fig_target_key(st, s, key, sizeof key), suffix);
     snprintf(e->title, sizeof e->title, "%.160s: plane of incidence%s", who,
              polar ? " (polar)" : "");
     if (src->abs) {

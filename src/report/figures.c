@@ -304,6 +304,35 @@ static size_t scatter_models(const bf_rep_study *st, size_t *idx)
     return n;
 }
 
+int bf_fig_in_family(const bf_rep_study *st, size_t m, int family)
+{
+    int spec = st->models[m]->kind == BF_MODEL_SPECULAR;
+    return family == 0 || (family == BF_FIG_SPECULAR) == spec;
+}
+
+void bf_fig_family_suffix(int family, int diffuse, size_t part, char *buf,
+                          size_t len)
+{
+    buf[0] = '\0';
+    if (family == BF_FIG_DIFFUSE && part > 1) {
+        snprintf(buf, len, "_diffuse%zu", part);
+    } else if (family == BF_FIG_SPECULAR && (diffuse || part > 1)) {
+        snprintf(buf, len, part > 1 ? "_specular%zu" : "_specular", part);
+    }
+}
+
+size_t bf_fig_family(const bf_fig_data *D, int family, size_t *out)
+{
+    size_t n = 0;
+    size_t b;
+    for (b = 0; b < D->nm; b++) {
+        if (bf_fig_in_family(D->st, D->idx[b], family)) {
+            out[n++] = b;
+        }
+    }
+    return n;
+}
+
 static void data_free(bf_fig_data *D)
 {
     size_t s;
@@ -334,6 +363,57 @@ static bf_fig_entry *add_entry(bf_fig_set *set, bf_fig_kind kind,
     return f;
 }
 
+/* Entries of kind for sample index s and family: n items (panels) in
+ * pages of at most per, as even as can be ([first, first + count) of
+ * parts; one page for n = 0). 1, or 0 when out of memory. */
+static int list_pages(bf_fig_set *set, bf_fig_kind kind, size_t s,
+                      int sample, int family, size_t n, size_t per)
+{
+    size_t parts = n > 0 ? (n + per - 1) / per : 1;
+    size_t each = (n + parts - 1) / parts;
+    size_t p;
+    for (p = 0; p < parts; p++) {
+        bf_fig_entry *e = add_entry(set, kind, s, sample);
+        if (e == NULL) {
+            return 0;
+        }
+        e->family = family;
+        e->first = p * each;
+        e->count = p + 1 < parts ? each : n - p * each;
+        e->parts = parts;
+    }
+    return 1;
+}
+
+/* The plane and polar figures of sample index s: per family of the
+ * models drawn (bf_fig_family), at most BF_FIG_PLANE_CURVES curves a
+ * figure. */
+static int list_plane(const bf_fig_data *D, bf_fig_set *set, size_t s)
+{
+    static const int fams[2] = {BF_FIG_DIFFUSE, BF_FIG_SPECULAR};
+    size_t pos[BF_FIG_MAX_MODELS];
+    size_t f;
+    size_t k;
+    int kind;
+    for (kind = BF_FIG_PLANE; kind <= BF_FIG_POLAR; kind++) {
+        for (f = 0; f < 2; f++) {
+            size_t n = bf_fig_family(D, fams[f], pos);
+            for (k = 0; k < n; k += BF_FIG_PLANE_CURVES) {
+                bf_fig_entry *e = add_entry(set, (bf_fig_kind)kind, s,
+                                            D->st->samples[s]);
+                if (e == NULL) {
+                    return BF_ENOMEM;
+                }
+                e->family = fams[f];
+                e->first = k;
+                e->count = n - k < BF_FIG_PLANE_CURVES ? n - k
+                                                       : BF_FIG_PLANE_CURVES;
+            }
+        }
+    }
+    return BF_OK;
+}
+
 /* The figures of the paper's protocol: Figure 2(b), wins, Figures 3-6 and
  * per sample the plane of incidence (and the scatter panels). */
 static int list_paper(const bf_fig_data *D, bf_fig_set *set)
@@ -362,8 +442,7 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
         ok = (!D->o->per_sample ||
               add_entry(set, BF_FIG_SAMPLE, s, sample) != NULL) &&
              (D->o->n_incidence == 0 || /* nothing in its plane */
-              (add_entry(set, BF_FIG_PLANE, s, sample) != NULL &&
-               add_entry(set, BF_FIG_POLAR, s, sample) != NULL));
+              list_plane(D, set, s) == BF_OK);
     }
     return ok ? BF_OK : BF_ENOMEM;
 }
@@ -377,31 +456,34 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
     size_t per = st->cal.n > 0 ? bf_fig_calibration_per_figure(D) : 1;
     size_t m;
     size_t s;
-    int ok = add_entry(set, BF_FIG_DELTA_BIC, 0, 0) != NULL;
+    /* delta BIC in pages of rows (samples) */
+    int ok = list_pages(set, BF_FIG_DELTA_BIC, 0, 0, 0, st->n_samples,
+                        bf_fig_delta_bic_rows(D));
     for (m = 0; m < st->n_models && ok; m++) {
         if (bf_fig_has_forest(st, m)) {
             ok = add_entry(set, BF_FIG_FOREST, m, 0) != NULL;
         }
     }
     for (s = 0; s < st->n_samples && ok; s++) {
-        ok = add_entry(set, BF_FIG_PROFILE, s, st->samples[s]) != NULL;
+        /* the diffuse models' profiles, then the specular ones' */
+        int none = bf_fig_profile_panels(st, s, 0) == 0;
+        int f;
+        for (f = none ? 0 : BF_FIG_DIFFUSE; f <= BF_FIG_SPECULAR && ok;
+             f++) {
+            if (!none && bf_fig_profile_panels(st, s, f) == 0) {
+                continue; /* (none: one figure saying so) */
+            }
+            ok = list_pages(set, BF_FIG_PROFILE, s, st->samples[s], f,
+                            bf_fig_profile_panels(st, s, f),
+                            BF_FIG_PROFILE_PANELS);
+            f = none ? BF_FIG_SPECULAR : f;
+        }
     }
     for (s = 0; s < st->n_samples && ok && st->cal.n > 0; s++) {
-        /* a sample's panels in parts of at most per, as even as can be */
+        /* a sample's panels in parts of at most per */
         size_t np = bf_fig_calibration_panels(st, s);
-        size_t parts = (np + per - 1) / per;
-        size_t each = parts > 0 ? (np + parts - 1) / parts : 0;
-        size_t p;
-        for (p = 0; p < parts && ok; p++) {
-            bf_fig_entry *e = add_entry(set, BF_FIG_CALIBRATION, s,
-                                        st->samples[s]);
-            ok = e != NULL;
-            if (ok) {
-                e->first = p * each;
-                e->count = p + 1 < parts ? each : np - p * each;
-                e->parts = parts;
-            }
-        }
+        ok = np == 0 || list_pages(set, BF_FIG_CALIBRATION, s,
+                                   st->samples[s], 0, np, per);
     }
     return ok ? BF_OK : BF_ENOMEM;
 }

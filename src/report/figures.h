@@ -49,6 +49,13 @@ typedef enum {
                           against the intervals */
 } bf_fig_kind;
 
+/* The model families the plane, polar and profile figures are split by
+ * (bf_fig_entry.family): the diffuse models (SPEC §3-6) and the specular
+ * ones with the composites (SPEC §9.3, §9.4). */
+enum { BF_FIG_DIFFUSE = 1, BF_FIG_SPECULAR = 2 };
+/* Most model curves in one plane or polar figure. */
+#define BF_FIG_PLANE_CURVES 6
+
 /* One figure: drawn in every requested format as BF_FIG_DIR/base.ext. */
 typedef struct {
     bf_fig_kind kind;
@@ -59,6 +66,10 @@ typedef struct {
     size_t first, count;    /* scatter groups: the sample indices
                                [first, first + count) */
     size_t parts;           /* scatter groups: how many there are */
+    int family;             /* plane, polar, profile figures: the models
+                               drawn, 0 all, BF_FIG_DIFFUSE or
+                               BF_FIG_SPECULAR (and for plane and polar the
+                               family's models [first, first + count)) */
     char base[64];          /* file name without extension */
     char title[256];        /* short heading (never drawn in the image) */
     char caption[1536];     /* what is plotted and how it is normalised */
