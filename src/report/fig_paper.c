@@ -146,6 +146,9 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     p->logy = D->o->log_lse;
     p->ymin = p->logy ? pow(10.0, floor(log10(lo))) : 0.0;
     p->ymax = p->logy ? pow(10.0, ceil(log10(hi))) : axis_top(hi, 0.05);
+    if (p->logy && !(p->ymax > p->ymin)) { /* every value one power of 10 */
+        p->ymax = 10.0 * p->ymin;
+    }
     p->xtick_labels = ticks;
     p->n_xticks = N;
     p->series = ser;

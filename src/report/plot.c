@@ -670,12 +670,20 @@ static void frame(ctx_t *c, size_t i, const view_t *v)
 }
 
 /* The panel's note, above its top left corner (clear of the frame by the
- * depth of a subscript). */
+ * depth of a subscript); a note wider than the axes and a font's room
+ * beside them smaller, down to NOTE_SHRINK of the font, so that notes of
+ * neighbouring panels (long composite names, SPEC §9.4) do not meet. */
+#define NOTE_SHRINK 0.6
 static void note(const ctx_t *c, const view_t *v)
 {
     if (v->p->note != NULL) {
-        text(c, v->box.x0, v->box.y1 + c->L->font * 1.05, 0.0, 0.0,
-             c->L->font, v->p->note);
+        double font = c->L->font;
+        double w = bf__text_width(v->p->note, font);
+        double room = v->box.x1 - v->box.x0 + font;
+        double size = w > room ? fmax(NOTE_SHRINK * font, font * room / w)
+                               : font;
+        text(c, v->box.x0, v->box.y1 + font * 1.05, 0.0, 0.0, size,
+             v->p->note);
     }
 }
 

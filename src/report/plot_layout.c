@@ -142,6 +142,48 @@ static void tick_add(bf__ticks *t, double v, const char *name, int d)
     t->n++;
 }
 
+/* Most decades labelled on a log axis: more are labelled every second
+ * (third, ...) decade. */
+#define LOG_TICKS 6
+/* Ticks of a log axis [lo, hi]: the decades as numbers (0.01, 0.1, 1, 10;
+ * 1e-05 and 1e+06 beyond four digits), at most LOG_TICKS of them; an axis
+ * with two decades or fewer in it has 1, 2 and 5 times the decades (or
+ * every digit), so that it always has numbers to read. */
+static void log_ticks(double lo, double hi, bf__ticks *t)
+{
+    static const double mant[2][9] = {{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}};
+    static const size_t n_mant[2] = {3, 9};
+    double k0 = ceil(log10(lo) - 1e-9);
+    double k1 = floor(log10(hi) + 1e-9);
+    double stride = k1 - k0 + 1 > LOG_TICKS
+                        ? ceil((k1 - k0 + 1) / LOG_TICKS)
+                        : 1.0;
+    double k;
+    size_t j;
+    int pass;
+    if (k1 - k0 + 1 >= 3) { /* decades */
+        for (k = k0; k <= k1; k += stride) {
+            tick_add(t, pow(10.0, k), NULL, k < 0 ? (int)-k : 0);
+            if (fabs(k) > 4) {
+                snprintf(t->num[t->n - 1], sizeof t->num[t->n - 1], "1e%+.0f",
+                         k);
+            }
+        }
+        return;
+    }
+    for (pass = 0; pass < 2 && t->n < 2; pass++) {
+        t->n = 0;
+        for (k = floor(log10(lo)); k <= k1 + 1; k += 1.0) {
+            for (j = 0; j < n_mant[pass]; j++) {
+                double v = mant[pass][j] * pow(10.0, k);
+                if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) {
+                    tick_add(t, v, NULL, k < 0 ? (int)-k : 0);
+                }
+            }
+        }
+    }
+}
+
 void bf__ticks_make(double lo, double hi, double step, int logy,
                     const char *const *names, size_t n_names, bf__ticks *t)
 {
@@ -157,10 +199,8 @@ void bf__ticks_make(double lo, double hi, double step, int logy,
         }
         return;
     }
-    if (logy) { /* decades, as numbers: 0.01, 0.1, 1, 10 */
-        for (k = ceil(log10(lo) - 1e-9); k <= log10(hi) + 1e-9; k += 1.0) {
-            tick_add(t, pow(10.0, k), NULL, k < 0 ? (int)-k : 0);
-        }
+    if (logy) {
+        log_ticks(lo, hi, t);
         return;
     }
     if (!(step > 0.0)) {
