@@ -128,6 +128,18 @@ int bf__study_joint_check(const bf_study_spec *spec, int analysed,
     return BF_OK;
 }
 
+/* 1 when some v[0..n) is positive. */
+static int any_positive(size_t n, const double *v)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        if (v[i] > 0.0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* bf_study_target_data, with rho as measured when raw is 1 (SPEC §10). */
 static int target_data(const bf_study_spec *spec, size_t t, int raw,
                        size_t *sel, size_t *k, double *data, bf_error *err);
@@ -190,6 +202,18 @@ static int target_data(const bf_study_spec *spec, size_t t, int raw,
                             "the measured radiance has no positive maximum "
                             "over the used configurations",
                             *k);
+    }
+    if (raw && !any_positive(*k, data)) { /* SPEC §10: every scale 0 */
+        char why[160];
+        const char *ch = tg->channel != BF_CHANNEL_MEAN
+                             ? bf_dataset_channel(spec->data, tg->material,
+                                                  tg->channel)
+                             : NULL;
+        snprintf(why, sizeof why, "%s%s%severy measured value is zero over "
+                 "the used configurations (theta_i, theta_o <= 80 deg): "
+                 "nothing to fit", ch != NULL ? "channel " : "",
+                 ch != NULL ? ch : "", ch != NULL ? ": " : "");
+        return target_error(err, spec->data, tg->material, BF_EDOM, why, *k);
     }
     return BF_OK;
 }

@@ -60,7 +60,20 @@ static void rows_height(bf_fig_desc *d)
     }
 }
 
-size_t bf_fig_delta_bic_rows(const bf_fig_data *D)
+/* e's file name: prefix and name, on the further pages of its n rows
+ * (bf_fig_rows_per_page) followed by _2, _3, ... */
+static void page_name(bf_fig_entry *e, size_t n, const char *prefix,
+                      const char *name)
+{
+    if (e->first == 0) {
+        snprintf(e->base, sizeof e->base, "%s%s", prefix, name);
+    } else {
+        snprintf(e->base, sizeof e->base, "%s%s_%zu", prefix, name,
+                 e->first / ((n + e->parts - 1) / e->parts) + 1);
+    }
+}
+
+size_t bf_fig_rows_per_page(const bf_fig_data *D)
 {
     /* a page's height less the frame and the model names upwards */
     double room = BF_PLOT_MAX_TALL * (double)D->o->width - FRAME_PT
@@ -144,7 +157,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                   int full)
 {
     const bf_rep_study *st = D->st;
-    size_t N = st->n_samples;
+    size_t s0 = e->count > 0 ? e->first : 0; /* this page's rows */
+    size_t N = e->count > 0 ? e->count : st->n_samples;
     size_t m = e->index;
     const bf_model_type *t = st->models[m];
     unsigned mask = free_params(st, m);
@@ -180,7 +194,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             continue;
         }
         for (s = 0; s < N; s++) {
-            const bf_fit_stats *f = &st->stats[s * st->n_models + m];
+            const bf_fit_stats *f = &st->stats[(s0 + s) * st->n_models + m];
             int ok = f->done && ((f->free_mask >> j) & 1u);
             est[s] = ok ? f->refined.param[j] : NAN;
             lo[s] = ok ? f->ci_low[j] : NAN;
@@ -236,7 +250,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         panel[q].xmax = xmax + 0.04 * (xmax - xmin);
         panel[q].ymin = 0.3;
         panel[q].ymax = (double)N + 0.7;
-        panel[q].ytick_labels = names;
+        panel[q].ytick_labels = names + (st->n_samples - s0 - N);
         panel[q].n_yticks = N;
         panel[q].xlabel = xl[q];
         panel[q].series = sq;
@@ -252,7 +266,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.panels = panel;
     d->fig.n_panels = nj;
     rows_width(d, 160.0 + 200.0 * (double)nj, D->o->width);
-    snprintf(e->base, sizeof e->base, "forest_%s", t->name);
+    rows_height(d);
+    page_name(e, st->n_samples, "forest_", t->name);
     snprintf(e->title, sizeof e->title,
              "%s: fitted parameters and their 95%% intervals", t->name);
     snprintf(e->caption, sizeof e->caption,
@@ -368,12 +383,7 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.n_panels = 1;
     rows_width(d, want, D->o->width);
     rows_height(d);
-    if (e->first == 0) {
-        snprintf(e->base, sizeof e->base, "delta_bic");
-    } else { /* the further pages: _2, _3, ... */
-        snprintf(e->base, sizeof e->base, "delta_bic_%zu",
-                 e->first / ((st->n_samples + e->parts - 1) / e->parts) + 1);
-    }
+    page_name(e, st->n_samples, "delta_bic", "");
     snprintf(e->title, sizeof e->title,
              "Model selection at a glance: \xce\x94" "BIC per sample");
     snprintf(e->caption, sizeof e->caption,

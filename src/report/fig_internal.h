@@ -135,9 +135,9 @@ int bf_fig_in_family(const bf_rep_study *st, size_t m, int family);
  * (fig_analysis.c) */
 size_t bf_fig_profile_panels(const bf_rep_study *st, size_t s, int family);
 
-/* Rows (samples) of one delta BIC page at D's width: more samples
- * continue in delta_bic_2, ... (fig_analysis.c) */
-size_t bf_fig_delta_bic_rows(const bf_fig_data *D);
+/* Rows (samples) of one delta BIC or forest page at D's width: more
+ * samples continue in delta_bic_2, forest_X_2, ... (fig_analysis.c) */
+size_t bf_fig_rows_per_page(const bf_fig_data *D);
 
 /* Whether model m has free parameters analysed for some sample (it gets
  * a forest plot). */

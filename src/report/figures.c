@@ -458,10 +458,11 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
     size_t s;
     /* delta BIC in pages of rows (samples) */
     int ok = list_pages(set, BF_FIG_DELTA_BIC, 0, 0, 0, st->n_samples,
-                        bf_fig_delta_bic_rows(D));
+                        bf_fig_rows_per_page(D));
     for (m = 0; m < st->n_models && ok; m++) {
         if (bf_fig_has_forest(st, m)) {
-            ok = add_entry(set, BF_FIG_FOREST, m, 0) != NULL;
+            ok = list_pages(set, BF_FIG_FOREST, m, 0, 0, st->n_samples,
+                            bf_fig_rows_per_page(D));
         }
     }
     for (s = 0; s < st->n_samples && ok; s++) {

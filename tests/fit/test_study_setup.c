@@ -40,6 +40,56 @@ Test(study_models, defaults_all_and_a_list)
     cr_assert_eq(n, 1);
 }
 
+Test(study_models, all_under_the_objectives_that_keep_the_scale_is_complete)
+{
+    /* the complete glossy comparison: every diffuse model, then LAMBERT+S
+     * for every specular model S of SPEC §9.3, AS alone (its own diffuse
+     * term); the paper's objectives keep the diffuse models only */
+    static const bf_objective keep[3] = {BF_OBJ_NGAN, BF_OBJ_CUBEROOT,
+                                         BF_OBJ_LOG1P};
+    const bf_model_type *m[CAP];
+    const bf_model_type *diffuse[CAP];
+    size_t nd = 0;
+    size_t n = 0;
+    size_t o;
+    size_t i;
+    bf_error err;
+    cr_assert_eq(bf_study_models("all", BF_MODELS_PAPER, BF_OBJ_MAX, 0, 0,
+                                 diffuse, CAP, &nd, &err), BF_OK);
+    for (o = 0; o < 3; o++) {
+        size_t composites = 0;
+        size_t alone = 0;
+        cr_assert_eq(bf_study_models("all", BF_MODELS_PAPER, keep[o], 0, 0,
+                                     m, CAP, &n, &err), BF_OK, "%s",
+                     err.msg);
+        cr_assert_eq(n, 21, "%s", bf_objective_name(keep[o]));
+        cr_assert_eq(n, bf_model_count(), "bf_model_count() + 1 is enough");
+        for (i = 0; i < nd; i++) {
+            cr_assert_eq(m[i], diffuse[i], "%s", m[i]->name);
+        }
+        for (i = nd; i < n; i++) {
+            size_t first;
+            const bf_model_type *s = bf_model_specular_part(m[i], &first);
+            cr_assert_eq(m[i]->kind, BF_MODEL_SPECULAR, "%s", m[i]->name);
+            cr_assert_not_null(s, "%s", m[i]->name);
+            if (first == 0) { /* alone: a model with its diffuse term */
+                cr_assert_str_eq(m[i]->name, "AS");
+                cr_assert(m[i]->own_diffuse);
+                alone++;
+            } else {
+                char want[64];
+                snprintf(want, sizeof want, "LAMBERT+%s", s->name);
+                cr_assert_str_eq(m[i]->name, want);
+                cr_assert_not(s->own_diffuse, "%s", s->name);
+                composites++;
+            }
+        }
+        cr_assert_eq(composites, 9);
+        cr_assert_eq(alone, 1);
+        cr_assert_str_eq(m[nd]->name, "LAMBERT+GGX");
+    }
+}
+
 Test(study_models, errors_say_what)
 {
     static const struct {
