@@ -83,8 +83,11 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "                    DEG degrees (default 90: none)\n"
 "\n"
 "Models and fitting:\n"
-"  --models LIST     comma-separated model names, or 'all'; composites D+S\n"
-"                    such as LAMBERT+GGX (with --objective ngan); see\n"
+"  --models LIST     comma-separated model names, or 'all' (the diffuse\n"
+"                    models; with --objective ngan, cuberoot, log1p also\n"
+"                    LAMBERT+S for every specular model S, AS alone);\n"
+"                    composites D+S such as LAMBERT+GGX (with --objective\n"
+"                    ngan); see\n"
 "                    'brdffit models' (default ", fp);
     wrapped(fp, bf_model_set_names(d->models), 38);
     fprintf(fp, ")\n"

@@ -112,3 +112,26 @@ def test_calibrate_writes_the_clis_calibration(cli, curet, curet_dir,
         brdffit.report(curet, out=tmp_path / "bad", samples=[12],
                        models="VH-E", calibrate=5)
     assert not (tmp_path / "bad").exists()
+
+
+def test_glossy_cornell_file_under_ngan_by_model_family(cli, cornell_dir,
+                                                        tmp_path):
+    # diffuse and specular models: the plane, polar and profile figures per
+    # family (README "Report"), the same files from Python as from the CLI
+    path = os.path.join(cornell_dir, "krylon_blue.brdf")
+    models = "LFTG,LAMBERT,WNO,VH-E,FC-E,ON,VH-G,LAMBERT+GGX,AS"
+    want = cli_report(cli, tmp_path, [
+        "--input", path, "--models", models, "--fit", "exact",
+        "--objective", "ngan", "--exclude", "301-1439", "--format", "png"])
+    ds = brdffit.load(path)
+    brdffit.report(ds, out=tmp_path / "py", models=models, fit="exact",
+                   objective="ngan", exclude="301-1439", format="png")
+    got = files(tmp_path / "py")
+    assert_same(want, got)
+    figs = {k.split(os.sep)[-1] for k in got if k.endswith(".png")}
+    for name in ("plane_sample1", "plane_sample1_diffuse2",
+                 "plane_sample1_specular", "polar_sample1",
+                 "polar_sample1_diffuse2", "polar_sample1_specular",
+                 "profile_sample1", "profile_sample1_specular"):
+        assert name + ".png" in figs, name
+    assert "plane_sample1_specular2.png" not in figs  # two specular curves

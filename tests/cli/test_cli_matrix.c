@@ -7,6 +7,10 @@
  * fits.csv (ranking.csv for rank) has a header and rows of its width;
  * every file report.html references (img src, href) exists; every figure
  * is at most BF_PLOT_MAX_TALL times as tall as wide (read from the PNGs).
+ * Glossy reports (--fit exact --objective ngan on Cornell files: --models
+ * all, --channel each on the five files, --channel joint, --size single)
+ * pass the same checks and write their figures per model family and in
+ * pages (glossy_case).
  *
  * Cost: figures in PNG only, two threads. Data with one sample have no
  * "two samples" case and their "all" is their "one"; rank always runs the
@@ -281,6 +285,22 @@ static int diagonal(data_t data, int cmd, int smp, int models, int stats)
            !(data != CURET && cmd == RANK && smp != ONE);
 }
 
+/* Ends argv at a: the figures in PNG only (png), --out out, two threads,
+ * quiet, NULL. */
+static void end_args(const char **argv, size_t a, const char *out, int png)
+{
+    if (png) {
+        argv[a++] = "--format";
+        argv[a++] = "png";
+    }
+    argv[a++] = "--out";
+    argv[a++] = out;
+    argv[a++] = "--threads";
+    argv[a++] = "2";
+    argv[a++] = "-q";
+    argv[a] = NULL;
+}
+
 static void run_one(data_t data, const char *const *inputs, size_t n_inputs,
                     int cmd, int smp, int models, int stats)
 {
@@ -307,16 +327,7 @@ static void run_one(data_t data, const char *const *inputs, size_t n_inputs,
     if (stats) {
         argv[a++] = "--stats";
     }
-    if (cmd == REPORT) {
-        argv[a++] = "--format";
-        argv[a++] = "png";
-    }
-    argv[a++] = "--out";
-    argv[a++] = out;
-    argv[a++] = "--threads";
-    argv[a++] = "2";
-    argv[a++] = "-q";
-    argv[a] = NULL;
+    end_args(argv, a, out, cmd == REPORT);
     snprintf(what, sizeof what, "%s, %s, --samples %s, --models %s%s",
              cmd_name[cmd], data_name[data], samples_arg[smp],
              models_arg[models] != NULL ? models_arg[models] : "(default)",
@@ -431,4 +442,124 @@ Test(matrix, six_samples_keep_the_papers_scatter_grid)
                                    "model"));
     snprintf(path, sizeof path, "%s/figures/scatter2.png", out);
     cr_expect_null(bf_test_slurp(path, NULL));
+}
+
+/* ==== glossy reports (SPEC §9, §10) ====================================== */
+
+/* brdffit report under --objective ngan --fit exact on Cornell files
+ * (files[0..n_files) of bf_test_cornell) with the options extra: exits 0,
+ * fits.csv, a page whose every reference exists, figures that fit a page
+ * (run_one's checks) and each figure of want (names without .png). Most
+ * runs leave out all but the first 300 configurations of 1439: the point
+ * is the figures' layout, not the fits. */
+static void run_glossy(const char *what, const int *files, size_t n_files,
+                       const char *const *extra, const char *const *want)
+{
+    static char paths[BF_TEST_NCORNELL][PATH_LEN];
+    const char *argv[64];
+    const char *out = bf_test_tmpdir();
+    const char *err;
+    char path[PATH_LEN];
+    struct stat sb;
+    size_t a = 0;
+    size_t i;
+    int rc;
+    argv[a++] = "report";
+    for (i = 0; i < n_files; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s",
+                 bf_test_cornell_path(bf_test_cornell[files[i]]));
+        argv[a++] = "--input";
+        argv[a++] = paths[i];
+    }
+    for (i = 0; extra[i] != NULL; i++) {
+        argv[a++] = extra[i];
+    }
+    argv[a++] = "--fit";
+    argv[a++] = "exact";
+    argv[a++] = "--objective";
+    argv[a++] = "ngan";
+    end_args(argv, a, out, 1);
+    rc = bf_test_run_cli(argv, NULL, &err);
+    cr_assert_eq(rc, 0, "%s: exit %d: %s", what, rc, err);
+    check_csv(out, "fits.csv", what);
+    check_page(out, what);
+    check_figures(out, what);
+    for (i = 0; want[i] != NULL; i++) {
+        snprintf(path, sizeof path, "%s/figures/%s.png", out, want[i]);
+        cr_expect_eq(stat(path, &sb), 0, "%s: no %s.png", what, want[i]);
+    }
+}
+
+/* The glossy runs: what, the files (indices into bf_test_cornell, -1
+ * ends), the options and the figures each must write. */
+typedef struct {
+    const char *what;
+    int files[BF_TEST_NCORNELL + 1];
+    const char *extra[12];
+    const char *want[16];
+} glossy_case;
+
+static const glossy_case glossy[] = {
+    /* --models all under ngan: the complete glossy comparison, 11
+     * diffuse models and 10 specular ones, drawn per family with at most
+     * six curves a figure; the one run of --models all */
+    {"report --models all, one Cornell file",
+     {3, -1},
+     {"--models", "all", "--exclude", "301-1439", NULL},
+     {"plane_sample1", "plane_sample1_diffuse2", "plane_sample1_specular",
+      "plane_sample1_specular2", "polar_sample1", "polar_sample1_diffuse2",
+      "polar_sample1_specular", "polar_sample1_specular2", "profile_sample1",
+      "profile_sample1_specular", "delta_bic", "wins",
+      "forest_LAMBERT+WARD-DUER", NULL}},
+    /* --channel each on the five files: 155 targets of 31 channels, the
+     * delta BIC overview in pages of rows (LAMBERT: a scale only, cheap) */
+    {"report --channel each, five Cornell files",
+     {0, 1, 2, 3, 4, -1},
+     {"--models", "LAMBERT", "--channel", "each", "--exclude", "101-1439",
+      NULL},
+     {"delta_bic", "delta_bic_2", "plane_sample5_700", NULL}},
+    /* --channel joint: one shape for the 31 channels, a figure each */
+    {"report --channel joint, one Cornell file",
+     {1, -1},
+     {"--models", "LAMBERT+GGX,AS", "--channel", "joint", "--exclude",
+      "301-1439", NULL},
+     {"plane_sample1_400", "polar_sample1_700", NULL}},
+    /* --size single: 31 channels' rows over two pages of the overview and
+     * of the forest plot at single-column width */
+    {"report --size single --channel each, one Cornell file",
+     {4, -1},
+     {"--models", "LAMBERT,LAMBERT+GGX", "--channel", "each", "--size",
+      "single", "--exclude", "301-1439", NULL},
+     {"delta_bic_2", "forest_LAMBERT+GGX_2", "plane_sample1_400_specular",
+      NULL}},
+};
+
+static void run_glossy_case(size_t i)
+{
+    size_t n = 0;
+    while (glossy[i].files[n] >= 0) {
+        n++;
+    }
+    run_glossy(glossy[i].what, glossy[i].files, n, glossy[i].extra,
+               glossy[i].want);
+}
+
+Test(glossy, one_file_every_model_by_family, .timeout = 600)
+{
+    run_glossy_case(0);
+}
+
+Test(glossy, five_files_every_channel_page_the_overview, .timeout = 600)
+{
+    run_glossy_case(1);
+}
+
+Test(glossy, one_file_joint_channels, .timeout = 600)
+{
+    run_glossy_case(2);
+}
+
+Test(glossy, single_column_every_channel, .timeout = 600)
+{
+    run_glossy_case(3);
 }
