@@ -25,6 +25,11 @@
 #define FRAME_PT 64.0
 /* Room of the longest model names written upwards (composites). */
 #define NAMES_PT 110.0
+/* Forest plots: room of the sample names beside the panels, the narrowest
+ * panels in one row, the room of a row's x numbers and label. */
+#define FOREST_NAMES_PT 150.0
+#define FOREST_MIN_AXES 50.0
+#define XLABEL_PT 34.0
 /* Profile panels: points per curve, the window around the interval (in
  * half-widths of the interval), panels per row and their shape. */
 #define PROFILE_POINTS 41
@@ -153,6 +158,31 @@ static const char **sample_names(const bf_rep_study *st, bf_fig_desc *d)
 
 /* ==== forest plots ======================================================= */
 
+/* Columns of a forest plot of nj parameter panels at D's width: all in
+ * one row, or fewer (rows of panels, each with the sample names) where
+ * the axes beside the names would be narrower than FOREST_MIN_AXES. */
+static size_t forest_cols(const bf_fig_data *D, size_t nj)
+{
+    size_t cols = nj > 0 ? nj : 1;
+    while (cols > 1 && ((double)D->o->width - FOREST_NAMES_PT) /
+                               (double)cols < FOREST_MIN_AXES) {
+        cols--;
+    }
+    return cols;
+}
+
+size_t bf_fig_forest_rows(const bf_fig_data *D, size_t m)
+{
+    size_t nj = popcount(free_params(D->st, m));
+    size_t cols = forest_cols(D, nj);
+    size_t grid = nj > 0 ? (nj + cols - 1) / cols : 1;
+    double room = BF_PLOT_MAX_TALL * (double)D->o->width - FRAME_PT -
+                  (double)(grid - 1) * XLABEL_PT;
+    double rows = room / (ROW_PT * (double)grid);
+    return rows >= 1.0 ? (size_t)rows : 1;
+}
+
+
 int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                   int full)
 {
@@ -258,14 +288,16 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         q++;
     }
     /* the sample names, then at most 200 points a parameter */
-    d->fig.height = (unsigned)ceil((double)N * ROW_PT + FRAME_PT);
-    d->fig.nx = nj;
-    d->fig.ny = 1;
+    d->fig.nx = forest_cols(D, nj);
+    d->fig.ny = (nj + d->fig.nx - 1) / d->fig.nx;
+    d->fig.height = (unsigned)ceil((double)(d->fig.ny * N) * ROW_PT +
+                                   FRAME_PT +
+                                   (double)(d->fig.ny - 1) * XLABEL_PT);
     d->fig.share_y = 1;
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = panel;
     d->fig.n_panels = nj;
-    rows_width(d, 160.0 + 200.0 * (double)nj, D->o->width);
+    rows_width(d, 160.0 + 200.0 * (double)d->fig.nx, D->o->width);
     rows_height(d);
     page_name(e, st->n_samples, "forest_", t->name);
     snprintf(e->title, sizeof e->title,

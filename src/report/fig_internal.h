@@ -139,6 +139,11 @@ size_t bf_fig_profile_panels(const bf_rep_study *st, size_t s, int family);
  * samples continue in delta_bic_2, forest_X_2, ... (fig_analysis.c) */
 size_t bf_fig_rows_per_page(const bf_fig_data *D);
 
+/* Rows (samples) of one page of model m's forest plot at D's width (its
+ * panels in more rows on narrow pages): more continue in forest_X_2, ...
+ * (fig_analysis.c) */
+size_t bf_fig_forest_rows(const bf_fig_data *D, size_t m);
+
 /* Whether model m has free parameters analysed for some sample (it gets
  * a forest plot). */
 int bf_fig_has_forest(const bf_rep_study *st, size_t m);

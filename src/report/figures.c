@@ -120,10 +120,20 @@ static size_t utf8_prefix(const char *t, size_t n)
 const char *bf_fig_sample_tick(const bf_rep_study *st, size_t s, char *buf,
                                size_t len)
 {
-    char title[256];
+    char title[300];
     size_t cut;
-    bf_rep_sample_title(st, s, title, sizeof title);
-    cut = utf8_prefix(title, BF_FIG_TICK_CHARS);
+    /* the name cut, its channel (--channel each, joint) kept whole within
+     * the same length */
+    const char *ch = st->targets[s].channel != BF_CHANNEL_MEAN
+                         ? bf_rep_channel_name(st, s)
+                         : NULL;
+    size_t room = BF_FIG_TICK_CHARS;
+    if (ch != NULL) {
+        room -= strlen(ch) + 3 < BF_FIG_TICK_CHARS / 2 ? strlen(ch) + 3
+                                                       : BF_FIG_TICK_CHARS / 2;
+    }
+    snprintf(title, 256, "%s", bf_rep_sample_name(st, s));
+    cut = utf8_prefix(title, room);
     if (title[cut] != '\0') { /* longer: cut at a space, add an ellipsis */
         size_t sp = cut;
         while (sp > cut / 2 && title[sp] != ' ') {
@@ -135,6 +145,10 @@ const char *bf_fig_sample_tick(const bf_rep_study *st, size_t s, char *buf,
             cut--;
         }
         memcpy(title + cut, "\xe2\x80\xa6", 4); /* the ellipsis and NUL */
+    }
+    if (ch != NULL) {
+        size_t used = strlen(title);
+        snprintf(title + used, sizeof title - used, " [%.32s]", ch);
     }
     return label_of(st, s, title, buf, len);
 }
@@ -462,7 +476,7 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
     for (m = 0; m < st->n_models && ok; m++) {
         if (bf_fig_has_forest(st, m)) {
             ok = list_pages(set, BF_FIG_FOREST, m, 0, 0, st->n_samples,
-                            bf_fig_rows_per_page(D));
+                            bf_fig_forest_rows(D, m));
         }
     }
     for (s = 0; s < st->n_samples && ok; s++) {

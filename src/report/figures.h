@@ -132,8 +132,9 @@ int bf_figures_choose_incidence(const bf_rep_study *st, bf_fig_opts *o);
 #define BF_FIG_TICK_CHARS 24
 /* bf_fig_sample_label for text inside a figure (axis ticks, panel
  * columns): a name longer than BF_FIG_TICK_CHARS characters is cut at a
- * space and ends in an ellipsis ("Krylon spray enamel 7205... (4)"); the
- * page's captions and tables keep the whole name. */
+ * space and ends in an ellipsis ("Krylon spray enamel 7205... (4)"), its
+ * channel kept whole ("Krylon spray enamel... [550] (4)"); the page's
+ * captions and tables keep the whole name. */
 const char *bf_fig_sample_tick(const bf_rep_study *st, size_t s, char *buf,
                                size_t len);
 /* The key of target s in file names and page anchors: "sample16", or
