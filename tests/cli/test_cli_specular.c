@@ -1,14 +1,20 @@
 /* test_cli_specular.c: the specular models of SPEC §9 in the CLI --
  * `brdffit models` lists them with their NDF, masking, Fresnel term and
  * the parameters of the --fresnel/--smith variants; the paper's study
- * (max-normalised, SPEC §2) refuses them by name with the reason. */
+ * (max-normalised, SPEC §2) refuses them by name with the reason; data
+ * with every value zero (a file, or one channel) are refused under the
+ * objectives that keep the scale (SPEC §10), naming file, sample and
+ * channel, with no output. */
 #include <criterion/criterion.h>
+#include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli_run.h"
 #include "support.h"
 
 #define EXIT_BADVALUE 63
+#define EXIT_DATAERR 65
 
 /* The block of model name in the listing out (to the next model line). */
 static const char *block(const char *out, const char *name, char *buf,
@@ -87,4 +93,54 @@ Test(cli_specular, the_paper_study_refuses_a_specular_model)
                                    "fit it with --fit exact --objective ngan, "
                                    "cuberoot or log1p"),
                        "%s", err);
+}
+
+/* A tidy CSV of one material at 40 configurations in the plane of
+ * incidence: channel A all zero, channel B a positive lobe. */
+static const char *write_zero_csv(const char *dir)
+{
+    static char path[512];
+    FILE *fp;
+    int i;
+    snprintf(path, sizeof path, "%s/zero.csv", dir);
+    fp = fopen(path, "w");
+    cr_assert_not_null(fp, "%s", path);
+    fprintf(fp, "material,theta_i,phi_i,theta_o,phi_o,A,B\n");
+    for (i = 0; i < 40; i++) {
+        double ti = 10.0 + 20.0 * (i % 4);
+        double to = 2.0 * (double)(i / 4) + 1.0;
+        fprintf(fp, "paint,%g,0,%g,180,0,%g\n", ti, to,
+                0.05 + 0.01 * (double)i);
+    }
+    cr_assert_eq(fclose(fp), 0);
+    return path;
+}
+
+Test(cli_specular, every_value_zero_is_refused_naming_the_channel)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *csv = write_zero_csv(dir);
+    char out[600];
+    char fits[700];
+    struct stat sb;
+    const char *argv[] = {"report", "--input", csv, "--fit", "exact",
+                          "--objective", "ngan", "--models",
+                          "LAMBERT,LAMBERT+GGX", "--channel", "A", "--out",
+                          out, "-q", NULL};
+    const char *err = NULL;
+    snprintf(out, sizeof out, "%s/out", dir);
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_DATAERR, "%s", err);
+    cr_assert(err != NULL && strstr(err, csv) != NULL &&
+                  strstr(err, "every measured value is zero") != NULL,
+              "%s", err);
+    snprintf(fits, sizeof fits, "%s/fits.csv", out);
+    cr_assert_neq(stat(fits, &sb), 0, "no partial output");
+    argv[10] = "each"; /* A among the channels: named */
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), EXIT_DATAERR, "%s", err);
+    cr_assert(err != NULL && strstr(err, "channel A: every measured value "
+                                         "is zero") != NULL,
+              "%s", err);
+    cr_assert_neq(stat(fits, &sb), 0, "no partial output");
+    argv[10] = "B"; /* the other channel fits */
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "%s", err);
 }
