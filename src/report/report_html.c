@@ -482,6 +482,28 @@ static void calibration(FILE *fp, const bf_rep_study *st,
 }
 
 /* The analysis beyond the paper: model selection and intervals. */
+/* n against wavelength (--fresnel dielectric on spectral channels), when
+ * some material has it. */
+static void dispersion(FILE *fp, const bf_fig_set *figs)
+{
+    size_t i;
+    for (i = 0; i < figs->n && figs->fig[i].kind != BF_FIG_DISPERSION; i++) {
+    }
+    if (i == figs->n) {
+        return;
+    }
+    fputs("<h3 id=\"dispersion-section\">Dispersion: n against "
+          "wavelength</h3>\n<p>The refractive index of the dielectric "
+          "Fresnel factor fitted on each spectral channel, with its 95% "
+          "interval; the values are in <a href=\"dispersion.csv\">"
+          "dispersion.csv</a>. It is the index of a smooth outermost "
+          "interface seen through one specular lobe: read "
+          "doc/methods.md “Dispersion” before reading it as the binder's.</p>"
+          "\n",
+          fp);
+    figures_of(fp, figs, BF_FIG_DISPERSION, SIZE_MAX);
+}
+
 static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
 {
     size_t m;
@@ -507,6 +529,7 @@ static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
           fp);
     bf_report_intervals(fp, st);
     fputs("</details>\n", fp);
+    dispersion(fp, figs);
     if (st->opts.calibrate > 0) {
         calibration(fp, st, figs);
     }
