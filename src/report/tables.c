@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "calibration.h"
+#include "energy.h"
 #include "tables.h"
 #include "texttable.h"
 
@@ -573,6 +574,21 @@ static int write_dispersion(const bf_rep_study *st, int *written)
     return bf_out_commit(&f);
 }
 
+/* The energy table (energy.h) when some fit is specular. */
+static void energy(const bf_rep_study *st, FILE *fp)
+{
+    size_t n;
+    size_t over;
+    bf_tt *t = bf_rep_energy_table(&st->spec, st->rows, &n, &over);
+    if (t == NULL) {
+        return;
+    }
+    fprintf(fp, "\n%s: %zu of %zu over 1\n\n", BF_REP_ENERGY_TITLE, over,
+            n);
+    bf_tt_print(t, fp);
+    bf_tt_free(t);
+}
+
 /* With --fit exact and --on-params: the fitted values of the model whose
  * inputs are the ON table (rho, sigma; its profile intervals) beside the
  * tabulated ones. */
@@ -668,6 +684,7 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     fputc('\n', fp);
     table3_title(st, 0, fp);
     bf_tt_print(t3, fp);
+    energy(st, fp);
     on_compare(st, fp);
     if (st->opts.calibrate > 0) {
         rc = bf_rep_calibration_print(st, fp);
