@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import brdffit
+import synth
 
 NM = (450.0, 550.0, 650.0)
 
@@ -21,14 +22,8 @@ def _dataset():
     three wavelengths, 1% relative noise; half the directions near the
     mirror direction."""
     rng = np.random.default_rng(11)
-    n = 300
-    ti = rng.uniform(0.05, 1.3, n)
-    near = np.arange(n) < n // 2
-    to = np.where(near, ti + rng.uniform(-0.07, 0.07, n),
-                  rng.uniform(0.05, 1.35, n))
-    po = np.where(near, np.pi + rng.uniform(-0.1, 0.1, n),
-                  rng.uniform(-np.pi, np.pi, n))
-    angles = np.column_stack([ti, np.zeros(n), np.abs(to), po])
+    angles = synth.glossy_directions(11, 300)
+    n = len(angles)
     model = brdffit.model("LAMBERT+GGX", fresnel="dielectric")
     values = np.column_stack([
         model.evaluate({"rho_d": 0.2, "rho_s": 0.5, "alpha": 0.12,
