@@ -3,7 +3,8 @@
  * follows Cauchy's law n = A + B / lambda^2, measured with 1% relative
  * noise on three wavelengths, comes back per channel within its profile
  * intervals through tidy CSV, the CLI and dispersion.csv; --channel joint
- * gives one n; a model without n gives no points (bf_dispersion_points). */
+ * gives one n; a model without n gives no points (bf_dispersion_points);
+ * the real krylon_blue's mean index is a binder's. */
 #include <criterion/criterion.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_randist.h>
@@ -220,4 +221,42 @@ Test(dispersion, no_n_no_points)
     tg.channel = BF_CHANNEL_MEAN;
     cr_assert_eq(bf_dispersion_points(&spec, &row, NULL, NULL), 0);
     bf_dataset_free(ds);
+}
+
+/* The real krylon_blue (Cornell, spectral): the channel mean's dielectric
+ * n lies in the range of paint binders and clear coats, 1.40 to 1.70
+ * (doc/methods.md "Dispersion": about 1.54 with F(0) = 0.045; Schlick's
+ * F0 = 0.059 of the same file would mean 1.64 under another Fresnel
+ * form). The mean channel has no wavelength: no dispersion.csv. */
+Test(dispersion, krylon_blue_mean_index_is_a_binders, .timeout = 600)
+{
+    char out[512];
+    char path[600];
+    const char *err = NULL;
+    const char *argv[] = {"compare",     "--input",
+                          BF_CORNELL_DIR "/krylon_blue.brdf",
+                          "--models",    "LAMBERT+GGX",
+                          "--fresnel",   "dielectric",
+                          "--fit",       "exact",
+                          "--objective", "ngan",
+                          "--folds",     "0",
+                          "--out",       out,
+                          "--quiet",     NULL};
+    size_t lines;
+    size_t r;
+    FILE *fp;
+    snprintf(out, sizeof out, "%s/krylon", bf_test_tmpdir());
+    cr_assert_eq(bf_test_run_cli(argv, NULL, &err), 0, "compare: %s", err);
+    lines = bf_test_csv_load(out, "fits.csv");
+    for (r = 1; r < lines; r++) {
+        if (strcmp(bf_test_csv_cell(r, "parameter"), "n") == 0) {
+            double n = bf_test_csv_num(r, "value");
+            cr_assert(n >= 1.40 && n <= 1.70, "krylon_blue n = %g", n);
+            break;
+        }
+    }
+    cr_assert(r < lines, "no n in fits.csv");
+    snprintf(path, sizeof path, "%s/dispersion.csv", out);
+    fp = fopen(path, "r");
+    cr_assert_null(fp, "dispersion.csv written for the mean channel");
 }
