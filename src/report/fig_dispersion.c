@@ -224,7 +224,7 @@ int bf_fig_dispersion(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "\"Dispersion\").",
              joint ? "shared by every channel (--channel joint): one "
                      "horizontal line over the channels' wavelengths, "
-                     "dotted lines at its interval's ends"
+                     "dotted lines at its interval's ends where the fit has one"
                    : "fitted on each spectral channel (points)",
              joint ? "" : " at the channel's wavelength");
     snprintf(e->alt, sizeof e->alt,
