@@ -215,7 +215,7 @@ int bf_fig_dispersion(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->caption, sizeof e->caption,
              "The refractive index n of the dielectric Fresnel factor "
              "(--fresnel dielectric, SPEC §4.1, §9.2) %s, for each model "
-             "that has it%s. Bars: the 95%% profile interval (doc/methods.md "
+             "that has it. Bars: the 95%% profile interval (doc/methods.md "
              "§3) under the fitted noise model, about the noise-weighted "
              "estimate (black dots), which can differ from the fit's value "
              "under the objective (the model's markers). n is identified only through the angular shape of "
@@ -225,8 +225,8 @@ int bf_fig_dispersion(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              joint ? "shared by every channel (--channel joint): one "
                      "horizontal line over the channels' wavelengths, "
                      "dotted lines at its interval's ends where the fit has one"
-                   : "fitted on each spectral channel (points)",
-             joint ? "" : " at the channel's wavelength");
+                   : "fitted on each spectral channel (points at the "
+                     "channel's wavelength)");
     snprintf(e->alt, sizeof e->alt,
              "Refractive index n against wavelength in nm for %s, %zu "
              "points with error bars.",
