@@ -1796,6 +1796,48 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);
 
+/* One point of a material's dispersion n(lambda) (issue 17 item 7): the
+ * refractive index n of a specular model under --fresnel dielectric
+ * (SPEC §9.2), fitted per spectral channel, with its interval. */
+typedef struct {
+    size_t row;          /* index into the study's rows */
+    int sample;          /* rows[row].sample */
+    const char *model;   /* rows[row].type->name */
+    int joint;           /* 1: one n shared by every channel (--channel
+                            joint, SPEC §9.4): wavelength is NaN and
+                            lambda_lo, lambda_hi span the channels */
+    double wavelength;   /* the channel's wavelength, nm (NaN: joint) */
+    double lambda_lo, lambda_hi; /* joint: the channels' wavelength range */
+    double n;            /* the fit's value (fits.csv's value) */
+    double ci_low, ci_high; /* its interval (fits.csv's ci_low, ci_high;
+                               NaN: not analysed) */
+    double n_ml;         /* the estimate the interval is about
+                            (bf_fit_stats.ml_param; NaN: none) */
+} bf_dispersion_point;
+
+/* The dispersion points of a study, in row order, into out (NULL: only
+ * counted; otherwise room for the count). A row gives a point when its
+ * status is BF_OK, its model has a fitted parameter named "n"
+ * (bf_model_param_index) and its target is a channel with a wavelength
+ * (bf_dataset_wavelength), or is the first channel of a joint fit whose
+ * channels all have one (one point for the fit, joint set). stats: from
+ * bf_study_analyse, or NULL (intervals NaN). Returns their number; 0 for
+ * NULL spec or rows. */
+size_t bf_dispersion_points(const bf_study_spec *spec,
+                            const bf_study_row *rows,
+                            const bf_fit_stats *stats,
+                            bf_dispersion_point *out);
+
+/* Writes dispersion.csv: a header line, then one line per point of
+ * bf_dispersion_points. Columns: sample, name, channel ("joint" for a
+ * joint fit), model, wavelength_nm (empty for joint), n, ci_low, ci_high,
+ * n_ml (the estimate the interval is about). Numbers with %.10g, NaN as
+ * an empty field. BF_EINVAL for NULL fp, spec or rows; BF_EIO when the
+ * stream reports a write error. */
+int bf_dispersion_csv_write(FILE *fp, const bf_study_spec *spec,
+                            const bf_study_row *rows,
+                            const bf_fit_stats *stats);
+
 /* One line of ranking.csv (below): the values of its columns after sample,
  * name and channel (those of target rows[row].target). NaN and NULL stand
  * for an empty field. */

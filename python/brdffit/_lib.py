@@ -443,6 +443,24 @@ size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows);
 int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,
                      const bf_fit_stats *stats, const bf_analysis_opts *opts,
                      bf_ranking_line *out, size_t *n);
+typedef struct {
+    size_t row;
+    int sample;
+    const char *model;
+    int joint;
+    double wavelength;
+    double lambda_lo, lambda_hi;
+    double n;
+    double ci_low, ci_high;
+    double n_ml;
+} bf_dispersion_point;
+size_t bf_dispersion_points(const bf_study_spec *spec,
+                            const bf_study_row *rows,
+                            const bf_fit_stats *stats,
+                            bf_dispersion_point *out);
+int bf_dispersion_csv_write(FILE *fp, const bf_study_spec *spec,
+                            const bf_study_row *rows,
+                            const bf_fit_stats *stats);
 int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
                       const bf_study_row *rows, const bf_fit_stats *stats,
                       const bf_analysis_opts *opts);

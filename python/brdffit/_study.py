@@ -547,6 +547,26 @@ class Study:
             return getattr(ln, c)
         return self._records(text_, columns, lines, n, value)
 
+    def dispersion_records(self):
+        """dispersion.csv's lines (n against wavelength under fresnel=
+        "dielectric" on spectral channels) as Records from the library's
+        structs (bf_dispersion_points): numbers at full precision, empty
+        fields None; .text the table (bf_dispersion_csv_write, as the CLI
+        writes it; its header alone when there is no point)."""
+        spec = self.spec.spec
+        stats = ffi.NULL if self.stats is None else self.stats
+        rc, text_ = written_by(lambda fp: lib.bf_dispersion_csv_write(
+            fp, spec, self.rows, stats))
+        check(rc, context="writing dispersion.csv")
+        columns = text_.split("\n", 1)[0].split(",")
+        n = lib.bf_dispersion_points(spec, self.rows, stats, ffi.NULL)
+        points = ffi.new("bf_dispersion_point[]", max(n, 1))
+        lib.bf_dispersion_points(spec, self.rows, stats, points)
+
+        def value(pt, c):
+            return pt.wavelength if c == "wavelength_nm" else getattr(pt, c)
+        return self._records(text_, columns, points, n, value)
+
     def ranking_csv(self):
         """ranking.csv of the run (bf_ranking_csv_write), as text; needs
         the analysis."""

@@ -1,8 +1,9 @@
 """records: the rows of a table the library writes (fits.csv,
-ranking.csv) as Python records.
+ranking.csv, dispersion.csv) as Python records.
 
 The library owns the tables' columns and formats; the records are built
-from its structs (bf_fits_lines, bf_ranking_lines: brdffit._study), never
+from its structs (bf_fits_lines, bf_ranking_lines, bf_dispersion_points:
+brdffit._study), never
 from the CSV text read back: a number is the library's int or double, a
 name or word (a material named "123", a unit "1") its text, an empty
 field None (NaN in a DataFrame).
@@ -19,6 +20,10 @@ class Records(list):
             built from rows).
         wins: for brdffit.rank, {criterion: [(model, wins), ...]}; None
             otherwise.
+        dispersion: for brdffit.compare, the rows of dispersion.csv
+            (Records: sample, name, channel, model, wavelength_nm, n,
+            ci_low, ci_high, n_ml; empty without fresnel="dielectric" on
+            spectral channels); None otherwise.
     """
 
     def __init__(self, rows=(), columns=(), text=""):
@@ -26,6 +31,7 @@ class Records(list):
         self.columns = tuple(columns)
         self.text = text
         self.wins = None
+        self.dispersion = None
 
     def column(self, name):
         """The values of column name, as a list."""

@@ -88,15 +88,20 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
         parameter, unit, value, lse, bound_hit, k, objective, fit, ...;
         README "Output files") from the library's structs
         (bf_fits_lines: numbers at full precision, an empty field None),
-        .columns, .text (the CSV as the library wrote it, %.10g) and
-        .to_dataframe(). A model that lacks its inputs for a
+        .columns, .text (the CSV as the library wrote it, %.10g),
+        .to_dataframe() and .dispersion: the rows of dispersion.csv
+        (Records; n against wavelength with its interval for fits with
+        fresnel="dielectric" on spectral channels, bf_dispersion_points;
+        empty otherwise). A model that lacks its inputs for a
         sample (ON without on_params) has no rows there, and a
         UserWarning says so, as the CLI's note does.
     Raises the errors of brdffit.fit (InvalidArgumentError, NotFoundError,
     DomainError, the loaders' errors).
     """
     study = _run(locals(), "BF_MODELS_PAPER", "paper", "compare")
-    return study.fits_records()
+    out = study.fits_records()
+    out.dispersion = study.dispersion_records()
+    return out
 
 
 def rank(dataset, models=None, samples="all", channel="mean", fit="exact",

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import brdffit
+import synth
 
 CHANNELS = ("R", "G", "B")
 SHAPE = {"alpha": 0.15, "F0": 0.05}
@@ -16,15 +17,7 @@ SCALES = {"R": (0.3, 0.8), "G": (0.2, 0.6), "B": (0.1, 0.4)}
 def _dataset():
     """Half the directions within a few degrees of the mirror direction,
     all with theta <= 80 deg (SPEC §10 uses every one)."""
-    rng = np.random.default_rng(3)
-    n = 200
-    ti = rng.uniform(0.05, 1.3, n)
-    near = np.arange(n) < n // 2
-    to = np.where(near, ti + rng.uniform(-0.07, 0.07, n),
-                  rng.uniform(0.05, 1.35, n))
-    po = np.where(near, np.pi + rng.uniform(-0.1, 0.1, n),
-                  rng.uniform(-np.pi, np.pi, n))
-    angles = np.column_stack([ti, np.zeros(n), np.abs(to), po])
+    angles = synth.glossy_directions(3)
     values = np.column_stack([
         brdffit.evaluate("LAMBERT+GGX",
                          {"rho_d": SCALES[c][0], "rho_s": SCALES[c][1],

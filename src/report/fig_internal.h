@@ -108,6 +108,15 @@ size_t bf_fig_calibration_panels(const bf_rep_study *st, size_t s);
  * 1): those whose axes are still MIN_AXES wide on a page. */
 size_t bf_fig_calibration_per_figure(const bf_fig_data *D);
 
+/* (fig_dispersion.c) One material's n against wavelength: e->index its
+ * first target. */
+int bf_fig_dispersion(const bf_fig_data *D, bf_fig_entry *e,
+                      bf_fig_desc *d, int full);
+/* Whether target s is the first of its material and the material has
+ * dispersion points (bf_dispersion_points): the index of its first
+ * point, else SIZE_MAX. */
+size_t bf_fig_dispersion_first(const bf_rep_study *st, size_t s);
+
 /* Samples per scatter figure (Figures 3-6 hold six each, as the paper). */
 #define BF_FIG_SCATTER_SAMPLES 6
 /* How many samples from index s0 on the next scatter figure holds: up to

@@ -11,6 +11,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
@@ -462,8 +463,9 @@ static int list_paper(const bf_fig_data *D, bf_fig_set *set)
 }
 
 /* The figures of the analysis (st->stats): delta BIC, a forest plot per
- * model with fitted parameters, a profile per sample and, with
- * --calibrate, a calibration figure per sample. */
+ * model with fitted parameters, a profile per sample, a dispersion
+ * figure per material that has n(lambda) and, with --calibrate, a
+ * calibration figure per sample. */
 static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
 {
     const bf_rep_study *st = D->st;
@@ -494,6 +496,12 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
             f = none ? BF_FIG_SPECULAR : f;
         }
     }
+    for (s = 0; s < st->n_samples && ok; s++) { /* n(lambda) */
+        if (bf_fig_dispersion_first(st, s) != SIZE_MAX) {
+            ok = add_entry(set, BF_FIG_DISPERSION, s, st->samples[s]) !=
+                 NULL;
+        }
+    }
     for (s = 0; s < st->n_samples && ok && st->cal.n > 0; s++) {
         /* a sample's panels in parts of at most per */
         size_t np = bf_fig_calibration_panels(st, s);
@@ -518,6 +526,7 @@ static int describe(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     case BF_FIG_POLAR: return bf_fig_plane(D, e, d, full);
     case BF_FIG_PROFILE: return bf_fig_profile(D, e, d, full);
     case BF_FIG_CALIBRATION: return bf_fig_calibration(D, e, d, full);
+    case BF_FIG_DISPERSION: return bf_fig_dispersion(D, e, d, full);
     }
     return BF_EINVAL;
 }

@@ -45,8 +45,10 @@ typedef enum {
     BF_FIG_PLANE,     /* one sample, plane of incidence, Cartesian */
     BF_FIG_POLAR,     /* one sample, plane of incidence, polar */
     BF_FIG_PROFILE,   /* analysis: one sample's objective profiles */
-    BF_FIG_CALIBRATION /* --calibrate: one sample's simulated estimates
+    BF_FIG_CALIBRATION, /* --calibrate: one sample's simulated estimates
                           against the intervals */
+    BF_FIG_DISPERSION  /* one material's n against wavelength
+                          (--fresnel dielectric on spectral channels) */
 } bf_fig_kind;
 
 /* The model families the plane, polar and profile figures are split by

@@ -548,17 +548,24 @@ static void series_bars(ctx_t *c, const view_t *v, const bf_plot_series *s)
     }
 }
 
+/* INTERVALS (horizontal, from x to x2 at y) and ERRORBARS (vertical,
+ * from y to y2 at x): segments with end ticks across them. */
 static void series_intervals(ctx_t *c, const view_t *v,
                              const bf_plot_series *s)
 {
     const bf__dash *d = bf__series_dash(s);
+    int vertical = s->kind == BF_SERIES_ERRORBARS;
     size_t i;
     lines_begin(c, s);
     for (i = 0; i < s->n; i++) {
-        double wx[2] = {s->x[i], s->x2[i]};
-        double wy[2] = {s->y[i], s->y[i]};
+        double wx[2];
+        double wy[2];
         int e;
-        if (!isfinite(wx[0]) || !isfinite(wx[1]) || !isfinite(wy[0])) {
+        to_win(v->p, s->x[i], s->y[i], &wx[0], &wy[0]);
+        to_win(v->p, vertical ? s->x[i] : s->x2[i],
+               vertical ? s->y2[i] : s->y[i], &wx[1], &wy[1]);
+        if (!isfinite(wx[0]) || !isfinite(wx[1]) || !isfinite(wy[0]) ||
+            !isfinite(wy[1])) {
             continue;
         }
         line_run(c, v, 2, wx, wy, d, line_width(s));
@@ -567,13 +574,16 @@ static void series_intervals(ctx_t *c, const view_t *v,
             double py;
             double tx[2];
             double ty[2];
-            if (wx[e] < v->wx0 || wx[e] > v->wx1 ||
+            if (wx[e] < v->wx0 || wx[e] > v->wx1 || wy[e] < v->wy0 ||
+                wy[e] > v->wy1 ||
                 (s->open != NULL && ((s->open[i] >> e) & 1u))) {
                 continue;
             }
             to_page(v, wx[e], wy[e], &px, &py);
-            to_window(v, px, py - CAP, &tx[0], &ty[0]);
-            to_window(v, px, py + CAP, &tx[1], &ty[1]);
+            to_window(v, px - (vertical ? CAP : 0.0),
+                      py - (vertical ? 0.0 : CAP), &tx[0], &ty[0]);
+            to_window(v, px + (vertical ? CAP : 0.0),
+                      py + (vertical ? 0.0 : CAP), &tx[1], &ty[1]);
             plline(2, tx, ty);
         }
     }
@@ -856,7 +866,8 @@ static void draw_panel(ctx_t *c, size_t i)
         switch (s->kind) {
         case BF_SERIES_LINE: series_line(c, &v, s); break;
         case BF_SERIES_BARS: series_bars(c, &v, s); break;
-        case BF_SERIES_INTERVALS: series_intervals(c, &v, s); break;
+        case BF_SERIES_INTERVALS:
+        case BF_SERIES_ERRORBARS: series_intervals(c, &v, s); break;
         default: break;
         }
     }
@@ -931,6 +942,20 @@ static void legend_key(ctx_t *c, const bf__entry *e)
             tx[0] = tx[1] = x1;
             plline(2, tx, ty);
         }
+    }
+    if (s->kind == BF_SERIES_ERRORBARS) { /* a bar with its two ticks */
+        double h = L->font * 0.45;
+        double tx[2] = {xm, xm};
+        double ty[2] = {y - h, y + h};
+        color(COL_SLOT + (int)s->style);
+        width(c, line_width(s));
+        plline(2, tx, ty);
+        tx[0] = xm - CAP;
+        tx[1] = xm + CAP;
+        ty[0] = ty[1] = y - h;
+        plline(2, tx, ty);
+        ty[0] = ty[1] = y + h;
+        plline(2, tx, ty);
     }
     if (s->kind == BF_SERIES_POINTS ||
         (s->kind == BF_SERIES_LINE && s->mark_every > 0)) {

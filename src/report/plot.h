@@ -70,8 +70,11 @@ typedef enum {
     BF_SERIES_POINTS,   /* the slot's markers */
     BF_SERIES_BARS,     /* vertical bars from 0 to y, centred on x, with the
                            value written above each bar */
-    BF_SERIES_INTERVALS /* horizontal segments from x to x2 at height y,
+    BF_SERIES_INTERVALS, /* horizontal segments from x to x2 at height y,
                            with end ticks (confidence intervals) */
+    BF_SERIES_ERRORBARS /* vertical segments from y to y2 at x, with end
+                           ticks (error bars; a POINTS series marks the
+                           estimates) */
 } bf_series_kind;
 
 /* Line patterns a series may force instead of its slot's. */
@@ -83,9 +86,11 @@ typedef struct {
     const double *x;    /* n abscissae (radians for polar panels) */
     const double *y;    /* n ordinates (the radius for polar panels) */
     const double *x2;   /* INTERVALS: the n right ends */
-    const unsigned *open; /* INTERVALS: bit 0 (1) set: the left (right) end
-                             is open -- cut at a bound, drawn without its
-                             end tick; NULL: all closed */
+    const double *y2;   /* ERRORBARS: the n upper ends */
+    const unsigned *open; /* INTERVALS (ERRORBARS): bit 0 (1) set: the left
+                             (right) end -- the lower (upper) -- is open:
+                             cut at a bound, drawn without its end tick;
+                             NULL: all closed */
     size_t n;
     unsigned style;     /* style slot (< BF_PLOT_NSTYLES, or BF_PLOT_INK,
                            BF_PLOT_REF) */

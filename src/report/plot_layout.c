@@ -221,10 +221,11 @@ static int range_ok(double lo, double hi)
 static int series_ok(const bf_plot_series *s)
 {
     if (s->n > 0 && (s->x == NULL || s->y == NULL ||
-                     (s->kind == BF_SERIES_INTERVALS && s->x2 == NULL))) {
+                     (s->kind == BF_SERIES_INTERVALS && s->x2 == NULL) ||
+                     (s->kind == BF_SERIES_ERRORBARS && s->y2 == NULL))) {
         return 0;
     }
-    return s->style < BF__NSLOTS && (unsigned)s->kind <= BF_SERIES_INTERVALS;
+    return s->style < BF__NSLOTS && (unsigned)s->kind <= BF_SERIES_ERRORBARS;
 }
 
 static int panel_ok(const bf_plot_panel *p)

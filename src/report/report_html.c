@@ -3,6 +3,7 @@
  * per-sample figures in collapsible sections, conventions (SPEC §1.4, §2,
  * §4, §7) and provenance, in one page that opens from disk. */
 #include "calibration.h"
+#include "energy.h"
 #include "report_html.h"
 #include "texttable.h"
 
@@ -482,6 +483,48 @@ static void calibration(FILE *fp, const bf_rep_study *st,
 }
 
 /* The analysis beyond the paper: model selection and intervals. */
+/* The energy table (energy.h) when some fit is specular. */
+static void energy_table(FILE *fp, const bf_rep_study *st)
+{
+    size_t n;
+    size_t over;
+    bf_tt *t = bf_rep_energy_table(&st->spec, st->rows, &n, &over);
+    if (t == NULL) {
+        return;
+    }
+    fputs("<h3 id=\"energy\">", fp);
+    bf_tt_html_text(fp, BF_REP_ENERGY_TITLE);
+    fprintf(fp, "</h3>\n<p>%zu of %zu specular fits exceed 1 somewhere: "
+                "the albedo a(theta_i) = ∫ f cos theta_o dω of the fitted "
+                "specular lobe alone (the diffuse part left out), by "
+                "quadrature (fits.csv's albedo columns).</p>\n",
+            over, n);
+    bf_tt_print_html(t, "energy-table", fp);
+    bf_tt_free(t);
+}
+
+/* n against wavelength (--fresnel dielectric on spectral channels), when
+ * some material has it. */
+static void dispersion(FILE *fp, const bf_fig_set *figs)
+{
+    size_t i;
+    for (i = 0; i < figs->n && figs->fig[i].kind != BF_FIG_DISPERSION; i++) {
+    }
+    if (i == figs->n) {
+        return;
+    }
+    fputs("<h3 id=\"dispersion-section\">Dispersion: n against "
+          "wavelength</h3>\n<p>The refractive index of the dielectric "
+          "Fresnel factor fitted on each spectral channel, with its 95% "
+          "interval; the values are in <a href=\"dispersion.csv\">"
+          "dispersion.csv</a>. It is the index of a smooth outermost "
+          "interface seen through one specular lobe: read "
+          "doc/methods.md “Dispersion” before reading it as the binder's.</p>"
+          "\n",
+          fp);
+    figures_of(fp, figs, BF_FIG_DISPERSION, SIZE_MAX);
+}
+
 static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
 {
     size_t m;
@@ -507,6 +550,7 @@ static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
           fp);
     bf_report_intervals(fp, st);
     fputs("</details>\n", fp);
+    dispersion(fp, figs);
     if (st->opts.calibrate > 0) {
         calibration(fp, st, figs);
     }
@@ -597,6 +641,7 @@ int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
                 bf_fig_k_text(st, ktext, sizeof ktext));
     }
     bf_report_table3(fp, st);
+    energy_table(fp, st);
     fputs("<p>The same as files: <a href=\"fits.csv\">fits.csv</a>, <a href="
           "\"table2.md\">table2.md</a>, <a href=\"table3.md\">table3.md</a>."
           "</p>\n<h2 id=\"figures\">Figures</h2>\n",

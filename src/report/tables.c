@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "calibration.h"
+#include "energy.h"
 #include "tables.h"
 #include "texttable.h"
 
@@ -550,6 +551,44 @@ fail:
     return rc;
 }
 
+/* dispersion.csv (bf_dispersion_csv_write), when some fit gives n against
+ * wavelength (--fresnel dielectric on spectral channels); *written = 1
+ * then. */
+static int write_dispersion(const bf_rep_study *st, int *written)
+{
+    bf_out f;
+    int rc;
+    *written = bf_dispersion_points(&st->spec, st->rows, st->stats, NULL) > 0;
+    if (!*written) {
+        return BF_REPORT_OK;
+    }
+    rc = bf_out_open(&f, st->out_dir, "dispersion.csv");
+    if (rc != BF_REPORT_OK) {
+        return rc;
+    }
+    rc = bf_dispersion_csv_write(f.fp, &st->spec, st->rows, st->stats);
+    if (rc != BF_OK) {
+        bf_out_abort(&f);
+        return bf_rep_write_error("dispersion.csv", rc);
+    }
+    return bf_out_commit(&f);
+}
+
+/* The energy table (energy.h) when some fit is specular. */
+static void energy(const bf_rep_study *st, FILE *fp)
+{
+    size_t n;
+    size_t over;
+    bf_tt *t = bf_rep_energy_table(&st->spec, st->rows, &n, &over);
+    if (t == NULL) {
+        return;
+    }
+    fprintf(fp, "\n%s: %zu of %zu over 1\n\n", BF_REP_ENERGY_TITLE, over,
+            n);
+    bf_tt_print(t, fp);
+    bf_tt_free(t);
+}
+
 /* With --fit exact and --on-params: the fitted values of the model whose
  * inputs are the ON table (rho, sigma; its profile intervals) beside the
  * tabulated ones. */
@@ -612,6 +651,7 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     bf_tt *t2 = NULL;
     bf_tt *t3 = NULL;
     FILE *fp = st->opts.echo;
+    int dispersion = 0;
     int rc;
 
     report_missing(&st->spec, st->rows);
@@ -621,6 +661,9 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
         goto done;
     }
     rc = write_outputs(st, t2, t3);
+    if (rc == BF_REPORT_OK) {
+        rc = write_dispersion(st, &dispersion);
+    }
     if (rc == BF_REPORT_OK) {
         rc = bf_rep_calibration_write(st); /* --calibrate */
     }
@@ -641,6 +684,7 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     fputc('\n', fp);
     table3_title(st, 0, fp);
     bf_tt_print(t3, fp);
+    energy(st, fp);
     on_compare(st, fp);
     if (st->opts.calibrate > 0) {
         rc = bf_rep_calibration_print(st, fp);
@@ -649,6 +693,9 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
            st->out_dir, st->out_dir, st->out_dir);
     if (st->opts.calibrate > 0) {
         fprintf(fp, ", %s/calibrate.csv", st->out_dir);
+    }
+    if (dispersion) {
+        fprintf(fp, ", %s/dispersion.csv", st->out_dir);
     }
     fputc('\n', fp);
 done:

@@ -401,6 +401,64 @@ Test(plot, refuses_invalid_descriptions_without_writing_a_file)
     cr_assert_neq(stat(path, &sb), 0, "an invalid figure left a file");
 }
 
+/* Error bars (BF_SERIES_ERRORBARS): vertical segments from y to y2 are
+ * drawn (the figure changes), a bar with a non-finite end is skipped (the
+ * same bytes as no bar), and a series without y2 is refused. */
+static int same_bytes(const char *a, const char *b)
+{
+    size_t la;
+    size_t lb;
+    char *da = fmt_read(a, &la);
+    char *db = fmt_read(b, &lb);
+    int same = la == lb && memcmp(da, db, la) == 0;
+    free(da);
+    free(db);
+    return same;
+}
+
+Test(plot, draws_error_bars_from_y_to_y2)
+{
+    static double x[3] = {0.2, 0.5, 0.8};
+    static double lo[3] = {0.3, 0.4, 0.2};
+    static double hi[3] = {0.6, 0.7, NAN};
+    bf_plot_series s;
+    bf_plot_panel p;
+    bf_plot_figure fig;
+    const char *dir = bf_test_tmpdir();
+    memset(&s, 0, sizeof s);
+    s.kind = BF_SERIES_ERRORBARS;
+    s.x = x;
+    s.y = lo;
+    s.y2 = hi;
+    s.style = 2;
+    s.label = "interval";
+    memset(&p, 0, sizeof p);
+    p.xmax = p.ymax = 1.0;
+    p.series = &s;
+    p.n_series = 1;
+    memset(&fig, 0, sizeof fig);
+    fig.width = 300;
+    fig.nx = fig.ny = 1;
+    fig.legend = BF_LEGEND_TOP;
+    fig.panels = &p;
+    fig.n_panels = 1;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_PNG, path_in(dir, "e0.png")),
+                 BF_OK);
+    s.n = 2;
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_PNG, path_in(dir, "e2.png")),
+                 BF_OK);
+    s.n = 3; /* the third has no upper end */
+    cr_assert_eq(bf_plot_write(&fig, BF_PLOT_PNG, path_in(dir, "e3.png")),
+                 BF_OK);
+    cr_expect(!same_bytes(path_in(dir, "e0.png"), path_in(dir, "e2.png")),
+              "two error bars drew nothing");
+    cr_expect(same_bytes(path_in(dir, "e2.png"), path_in(dir, "e3.png")),
+              "a bar without its upper end was drawn");
+    s.y2 = NULL;
+    cr_expect_eq(bf_plot_write(&fig, BF_PLOT_PNG, path_in(dir, "bad.png")),
+                 BF_EINVAL);
+}
+
 Test(plot, reports_an_unwritable_path_as_an_io_error)
 {
     bf_plot_figure fig;
