@@ -225,6 +225,7 @@ typedef struct {
     double hi[BF_MAX_PARAMS];
     size_t count[BF_MAX_PARAMS]; /* grid points */
     double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+    const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
     double flat_f;  /* Nelder-Mead's last trial value */
     size_t flat_n;  /* trial values in a row equal to it */
 } space_t;
@@ -408,7 +409,7 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
         return GSL_EDOM;
     }
     for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
-        double w = pb->weight != NULL ? sqrt(pb->weight[k % pb->n]) : 1.0;
+        double w = sp->sw != NULL ? sp->sw[k % pb->n] : 1.0;
         gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
     }
     return GSL_SUCCESS;
@@ -424,6 +425,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     gsl_multifit_nlinear_workspace *w;
     gsl_multifit_nlinear_fdf fdf;
     gsl_vector *u;
+    double *sw;
     double y[BF_MAX_PARAMS];
     double fy;
     int info;
@@ -438,11 +440,20 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n_res,
                                    sp->m);
     u = gsl_vector_alloc(sp->m);
-    if (w == NULL || u == NULL) {
+    sw = sp->fc->pb->weight != NULL
+             ? malloc(sp->fc->pb->n * sizeof *sw)
+             : NULL;
+    if (w == NULL || u == NULL ||
+        (sw == NULL && sp->fc->pb->weight != NULL)) {
         gsl_multifit_nlinear_free(w);
         gsl_vector_free(u);
+        free(sw);
         return BF_ENOMEM;
     }
+    for (a = 0; sw != NULL && a < sp->fc->pb->n; a++) {
+        sw[a] = sqrt(sp->fc->pb->weight[a]); /* once, not per residual */
+    }
+    sp->sw = sw;
     memcpy(sp->base, x, sizeof sp->base);
     for (a = 0; a < sp->m; a++) {
         /* a start on a bound moves a hundredth of the domain inside: the
@@ -479,6 +490,8 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     }
     gsl_multifit_nlinear_free(w);
     gsl_vector_free(u);
+    sp->sw = NULL;
+    free(sw);
     return BF_OK;
 }
 
