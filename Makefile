@@ -11,6 +11,8 @@
 #               part of the tests; the numpy baselines run when
 #               /usr/bin/python3 has numpy, the numpy/scipy peer of the
 #               analysis when it has scipy too)
+#   make bench-glossy  the ten specular models on the five Cornell paints
+#               (issue 17 item 11) against the scipy peer (bench_glossy)
 #   make screenshot  open out/report.html in headless Chromium (installed if
 #               missing), check every image loaded, save a screenshot
 #   make fuzz   run every libFuzzer target for FUZZ_SECONDS each (clang)
@@ -43,7 +45,7 @@ CONFIGURE  = cmake -S . -DBF_SHARED_DIR="$(abspath $(SHARED))" \
              -DBF_CURET_DIR="$(abspath $(CURET))" \
              -DBF_REFERENCE_DIR="$(abspath $(REFERENCE))" $(CMAKE_FLAGS)
 
-.PHONY: all deps build cli run rank report-all test test-plain test-asan asan bench \
+.PHONY: all deps build cli run rank report-all test test-plain test-asan asan bench bench-glossy \
         install format tidy clean screenshot fuzz fuzz-build valgrind \
         coverage
 
@@ -139,6 +141,12 @@ bench: build
 	    --peer ../shared/peers/rank_baseline.py
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_merl --data "$(CURET)" \
 	    --numpy bench/numpy_cells.py
+
+# make bench-glossy: issue 17 item 11, the ten specular models on the five
+# Cornell paints (whole compare, CPU and wall) against the scipy peer
+bench-glossy: build
+	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_glossy --cli $(BUILD)/brdffit \
+	    --data ../shared/data/cornell-pbrt-v2 --peer ../shared/peers/glossy_peer.py
 
 # make install [PREFIX=DIR] [DESTDIR=STAGE]: libraries, header, brdffit.pc,
 # the CMake package, the CLI and its man page (default prefix /usr/local).

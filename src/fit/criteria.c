@@ -69,21 +69,42 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
     size_t n = pb->n;
     double *w = malloc(n * sizeof *w);
     /* a specular model (SPEC §9): each fold fitted by its own separable
-     * fit (varpro.c: grid, refinement), no stored grid */
+     * fit (varpro.c: grid, refinement) on the grid values the folds
+     * share (bf__varpro_fold_grids), no stored grid */
     int spec = pb->type->kind == BF_MODEL_SPECULAR;
     bf_fit_result *g = fold_grid == NULL && !spec
                            ? malloc((folds + 1) * sizeof *g)
                            : NULL;
     double *resid = malloc(n * sizeof *resid);
+    /* a specular model: every fold's weights and problem, for the grid
+     * the folds share (bf__varpro_fold_grids) */
+    double *fw = spec ? malloc(folds * n * sizeof *fw) : NULL;
+    bf_problem *trains = spec ? malloc(folds * sizeof *trains) : NULL;
+    double *vals = NULL;
+    size_t points = 0;
     double sum = 0.0;
     size_t f;
     size_t k;
     int rc = BF_OK;
 
     if (w == NULL || resid == NULL ||
-        (fold_grid == NULL && g == NULL && !spec)) {
+        (fold_grid == NULL && g == NULL && !spec) ||
+        (spec && (fw == NULL || trains == NULL))) {
         rc = BF_ENOMEM;
         goto done;
+    }
+    for (f = 0; spec && f < folds; f++) {
+        for (k = 0; k < n; k++) {
+            fw[f * n + k] = fold[k] == f ? 0.0 : 1.0;
+        }
+        trains[f] = *pb;
+        trains[f].weight = fw + f * n;
+    }
+    if (spec) {
+        rc = bf__varpro_fold_grids(fc, trains, folds, &vals, &points);
+        if (rc == BF_EINVAL) {
+            rc = BF_OK; /* no grid to share: each fold its own fit */
+        }
     }
     if (fold_grid == NULL && !spec) { /* every fold's grid optimum */
         rc = bf__grid_optima_folds(gr, pb, fc->pm->cs->cti, fold, folds, g);
@@ -98,7 +119,8 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         train.weight = w;
         bf__fitctx_use(fc, &train);
         if (spec) {
-            rc = bf__varpro_fit(fc, NULL, &r);
+            rc = vals != NULL ? bf__varpro_fit_grid(fc, vals + f * points, &r)
+                              : bf__varpro_fit(fc, NULL, &r);
         } else {
             rc = isfinite(fold_grid[f].lse)
                      ? bf__refine(fc, &fold_grid[f], &r)
@@ -121,6 +143,9 @@ done:
     free(w);
     free(g);
     free(resid);
+    free(fw);
+    free(trains);
+    free(vals);
     return rc;
 }
 

@@ -220,6 +220,14 @@ typedef struct {
     double *log_d;   /* n: bf__data_transform of pb->data */
     double *cols;    /* 3 n: a specular model's columns (varpro.c), or
                         NULL */
+    /* The point cols were evaluated at (varpro.c): its parameters and
+     * lin_mask, valid when cols_ok. The columns are a function of them
+     * (and pm) alone, so an evaluation at the same point -- a clamped
+     * coordinate's finite difference, a trial step clamped back -- reuses
+     * them. */
+    double cols_at[BF_MAX_PARAMS];
+    unsigned cols_lin;
+    int cols_ok;
     size_t n_eval;   /* evaluations since init */
     /* The separable fit (varpro.c): bit j when parameter j is a scale
      * (bf_param.linear) that bf__fit_value solves exactly instead of
@@ -342,6 +350,18 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
  * BF_EINVAL (more than two free scales, or not such a model). */
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
                    bf_fit_result *result);
+/* Cross-validation's folds share the separable fit's grid: the ngan
+ * values of its every point under each of the folds problems train (fc->
+ * pb's with other weights), the model evaluated once per point, into
+ * *vals (folds x *points, malloc; the caller frees it). BF_EINVAL (*vals
+ * NULL) where bf__varpro_fit would not use a grid of fc->pb (dense data,
+ * a joint fit); BF_ENOMEM. */
+int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
+                          size_t folds, double **vals, size_t *points);
+/* bf__varpro_fit of fc->pb with its grid's values vals (one fold's of
+ * bf__varpro_fold_grids) instead of computing them: the same result. */
+int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
+                        bf_fit_result *result);
 /* The free scales of pb (bf_param.linear): the mask the separable fit
  * solves. */
 unsigned bf__varpro_lin(const bf_problem *pb);

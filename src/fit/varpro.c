@@ -164,23 +164,31 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
         col[q] = fc->cols + q * n;
     }
     /* c_0 and the c_j, each part of the model evaluated once (the
-     * kernel's columns), then as bf__curve: rho = values cos ti */
+     * kernel's columns), then as bf__curve: rho = values cos ti; kept
+     * from the last evaluation when it was at the same point */
     fc->n_eval++;
-    rc = (fc->pm->kr->columns != NULL ? fc->pm->kr->columns
-                                      : bf__columns_values)(
-        fc->pm, param, fc->lin_mask, fc->work, col[0], col + 1);
-    if (rc != BF_OK) {
-        return BF_EDOM;
-    }
-    for (q = 0; q <= n_l; q++) {
-        const double *cti = fc->pm->cs->cti;
-        size_t k;
-        for (k = 0; k < n; k++) {
-            col[q][k] *= cti[k];
-            if (!isfinite(col[q][k])) {
-                return BF_EDOM;
+    if (!fc->cols_ok || fc->cols_lin != fc->lin_mask ||
+        memcmp(fc->cols_at, param, pb->type->p * sizeof *param) != 0) {
+        fc->cols_ok = 0;
+        rc = (fc->pm->kr->columns != NULL ? fc->pm->kr->columns
+                                          : bf__columns_values)(
+            fc->pm, param, fc->lin_mask, fc->work, col[0], col + 1);
+        if (rc != BF_OK) {
+            return BF_EDOM;
+        }
+        for (q = 0; q <= n_l; q++) {
+            const double *cti = fc->pm->cs->cti;
+            size_t k;
+            for (k = 0; k < n; k++) {
+                col[q][k] *= cti[k];
+                if (!isfinite(col[q][k])) {
+                    return BF_EDOM;
+                }
             }
         }
+        memcpy(fc->cols_at, param, pb->type->p * sizeof *param);
+        fc->cols_lin = fc->lin_mask;
+        fc->cols_ok = 1;
     }
     /* per block (a joint fit's channel, SPEC §9.4; one block otherwise):
      * its scales by NNLS on the shared columns, its curve, its S; the
@@ -225,6 +233,7 @@ typedef struct {
     double hi[BF_MAX_PARAMS];
     size_t count[BF_MAX_PARAMS]; /* grid points */
     double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+    const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
     double flat_f;  /* Nelder-Mead's last trial value */
     size_t flat_n;  /* trial values in a row equal to it */
 } space_t;
@@ -408,7 +417,7 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
         return GSL_EDOM;
     }
     for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
-        double w = pb->weight != NULL ? sqrt(pb->weight[k % pb->n]) : 1.0;
+        double w = sp->sw != NULL ? sp->sw[k % pb->n] : 1.0;
         gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
     }
     return GSL_SUCCESS;
@@ -424,6 +433,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     gsl_multifit_nlinear_workspace *w;
     gsl_multifit_nlinear_fdf fdf;
     gsl_vector *u;
+    double *sw;
     double y[BF_MAX_PARAMS];
     double fy;
     int info;
@@ -438,11 +448,20 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n_res,
                                    sp->m);
     u = gsl_vector_alloc(sp->m);
-    if (w == NULL || u == NULL) {
+    sw = sp->fc->pb->weight != NULL
+             ? malloc(sp->fc->pb->n * sizeof *sw)
+             : NULL;
+    if (w == NULL || u == NULL ||
+        (sw == NULL && sp->fc->pb->weight != NULL)) {
         gsl_multifit_nlinear_free(w);
         gsl_vector_free(u);
+        free(sw);
         return BF_ENOMEM;
     }
+    for (a = 0; sw != NULL && a < sp->fc->pb->n; a++) {
+        sw[a] = sqrt(sp->fc->pb->weight[a]); /* once, not per residual */
+    }
+    sp->sw = sw;
     memcpy(sp->base, x, sizeof sp->base);
     for (a = 0; a < sp->m; a++) {
         /* a start on a bound moves a hundredth of the domain inside: the
@@ -479,6 +498,8 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     }
     gsl_multifit_nlinear_free(w);
     gsl_vector_free(u);
+    sp->sw = NULL;
+    free(sw);
     return BF_OK;
 }
 
@@ -691,9 +712,10 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
     return rc;
 }
 
-/* The separable ngan fit on fc (fc->pb's objective ngan). */
-static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
-                       bf_fit_result *result)
+/* The separable ngan fit on fc (fc->pb's objective ngan); pre (NULL:
+ * computed here) the grid's values, as bf__varpro_fold_grids gives them. */
+static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
+                       bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
     space_t sp;
@@ -719,6 +741,10 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     }
     for (g = 0; g < points; g++) {
         double x[BF_MAX_PARAMS];
+        if (pre != NULL) {
+            vals[g] = pre[g];
+            continue;
+        }
         point_of(&sp, g, x);
         vals[g] = value_at(fc, x);
     }
@@ -895,7 +921,7 @@ static int ngan_subsample(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
             rc = bf__fitctx_init(&sfc, &pm);
             if (rc == BF_OK) {
                 bf__fitctx_use(&sfc, &sub);
-                rc = varpro_ngan(&sfc, lin, grid, result);
+                rc = varpro_ngan(&sfc, lin, NULL, grid, result);
                 fc->n_eval += sfc.n_eval;
                 bf__fitctx_free(&sfc);
             }
@@ -938,8 +964,82 @@ static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     return rc;
 }
 
+/* bf__varpro_fit with the grid's ngan values pre (NULL: computed). */
+static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
+                          bf_fit_result *grid, bf_fit_result *result);
+
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
                    bf_fit_result *result)
+{
+    return varpro_fit_pre(fc, NULL, grid, result);
+}
+
+int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
+                        bf_fit_result *result)
+{
+    return varpro_fit_pre(fc, vals, NULL, result);
+}
+
+/* The grid of the separable fit of fc->pb: its points (0 where it has
+ * none: dense data, a joint fit, not such a model). */
+static size_t grid_points(bf__fitctx *fc, unsigned lin)
+{
+    const bf_problem *pb = fc->pb;
+    space_t sp;
+    size_t points = 1;
+    size_t a;
+    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
+        pb->n > DENSE_K || fc->blocks > 1) {
+        return 0;
+    }
+    space_init(&sp, fc, pb->free_mask & ~lin);
+    for (a = 0; a < sp.m; a++) {
+        points *= sp.count[a];
+    }
+    return points;
+}
+
+int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
+                          size_t folds, double **vals, size_t *n_points)
+{
+    const bf_problem *pb = fc->pb;
+    size_t n_lin;
+    unsigned lin = lin_of(pb, &n_lin);
+    size_t points = grid_points(fc, lin);
+    space_t sp;
+    size_t g;
+    size_t f;
+    *vals = NULL;
+    *n_points = points;
+    if (points == 0 || n_lin > MAX_LIN ||
+        !bf_objective_keeps_scale(pb->objective)) {
+        return BF_EINVAL;
+    }
+    *vals = malloc(folds * points * sizeof **vals);
+    if (*vals == NULL) {
+        return BF_ENOMEM;
+    }
+    fc->lin_mask = lin;
+    space_init(&sp, fc, pb->free_mask & ~lin);
+    /* point by point, every fold's value: the columns evaluated once per
+     * point (bf__varpro_value keeps them), the scales and S per fold */
+    for (g = 0; g < points; g++) {
+        double x[BF_MAX_PARAMS];
+        point_of(&sp, g, x);
+        for (f = 0; f < folds; f++) {
+            bf_problem ngan = train[f];
+            ngan.objective = BF_OBJ_NGAN;
+            bf__fitctx_use(fc, &ngan);
+            (*vals)[f * points + g] = value_at(fc, x);
+        }
+    }
+    bf__fitctx_use(fc, pb);
+    fc->lin_mask = 0;
+    return BF_OK;
+}
+
+static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
+                          bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
     bf_problem ngan;
@@ -963,8 +1063,9 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
     bf__fitctx_use(fc, &ngan);
     /* dense data on a subsample; a joint fit's channels always whole
      * (the subsample holds one channel) */
-    rc = (pb->n > DENSE_K && fc->blocks == 1 ? varpro_dense : varpro_ngan)(
-        fc, lin, grid, result);
+    rc = pb->n > DENSE_K && fc->blocks == 1
+             ? varpro_dense(fc, lin, grid, result)
+             : varpro_ngan(fc, lin, pre, grid, result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */

@@ -32,7 +32,92 @@ static double abc_value(const bf__mf_t *m, const double *p)
            * (4.0 / BF__PI) * bf__mf_gv_over(m);
 }
 
-BF__MF_SCALED(abc, abc_value);
+/* The kernel: abc_value's operations in its order, so the same bits,
+ * from per-configuration factors kept in the workspace -- G_V / (ci co)
+ * and 1 - cos th (the geometry's, once), F for the last ior, the power
+ * for the last (B, C): a fit's finite differences and a profile's steps
+ * change one parameter at a time, so one of the two is reused. */
+typedef struct {
+    int geo;      /* 1 once corner, omch, gv hold the geometry's */
+    int f_used;   /* 1 once f holds F at ior */
+    int p_used;   /* 1 once pw holds the power at (b, c) */
+    double ior;
+    double b;
+    double c;
+    double v[];   /* corner, omch, gv, f, pw: n each */
+} abc_work;
+
+enum { ABC_CORNER, ABC_OMCH, ABC_GV, ABC_F, ABC_PW, ABC_ROWS };
+
+static size_t abc_kwork(const bf_kernel *kr, size_t n)
+{
+    (void)kr;
+    return sizeof(abc_work) + ABC_ROWS * n * sizeof(double);
+}
+
+static int abc_kvalues(const bf__prep *pm, const double *param, void *work,
+                       double *out)
+{
+    abc_work *w = work;
+    const double *t = pm->terms;
+    size_t n = pm->n;
+    double *corner = w->v + ABC_CORNER * n;
+    double *omch = w->v + ABC_OMCH * n;
+    double *gv = w->v + ABC_GV * n;
+    double *f = w->v + ABC_F * n;
+    double *pw = w->v + ABC_PW * n;
+    int new_f = !w->f_used || w->ior != param[3];
+    int new_p = !w->p_used || w->b != param[1] || w->c != param[2];
+    int rc = BF_OK;
+    size_t k;
+    for (k = 0; k < n && (!w->geo || new_f); k++) {
+        bf__mf_t m;
+        bf__mf_at(t, n, k, &m);
+        if (!w->geo) {
+            corner[k] = bf__mf_corner(&m) ? 1.0 : 0.0;
+            omch[k] = m.s2h / (1.0 + m.ch);
+            gv[k] = corner[k] != 0.0 ? 0.0 : bf__mf_gv_over(&m);
+        }
+        if (new_f && corner[k] == 0.0) {
+            f[k] = bf__mf_dielectric(&m, param[3]);
+        }
+    }
+    for (k = 0; k < n && new_p; k++) {
+        pw[k] = corner[k] != 0.0 ? 1.0 : pow(1.0 + (param[1] * omch[k]),
+                                             param[2]);
+    }
+    w->geo = 1;
+    w->f_used = 1;
+    w->p_used = 1;
+    w->ior = param[3];
+    w->b = param[1];
+    w->c = param[2];
+    for (k = 0; k < n; k++) {
+        out[k] = corner[k] != 0.0
+                     ? 0.0
+                     : f[k] * param[0] / pw[k] * (4.0 / BF__PI) * gv[k];
+        if (isnan(out[k])) {
+            rc = BF_EDOM;
+        }
+    }
+    return rc;
+}
+
+static int abc_eval(const double *param, size_t count, const bf_geom *geom,
+                    double *out, void *work)
+{
+    (void)work;
+    return bf__mf_eval(param, count, geom, out, abc_value);
+}
+
+static const bf_kernel abc_kernel = {
+    .n_terms = BF__MF_NTERMS,
+    .terms = bf__mf_kterms,
+    .work_bytes = abc_kwork,
+    .values = abc_kvalues,
+    .cheap = -1,
+    .columns = bf__columns_scaled,
+};
 
 static const bf_param param_abc[4] = {
     BF__PARAM_SCALE("A", "scale A"),

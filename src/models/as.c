@@ -38,7 +38,7 @@ static double as_value(const bf__mf_t *m, const double *p)
     if (bf__mf_corner(m)) {
         return 0.0;
     }
-    spec = (n + 1.0) / (8.0 * BF__PI) * pow(m->ch, n)
+    spec = (n + 1.0) / (8.0 * BF__PI) * bf__mf_pow(m->ch, n)
            / (m->cd * fmax(m->ci, m->co)) * bf__mf_schlick(m->cd, rs);
     diff = 28.0 * rd / (23.0 * BF__PI) * (1.0 - rs) * as_fall(m->ci)
            * as_fall(m->co);

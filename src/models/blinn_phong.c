@@ -19,7 +19,7 @@
 
 static double bp_value(const bf__mf_t *m, const double *p)
 {
-    return p[0] * (p[1] + 8.0) / (8.0 * BF__PI) * pow(m->ch, p[1]);
+    return p[0] * (p[1] + 8.0) / (8.0 * BF__PI) * bf__mf_pow(m->ch, p[1]);
 }
 
 BF__MF_SCALED(bp, bp_value);

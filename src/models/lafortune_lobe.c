@@ -23,7 +23,7 @@
 static double lafortune_value(const bf__mf_t *m, const double *p)
 {
     double base = (p[0] * m->dxy) + (p[1] * (m->ci * m->co));
-    double v = pow(fmax(0.0, base), p[2]);
+    double v = bf__mf_pow(fmax(0.0, base), p[2]);
     return isinf(v) ? NAN : v; /* base > 1 and large n: not a double */
 }
 

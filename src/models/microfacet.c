@@ -155,17 +155,7 @@ int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
     size_t k;
     for (k = 0; k < n; k++) {
         bf__mf_t m;
-        m.ci = t[(BF__MF_CI * n) + k];
-        m.co = t[(BF__MF_CO * n) + k];
-        m.si = t[(BF__MF_SI * n) + k];
-        m.so = t[(BF__MF_SO * n) + k];
-        m.c2h = t[(BF__MF_C2H * n) + k];
-        m.s2h = t[(BF__MF_S2H * n) + k];
-        m.t2h = t[(BF__MF_T2H * n) + k];
-        m.ch = t[(BF__MF_CH * n) + k];
-        m.cd = t[(BF__MF_CD * n) + k];
-        m.sd = t[(BF__MF_SD * n) + k];
-        m.dxy = t[(BF__MF_DXY * n) + k];
+        bf__mf_at(t, n, k, &m);
         out[k] = f(&m, param);
         if (isnan(out[k])) {
             rc = BF_EDOM;

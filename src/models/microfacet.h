@@ -42,6 +42,8 @@
 #define BF_MODELS_MICROFACET_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "fit/engine.h"
 
@@ -71,6 +73,42 @@ void bf__mf_geom(const bf_geom *g, bf__mf_t *m);
 static inline int bf__mf_corner(const bf__mf_t *m)
 {
     return (m->ci + m->co) == 0.0;
+}
+
+/* The frame of configuration k of n from a kernel's terms (bf__mf_kterms:
+ * row BF__MF_X holds X of every configuration). */
+static inline void bf__mf_at(const double *t, size_t n, size_t k,
+                             bf__mf_t *m)
+{
+    m->ci = t[(BF__MF_CI * n) + k];
+    m->co = t[(BF__MF_CO * n) + k];
+    m->si = t[(BF__MF_SI * n) + k];
+    m->so = t[(BF__MF_SO * n) + k];
+    m->c2h = t[(BF__MF_C2H * n) + k];
+    m->s2h = t[(BF__MF_S2H * n) + k];
+    m->t2h = t[(BF__MF_T2H * n) + k];
+    m->ch = t[(BF__MF_CH * n) + k];
+    m->cd = t[(BF__MF_CD * n) + k];
+    m->sd = t[(BF__MF_SD * n) + k];
+    m->dxy = t[(BF__MF_DXY * n) + k];
+}
+
+/* pow(x, y) for the lobes' x >= 0 and exponents y > 0, the same value
+ * every time: x < 2^e with e the exponent field of x less 1022 (frexp's
+ * e, an upper bound for subnormal x too); where e y <= -1100, x^y <
+ * 2^-1100 lies below half the least subnormal and pow rounds it to 0 --
+ * returned without pow's slow underflow path, which a sharp lobe (n in
+ * the hundreds) takes at most configurations. */
+static inline double bf__mf_pow(double x, double y)
+{
+    if (x > 0.0 && x < 1.0 && y > 0.0) {
+        uint64_t bits;
+        memcpy(&bits, &x, sizeof bits);
+        if ((double)((int)((bits >> 52) & 0x7ffu) - 1022) * y <= -1100.0) {
+            return 0.0;
+        }
+    }
+    return pow(x, y);
 }
 
 /* A specular model's value at one configuration from its geometry and the
