@@ -4,6 +4,7 @@
 
 #include <criterion/criterion.h>
 #include <fcntl.h>
+#include <ftw.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -107,6 +108,32 @@ int bf_test_run_sh(const char *cmd, const char **out)
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* The folders bf_test_tmpdir made in this process, removed with what
+ * they hold when it exits (BF_TEST_KEEP set: kept, to look at). */
+#define MAX_TMPDIRS 512
+static char made[MAX_TMPDIRS][256];
+static size_t n_made;
+
+static int remove_entry(const char *path, const struct stat *sb, int flag,
+                        struct FTW *ftw)
+{
+    (void)sb;
+    (void)flag;
+    (void)ftw;
+    return remove(path);
+}
+
+static void remove_tmpdirs(void)
+{
+    size_t i;
+    if (getenv("BF_TEST_KEEP") != NULL) {
+        return;
+    }
+    for (i = 0; i < n_made; i++) {
+        (void)nftw(made[i], remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    }
+}
+
 const char *bf_test_tmpdir(void)
 {
     static char dir[256];
@@ -114,6 +141,12 @@ const char *bf_test_tmpdir(void)
     snprintf(dir, sizeof dir, "%s/brdffit-test-XXXXXX",
              base != NULL ? base : "/tmp");
     cr_assert_not_null(mkdtemp(dir), "mkdtemp failed");
+    if (n_made == 0) {
+        cr_assert_eq(atexit(remove_tmpdirs), 0);
+    }
+    if (n_made < MAX_TMPDIRS) {
+        memcpy(made[n_made++], dir, sizeof dir);
+    }
     return dir;
 }
 

@@ -21,7 +21,8 @@ int bf_test_run_curet(const char **argv);
  * status, or -1 if it did not exit normally. */
 int bf_test_run_sh(const char *cmd, const char **out);
 
-/* Creates a fresh temporary folder (static buffer). */
+/* Creates a fresh temporary folder (static buffer); it and what it holds
+ * are removed when the process exits (kept when BF_TEST_KEEP is set). */
 const char *bf_test_tmpdir(void);
 
 /* Reads a whole file into a static buffer; NULL when it does not exist. */
