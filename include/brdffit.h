@@ -1753,6 +1753,11 @@ typedef struct {
     int analysed;            /* 0: grid_value ... flags are empty */
     double grid_value, grid_lse, refined_value, refined_lse;
     double ci_low, ci_high;
+    double ml_value;         /* the estimate ci_low, ci_high are about
+                                (bf_fit_stats.ml_param): the noise
+                                model's maximum-likelihood estimate, which
+                                can differ from value (the objective's
+                                optimum); NaN: none */
     const char *ci_method;   /* NULL: none */
     int ci_open;             /* -1: none */
     double boot_low, boot_high;
@@ -1777,7 +1782,8 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
  * status is not BF_OK are left out. Columns: sample, name, channel,
  * model, parameter, unit, value, lse, bound_hit, k (configurations used),
  * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
- * refined_lse, ci_low, ci_high, ci_method, ci_open, boot_low, boot_high,
+ * refined_lse, ci_low, ci_high, ml_value (the estimate the interval is
+ * about), ci_method, ci_open, boot_low, boot_high,
  * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
  * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
  * lines of bf_fits_lines. A joint fit (bf_target.joint, SPEC §9.4) writes

@@ -407,6 +407,7 @@ typedef struct {
     int analysed;
     double grid_value, grid_lse, refined_value, refined_lse;
     double ci_low, ci_high;
+    double ml_value;
     const char *ci_method;
     int ci_open;
     double boot_low, boot_high;

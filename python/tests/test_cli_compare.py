@@ -52,6 +52,7 @@ def expected_row(r, param):
     if param is None:
         row.update(parameter="", unit="", value="", bound_hit="0",
                    grid_value="", refined_value="", ci_low="", ci_high="",
+                   ml_value="",
                    ci_method="", ci_open="")
         return row
     (p,) = [q for q in r.model.parameters if q.name == param]
@@ -61,7 +62,8 @@ def expected_row(r, param):
                bound_hit=str(int(r.bound[param])),
                grid_value=g(r.grid[param]),
                refined_value=g(r.refined[param]), ci_low=g(lo),
-               ci_high=g(hi), ci_method=r.ci_method,
+               ci_high=g(hi), ml_value=g(r.ml_estimate[param]),
+               ci_method=r.ci_method,
                ci_open=str(int(lo_open) + 2 * int(hi_open)))
     return row
 

@@ -63,6 +63,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
     l->analysed = s != NULL && s->done;
     l->grid_value = l->grid_lse = l->refined_value = l->refined_lse = NAN;
     l->ci_low = l->ci_high = l->boot_low = l->boot_high = NAN;
+    l->ml_value = NAN;
     l->aic = l->bic = l->cv = NAN;
     l->ci_open = -1;
     l->n_params = -1;
@@ -74,6 +75,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->refined_lse = s->refined.lse;
         l->ci_low = has ? s->ci_low[j] : NAN;
         l->ci_high = has ? s->ci_high[j] : NAN;
+        l->ml_value = has ? s->ml_param[j] : NAN;
         l->ci_method = has ? bf_ci_method_name(s->ci_method) : NULL;
         l->ci_open = has ? (int)((s->ci_open >> (2 * j)) & 3u) : -1;
         l->boot_low = has ? s->boot_low[j] : NAN;
@@ -197,7 +199,7 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
     fprintf(fp, ",%.10g,%d,%zu,%s,%s", l->lse, l->bound_hit, l->k,
             l->objective, l->fit);
     if (!l->analysed) {
-        fputs(",,,,,,,,,,,,,,,", fp);
+        fputs(",,,,,,,,,,,,,,,,", fp);
     } else {
         bf__csv_num(fp, l->grid_value);
         bf__csv_num(fp, l->grid_lse);
@@ -205,6 +207,7 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
         bf__csv_num(fp, l->refined_lse);
         bf__csv_num(fp, l->ci_low);
         bf__csv_num(fp, l->ci_high);
+        bf__csv_num(fp, l->ml_value);
         fprintf(fp, ",%s", l->ci_method != NULL ? l->ci_method : "");
         csv_int(fp, l->ci_open);
         bf__csv_num(fp, l->boot_low);
@@ -248,7 +251,7 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
     (void)bf_fits_lines(spec, rows, stats, opts, lines);
     fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
           "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
-          "ci_low,ci_high,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
+          "ci_low,ci_high,ml_value,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
           "bic,cv,flags,ndf,masking,fresnel,albedo_0,albedo_30,albedo_60,"
           "albedo_80,albedo_over_1\n",
           fp);

@@ -195,8 +195,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     size_t nj = popcount(mask);
     const char **names = sample_names(st, d);
     bf_plot_panel *panel = bf_fig_alloc(d, nj * sizeof *panel);
-    bf_plot_series *ser = bf_fig_alloc(d, 3 * nj * sizeof *ser);
-    double *v = bf_fig_alloc(d, 7 * N * nj * sizeof *v);
+    bf_plot_series *ser = bf_fig_alloc(d, 4 * nj * sizeof *ser);
+    double *v = bf_fig_alloc(d, 8 * N * nj * sizeof *v);
     unsigned *open = bf_fig_alloc(d, N * nj * sizeof *open);
     char (*xl)[128] = bf_fig_alloc(d, nj * sizeof *xl);
     int boot = st->opts.n_boot >= 2;
@@ -210,16 +210,17 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         return nj == 0 ? BF_EINVAL : BF_ENOMEM;
     }
     for (j = 0; j < t->p; j++) {
-        double *est = &v[7 * N * q];
+        double *est = &v[8 * N * q];
         double *lo = est + N;
         double *hi = lo + N;
         double *blo = hi + N;
         double *bhi = blo + N;
         double *y = bhi + N;
         double *yb = y + N;
+        double *ml = yb + N; /* the estimate the interval is about */
         double xmin = HUGE_VAL;
         double xmax = -HUGE_VAL;
-        bf_plot_series *sq = &ser[3 * q];
+        bf_plot_series *sq = &ser[4 * q];
         if (!((mask >> j) & 1u)) {
             continue;
         }
@@ -229,6 +230,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             est[s] = ok ? f->refined.param[j] : NAN;
             lo[s] = ok ? f->ci_low[j] : NAN;
             hi[s] = ok ? f->ci_high[j] : NAN;
+            ml[s] = ok ? f->ml_param[j] : NAN;
             blo[s] = ok ? f->boot_low[j] : NAN;
             bhi[s] = ok ? f->boot_high[j] : NAN;
             y[s] = (double)(N - s);
@@ -275,6 +277,13 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[2].n = N;
         sq[2].style = sq[0].style;
         sq[2].label = "exact optimum";
+        /* the noise model's estimate, the interval's centre: it differs
+         * from the optimum where the noise model weights the residuals;
+         * drawn first, so the optimum's marker covers it where equal */
+        sq[3] = sq[2];
+        sq[2].x = ml;
+        sq[2].style = BF_PLOT_INK;
+        sq[2].label = "the interval's estimate (noise-weighted)";
         bf_fig_param_label(&t->param[j], xl[q], sizeof xl[q]);
         panel[q].xmin = xmin - 0.04 * (xmax - xmin);
         panel[q].xmax = xmax + 0.04 * (xmax - xmin);
@@ -284,7 +293,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         panel[q].n_yticks = N;
         panel[q].xlabel = xl[q];
         panel[q].series = sq;
-        panel[q].n_series = 3;
+        panel[q].n_series = 4;
         q++;
     }
     /* the sample names, then at most 200 points a parameter */
@@ -305,8 +314,12 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->caption, sizeof e->caption,
              "For each of the %zu samples, %s's exact optimum (points; the "
              "objective \"%s\" minimised by refinement of the grid optimum, "
-             "doc/methods.md §2) and its 95%% profile interval (solid: where "
-             "n ln(S/S_min) \xe2\x89\xa4 3.84, doc/methods.md §3)%s. An "
+             "doc/methods.md §2) and its 95%% profile interval (solid: the "
+             "noise model's likelihood profile, doc/methods.md §3), which "
+             "is about the noise model's maximum-likelihood estimate "
+             "(black dots, fits.csv's ml_value): where the noise model "
+             "weights the residuals that estimate can differ from the "
+             "optimum, and the interval need not hold the optimum%s. An "
              "interval that reaches the search range is cut there and drawn "
              "without an end tick.",
              N, t->name, bf_objective_name(st->opts.objective),

@@ -244,6 +244,13 @@ Test(writers, fits_lines_are_the_lines_of_fits_csv)
             cr_assert(j >= 0 && r->type->param[j].fitted);
             cr_assert_eq(l->value, r->fit.param[j]);
             cr_assert_eq(l->ci_high, st->ci_high[j]);
+            cr_assert_eq(l->ml_value, st->ml_param[j]);
+            /* the interval is about ml_value: it holds it */
+            cr_assert(isfinite(l->ml_value));
+            cr_assert(!(l->ci_low > l->ml_value) &&
+                      !(l->ci_high < l->ml_value),
+                      "%s %s: ml_value %g outside [%g, %g]", l->model,
+                      l->parameter, l->ml_value, l->ci_low, l->ci_high);
             cr_assert_not_null(l->ci_method);
         } else {
             cr_assert_eq(l->kind, BF_FITS_NONE);
