@@ -109,7 +109,7 @@ fuzz-build:
 
 fuzz: fuzz-build
 	fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS) "$(CURET)" "$(REFERENCE)" \
-	    $(FUZZ_MAX_LEN)
+	    $(FUZZ_MAX_LEN) $(JOBS)
 
 # The plain build's test suite under valgrind (tests/valgrind.sh).
 valgrind: build
