@@ -194,7 +194,9 @@ run_one() {
         return 0
     fi
     log=$build/valgrind-$name.log
-    set -- "$exe" --jobs=1
+    # --verbose: the log keeps each test's time under valgrind (what the
+    # skip list above is weighed by)
+    set -- "$exe" --jobs=1 --verbose
     [ -n "$filter" ] && set -- "$@" --filter="!(${filter#|})"
     # A report in a Criterion child does not reach the parent's exit status
     # (the child's error exit only marks nothing), so any valgrind line in
