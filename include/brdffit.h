@@ -1193,6 +1193,11 @@ typedef struct {
     int status;                   /* BF_OK; BF_ENOTFOUND when an input is
                                      missing (ON without parameters) */
     bf_fit_result fit;            /* valid when status == BF_OK */
+    double albedo[4];             /* the directional albedo of the fit's
+                                     specular part at theta_i = 0, 30, 60,
+                                     80 degrees; NaN: none (a diffuse
+                                     model, a failed quadrature, a failed
+                                     row); bf_study_row_albedo */
 } bf_study_row;
 
 /* Runs the paper's protocol (SPEC §7) for every target and model, writing
@@ -1211,6 +1216,15 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
  * status (BF_EDOM: the model cannot be normalised on the used
  * configurations, SPEC §2; BF_ENOMEM), its index in *bad (may be NULL). */
 int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
+
+/* Fills row->albedo from row->type and row->fit: the directional albedo of
+ * the specular part (bf_model_specular_part, bf_model_albedo) at theta_i
+ * = 0, 30, 60 and 80 degrees, NaN where the quadrature fails, for a
+ * diffuse model and for a row whose status is not BF_OK. bf_study_run and
+ * bf_study_analyse call it once for every row whose fit they write, so
+ * that fits.csv (bf_fits_lines) and the report's energy table read it;
+ * a row built by hand needs it before those. NULL row: nothing. */
+void bf_study_row_albedo(bf_study_row *row);
 
 /* The paper's default refractive index for FC models (SPEC §4.2). */
 #define BF_DEFAULT_N 1.7
@@ -1765,7 +1779,8 @@ typedef struct {
     double aic, bic, cv;
     char flags[BF_FITS_FLAGS_MAX]; /* bf_fit_flags_format */
     const char *ndf, *masking, *fresnel; /* NULL for a diffuse model */
-    double albedo[4];        /* at 0, 30, 60, 80 degrees; NaN: none */
+    double albedo[4];        /* at 0, 30, 60, 80 degrees (rows[row].albedo,
+                                bf_study_row_albedo); NaN: none */
     int albedo_over_1;       /* -1 for a diffuse model */
 } bf_fits_line;
 

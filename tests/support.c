@@ -314,48 +314,78 @@ void bf_test_write_model_csv(const char *path, size_t K, const double *at,
     bf_test_write_noisy_csv(path, K, at, n, mat, 0.0, 0);
 }
 
+bf_dataset *bf_test_channels_dataset(size_t K, const double *at, size_t n,
+                                     const char *const *names, size_t C,
+                                     const char *const *channel,
+                                     const double *wavelength,
+                                     const double *values)
+{
+    bf_dataset *ds = bf_dataset_alloc();
+    size_t set;
+    size_t i;
+    cr_assert_not_null(ds);
+    cr_assert_eq(bf_dataset_add_configs(ds, K, at, &set, NULL), BF_OK);
+    for (i = 0; i < n; i++) {
+        bf_material_desc d;
+        memset(&d, 0, sizeof d);
+        d.name = names[i];
+        d.format = BF_FORMAT_MEMORY;
+        d.set = set;
+        d.n_channels = C;
+        d.channel = channel;
+        d.wavelength = wavelength;
+        d.values = values + i * K * C;
+        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK, "%s",
+                     names[i]);
+    }
+    return ds;
+}
+
+void bf_test_write_channels_csv(const char *path, size_t K,
+                                const double *at, size_t n,
+                                const char *const *names, size_t C,
+                                const char *const *channel,
+                                const double *wavelength,
+                                const double *values)
+{
+    bf_dataset *ds = bf_test_channels_dataset(K, at, n, names, C, channel,
+                                              wavelength, values);
+    FILE *fp = fopen(path, "w");
+    cr_assert_not_null(fp, "%s", path);
+    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
+    cr_assert_eq(fclose(fp), 0);
+    bf_dataset_free(ds);
+}
+
 void bf_test_write_noisy_csv(const char *path, size_t K, const double *at,
                              size_t n, const bf_test_material *mat,
                              double noise, unsigned long seed)
 {
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double *v = malloc((n + 1) * K * sizeof *v);
+    const char **names = malloc((n + 1) * sizeof *names);
     bf_geom *g = malloc(K * sizeof *g);
-    bf_dataset *ds = bf_dataset_alloc();
-    size_t set;
     size_t i;
     size_t k;
-    FILE *fp;
-    cr_assert(v != NULL && g != NULL && ds != NULL && rng != NULL);
+    cr_assert(v != NULL && names != NULL && g != NULL && rng != NULL);
     gsl_rng_set(rng, seed);
-    cr_assert_eq(bf_dataset_add_configs(ds, K, at, &set, NULL), BF_OK);
     for (k = 0; k < K; k++) {
         g[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
                                         at[4 * k + 2], at[4 * k + 3]);
     }
     for (i = 0; i < n; i++) {
-        bf_material_desc d;
         cr_assert_eq(bf_model_eval(mat[i].type, mat[i].param, K, g,
                                    v + i * K),
                      BF_OK, "%s", mat[i].name);
         for (k = 0; noise > 0.0 && k < K; k++) { /* relative noise */
             v[i * K + k] *= 1.0 + noise * gsl_ran_gaussian(rng, 1.0);
         }
-        memset(&d, 0, sizeof d);
-        d.name = mat[i].name;
-        d.format = BF_FORMAT_MEMORY;
-        d.set = set;
-        d.n_channels = 1;
-        d.values = v + i * K;
-        cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
+        names[i] = mat[i].name;
     }
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_channels_csv(path, K, at, n, names, 1, NULL, NULL, v);
     gsl_rng_free(rng);
     free(g);
+    free(names);
     free(v);
 }
 

@@ -118,10 +118,31 @@ typedef struct {
     const double *param;
 } bf_test_material;
 
+/* A dataset of n materials measured at the K configurations at
+ * (measurement frame, radians, 4 angles each): material i (numbered i + 1)
+ * is names[i], with C channels (channel: their names, wavelength: theirs
+ * in nm; either NULL for none) whose values are values + i K C (K x C,
+ * row-major: configuration by configuration); fails the test on any
+ * error. The caller frees it (bf_dataset_free). */
+bf_dataset *bf_test_channels_dataset(size_t K, const double *at, size_t n,
+                                     const char *const *names, size_t C,
+                                     const char *const *channel,
+                                     const double *wavelength,
+                                     const double *values);
+
+/* The same dataset written through the library's tidy CSV writer
+ * (bf_csv_write) to path; fails the test on any error. */
+void bf_test_write_channels_csv(const char *path, size_t K,
+                                const double *at, size_t n,
+                                const char *const *names, size_t C,
+                                const char *const *channel,
+                                const double *wavelength,
+                                const double *values);
+
 /* Writes the n materials at the K configurations at (measurement frame,
  * radians, 4 angles each) as one dataset (one channel, material i + 1 is
- * mat[i]) through the library's tidy CSV writer (bf_csv_write) to path;
- * fails the test on any error. */
+ * mat[i]) through bf_test_write_channels_csv to path; fails the test on
+ * any error. */
 void bf_test_write_model_csv(const char *path, size_t K, const double *at,
                              size_t n, const bf_test_material *mat);
 

@@ -248,6 +248,7 @@ typedef struct {
     const bf_model_type *type;
     int status;
     bf_fit_result fit;
+    double albedo[4];
 } bf_study_row;
 int bf_study_run(const bf_study_spec *spec, bf_study_row *rows,
                  bf_error *err);

@@ -174,6 +174,7 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             if (r->status == BF_OK) {
                 r->fit = stats[u].refined;
             }
+            bf_study_row_albedo(r);
         }
     }
     for (s = 0; opts->objective == BF_OBJ_NGAN && s < n_units; s++) {

@@ -10,34 +10,13 @@
 
 #define SCALE_ROW (SIZE_MAX - 1)
 
-/* The incidences of the energy columns (issue 17 item 8), degrees. */
-static const double albedo_deg[4] = {0.0, 30.0, 60.0, 80.0};
-
-/* The albedos of specular_cols for row r (NaN where the quadrature fails
- * or the model is diffuse). */
-static void row_albedo(const bf_study_row *r, double *albedo)
-{
-    size_t first;
-    const bf_model_type *sp = bf_model_specular_part(r->type, &first);
-    size_t a;
-    for (a = 0; a < 4; a++) {
-        albedo[a] = NAN;
-        if (sp != NULL &&
-            bf_model_albedo(sp, r->fit.param + first,
-                            albedo_deg[a] * 3.14159265358979323846 / 180.0,
-                            &albedo[a]) != BF_OK) {
-            albedo[a] = NAN;
-        }
-    }
-}
-
 /* Line l of row r for parameter j (SIZE_MAX: a model with no fitted
  * parameter; SCALE_ROW: the free scale, refined value only), with its
  * analysis columns (s: NULL or not done, empty) and its specular columns
- * (albedo: row_albedo; empty for a diffuse model). */
+ * (r->albedo, bf_study_row_albedo; empty for a diffuse model). */
 static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
                       const bf_fit_stats *s, const bf_analysis_opts *opts,
-                      size_t j, const double *albedo)
+                      size_t j)
 {
     int has = j < BF_MAX_PARAMS;
     size_t first;
@@ -88,7 +67,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
     }
     l->albedo_over_1 = -1;
     for (a = 0; a < 4; a++) {
-        l->albedo[a] = sp != NULL ? albedo[a] : NAN;
+        l->albedo[a] = sp != NULL ? r->albedo[a] : NAN;
     }
     if (sp != NULL) {
         l->ndf = sp->ndf != NULL ? sp->ndf : "";
@@ -96,7 +75,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->fresnel = sp->fresnel_term != NULL ? sp->fresnel_term : "";
         l->albedo_over_1 = 0;
         for (a = 0; a < 4; a++) {
-            l->albedo_over_1 |= albedo[a] > 1.0;
+            l->albedo_over_1 |= r->albedo[a] > 1.0;
         }
     }
 }
@@ -124,19 +103,15 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
         const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
         size_t j;
         size_t before = n;
-        double albedo[4];
         if (r->status != BF_OK) {
             continue;
-        }
-        if (out != NULL) {
-            row_albedo(r, albedo);
         }
         if (s != NULL && s->done && bf_objective_keeps_scale(s->objective)
             && r->type->kind != BF_MODEL_SPECULAR) {
             /* SPEC §9.4: rho_d, a parameter of the fit (a specular
              * model's scales are its own parameters) */
             if (out != NULL) {
-                fill_line(&out[n], i, r, s, opts, SCALE_ROW, albedo);
+                fill_line(&out[n], i, r, s, opts, SCALE_ROW);
             }
             n++;
         }
@@ -148,7 +123,7 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
             if (r->type->param[j].fitted &&
                 (!joint || joint_first(spec, r->target))) {
                 if (out != NULL) {
-                    fill_line(&out[n], i, r, s, opts, j, albedo);
+                    fill_line(&out[n], i, r, s, opts, j);
                     out[n].joint = joint;
                 }
                 n++;
@@ -156,7 +131,7 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
         }
         if (n == before) {
             if (out != NULL) {
-                fill_line(&out[n], i, r, s, opts, SIZE_MAX, albedo);
+                fill_line(&out[n], i, r, s, opts, SIZE_MAX);
             }
             n++;
         }

@@ -1,13 +1,13 @@
-/* energy.c: the report's energy table (energy.h): fits.csv's albedo
- * columns (bf_fits_lines, bf_model_albedo) one row per specular fit. */
-#include <stdint.h>
+/* energy.c: the report's energy table (energy.h): the albedo of each
+ * specular fit (bf_study_row.albedo, fits.csv's albedo columns) one row
+ * per fit. */
 #include <stdlib.h>
 
 #include "energy.h"
 
-/* Fills the table's cells of line l. */
+/* Fills the table's cells of row r (a specular fit). */
 static void fill_row(bf_tt *t, const bf_study_spec *spec,
-                     const bf_study_row *r, const bf_fits_line *l)
+                     const bf_study_row *r, int over)
 {
     const bf_target *tg = &spec->targets[r->target];
     const char *name = bf_dataset_name(spec->data, tg->material);
@@ -17,15 +17,15 @@ static void fill_row(bf_tt *t, const bf_study_spec *spec,
     bf_tt_set(t, 0, "%d", r->sample);
     bf_tt_set(t, 1, "%s", name != NULL ? name : "");
     bf_tt_set(t, 2, "%s", ch != NULL ? ch : "");
-    bf_tt_set(t, 3, "%s", l->model);
+    bf_tt_set(t, 3, "%s", r->type->name);
     for (a = 0; a < 4; a++) {
-        if (l->albedo[a] == l->albedo[a]) {
-            bf_tt_set(t, 4 + a, "%.4f", l->albedo[a]);
+        if (r->albedo[a] == r->albedo[a]) {
+            bf_tt_set(t, 4 + a, "%.4f", r->albedo[a]);
         } else {
             bf_tt_set(t, 4 + a, "-");
         }
     }
-    bf_tt_set(t, 8, "%s", l->albedo_over_1 > 0 ? "OVER 1" : "ok");
+    bf_tt_set(t, 8, "%s", over ? "OVER 1" : "ok");
 }
 
 bf_tt *bf_rep_energy_table(const bf_study_spec *spec,
@@ -35,38 +35,39 @@ bf_tt *bf_rep_energy_table(const bf_study_spec *spec,
     static const char *const head[9] = {
         "No.", "Sample", "Channel", "Model", "a(0)", "a(30)", "a(60)",
         "a(80)", "Check"};
-    size_t nl = bf_fits_lines(spec, rows, NULL, NULL, NULL);
-    bf_fits_line *lines = malloc((nl + 1) * sizeof *lines);
+    size_t n_rows = spec != NULL && rows != NULL
+                        ? spec->n_targets * spec->n_models
+                        : 0;
     bf_tt *t = bf_tt_alloc(9);
-    size_t prev = SIZE_MAX;
     size_t i;
     *n = *n_over = 0;
-    if (lines == NULL || t == NULL) {
-        free(lines);
-        bf_tt_free(t);
+    if (t == NULL) {
         *n = 1;
         return NULL;
     }
-    (void)bf_fits_lines(spec, rows, NULL, NULL, lines);
     for (i = 0; i < 9; i++) {
         bf_tt_header(t, i, head[i]);
         if (i == 0 || (i >= 4 && i < 8)) {
             bf_tt_right(t, i);
         }
     }
-    for (i = 0; i < nl; i++) { /* a row's first line carries its albedo */
-        const bf_fits_line *l = &lines[i];
-        if (l->row == prev || l->albedo_over_1 < 0) {
+    for (i = 0; i < n_rows; i++) {
+        const bf_study_row *r = &rows[i];
+        int over = 0;
+        size_t a;
+        if (r->status != BF_OK ||
+            bf_model_specular_part(r->type, NULL) == NULL) {
             continue;
         }
-        prev = l->row;
+        for (a = 0; a < 4; a++) {
+            over |= r->albedo[a] > 1.0;
+        }
         (*n)++;
-        *n_over += l->albedo_over_1 > 0;
+        *n_over += over;
         if (bf_tt_add_row(t) == 0) {
-            fill_row(t, spec, &rows[l->row], l);
+            fill_row(t, spec, r, over);
         }
     }
-    free(lines);
     if (*n == 0 || bf_tt_failed(t)) {
         bf_tt_free(t);
         return NULL;

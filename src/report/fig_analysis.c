@@ -283,7 +283,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[3] = sq[2];
         sq[2].x = ml;
         sq[2].style = BF_PLOT_INK;
-        sq[2].label = "the interval's estimate (noise-weighted)";
+        sq[2].label = BF_FIG_ML_LABEL;
         bf_fig_param_label(&t->param[j], xl[q], sizeof xl[q]);
         panel[q].xmin = xmin - 0.04 * (xmax - xmin);
         panel[q].xmax = xmax + 0.04 * (xmax - xmin);

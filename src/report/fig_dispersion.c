@@ -112,7 +112,7 @@ static size_t model_series(const bf_dispersion_point *pt, size_t n,
         ser[2] = ser[1];
         ser[2].y = ml;
         ser[2].style = BF_PLOT_INK;
-        ser[2].label = "the interval's estimate (noise-weighted)";
+        ser[2].label = BF_FIG_ML_LABEL;
         ns = 3;
     }
     if (joint != NULL) {

@@ -21,6 +21,11 @@
  * degrees). */
 #define BF_FIG_PLANE_TOL (1.0 * BF_FIG_DEG)
 
+/* The legend of the noise model's estimate, the one the 95% interval is
+ * about (bf_fit_stats.ml_param, doc/methods.md §3), in the forest plots
+ * (fig_analysis.c) and the dispersion figure (fig_dispersion.c). */
+#define BF_FIG_ML_LABEL "the interval's estimate (noise-weighted)"
+
 /* One sample's (target's) normalised measured and predicted radiance on
  * its K used configurations (SPEC §2). */
 typedef struct {

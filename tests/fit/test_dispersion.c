@@ -50,20 +50,7 @@ static const bf_model_type *dielectric_type(void)
     return t;
 }
 
-/* Adds the paint's material (values: K x N_CH, row-major) on set. */
-static void add_paint(bf_dataset *ds, size_t set, const double *values)
-{
-    bf_material_desc d;
-    memset(&d, 0, sizeof d);
-    d.name = "paint";
-    d.format = BF_FORMAT_MEMORY;
-    d.set = set;
-    d.n_channels = N_CH;
-    d.channel = ch_name;
-    d.wavelength = lambda_nm;
-    d.values = values;
-    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
-}
+static const char *const paint[1] = {"paint"};
 
 /* Writes the paint (channel c: LAMBERT+GGX with n = cauchy(lambda_c),
  * each value times 1 + NOISE eps) as tidy CSV to path. */
@@ -73,14 +60,10 @@ static void write_paint(const char *path)
     static bf_geom geom[N_CONF];
     static double value[N_CONF * N_CH];
     const bf_model_type *t = dielectric_type();
-    bf_dataset *ds = bf_dataset_alloc();
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double v[N_CONF];
-    size_t set;
     size_t c;
     size_t k;
-    FILE *fp;
-    cr_assert_not_null(ds);
     cr_assert_not_null(rng);
     gsl_rng_set(rng, 17);
     bf_test_glossy_configs(at);
@@ -88,7 +71,6 @@ static void write_paint(const char *path)
         geom[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
                                            at[4 * k + 2], at[4 * k + 3]);
     }
-    cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
     for (c = 0; c < N_CH; c++) {
         double p[4] = {0.2, 0.5, 0.12, 0.0};
         p[3] = cauchy(lambda_nm[c]);
@@ -98,12 +80,8 @@ static void write_paint(const char *path)
                 v[k] * (1.0 + NOISE * gsl_ran_gaussian(rng, 1.0));
         }
     }
-    add_paint(ds, set, value);
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_channels_csv(path, N_CONF, at, 1, paint, N_CH, ch_name,
+                               lambda_nm, value);
     gsl_rng_free(rng);
 }
 
@@ -185,18 +163,15 @@ Test(dispersion, no_n_no_points)
     static const int sample = 1;
     const bf_model_type *schlick = bf_model_find("LAMBERT+GGX");
     const bf_model_type *diel = dielectric_type();
-    bf_dataset *ds = bf_dataset_alloc();
     static const double at[4] = {0.3, 3.14159265358979323846, 0.3, 0.0};
-    double value[N_CH] = {0.1, 0.1, 0.1};
+    static const double value[N_CH] = {0.1, 0.1, 0.1};
+    bf_dataset *ds = bf_test_channels_dataset(1, at, 1, paint, N_CH,
+                                              ch_name, lambda_nm, value);
     bf_target tg = {0, 1, 0};
     bf_study_spec spec;
     bf_study_row row;
     bf_dispersion_point pt;
-    size_t set;
-    cr_assert_not_null(ds);
     cr_assert_eq(bf_model_param_index(schlick, "n"), -1);
-    cr_assert_eq(bf_dataset_add_configs(ds, 1, at, &set, NULL), BF_OK);
-    add_paint(ds, set, value);
     memset(&spec, 0, sizeof spec);
     memset(&row, 0, sizeof row);
     spec.data = ds;

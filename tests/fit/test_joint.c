@@ -43,41 +43,25 @@ static double value[N_CONF * N_CH]; /* row-major, configuration x channel */
  * sr^-1) through the library's tidy CSV writer. */
 static void write_csv(const char *path, const double (*p)[4])
 {
+    static const char *const name[1] = {"paint"};
     const bf_model_type *t = bf_model_find("LAMBERT+GGX");
-    bf_dataset *ds = bf_dataset_alloc();
-    bf_material_desc d;
     double v[N_CONF];
-    size_t set;
     size_t c;
     size_t k;
-    FILE *fp;
-    cr_assert_not_null(ds);
     cr_assert_not_null(t);
     bf_test_glossy_configs(at);
     for (k = 0; k < N_CONF; k++) {
         geom[k] = bf_geom_from_measurement(at[4 * k], at[4 * k + 1],
                                            at[4 * k + 2], at[4 * k + 3]);
     }
-    cr_assert_eq(bf_dataset_add_configs(ds, N_CONF, at, &set, NULL), BF_OK);
     for (c = 0; c < N_CH; c++) {
         cr_assert_eq(bf_model_eval(t, p[c], N_CONF, geom, v), BF_OK);
         for (k = 0; k < N_CONF; k++) {
             value[k * N_CH + c] = v[k];
         }
     }
-    memset(&d, 0, sizeof d);
-    d.name = "paint";
-    d.format = BF_FORMAT_MEMORY;
-    d.set = set;
-    d.n_channels = N_CH;
-    d.channel = ch_name;
-    d.values = value;
-    cr_assert_eq(bf_dataset_add_material(ds, &d, NULL), BF_OK);
-    fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert_eq(bf_csv_write(ds, fp), BF_OK);
-    cr_assert_eq(fclose(fp), 0);
-    bf_dataset_free(ds);
+    bf_test_write_channels_csv(path, N_CONF, at, 1, name, N_CH, ch_name,
+                               NULL, value);
 }
 
 /* brdffit compare --channel joint on path with extra arguments; the exit

@@ -1,11 +1,12 @@
 /* test_energy.c: the report's energy table (src/report/energy.c, issue 17
- * item 8): one row per specular fit (a diffuse model has none), the
- * albedo at 0, 30, 60, 80 degrees, "OVER 1" exactly where the
- * white-furnace check fails: WARD-DUER with rho_s = 1.2 and a narrow lobe
- * (albedo about rho_s at every incidence) is over 1, GGX with F0 = 0.04
- * is far below it. */
+ * item 8) of rows whose albedo bf_study_row_albedo filled: one row per
+ * specular fit (a diffuse model has none), the albedo at 0, 30, 60, 80
+ * degrees, "OVER 1" exactly where the white-furnace check fails:
+ * WARD-DUER with rho_s = 1.2 and a narrow lobe (albedo about rho_s at
+ * every incidence) is over 1, GGX with F0 = 0.04 is far below it. */
 #include <criterion/criterion.h>
 #include <gsl/gsl_errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,6 +64,11 @@ Test(energy, one_row_per_specular_fit_flagged_over_1)
     rows[1].fit.param[2] = 0.04;
     rows[2].fit.param[0] = 1.2; /* WARD-DUER: rho_s, alpha */
     rows[2].fit.param[1] = 0.01;
+    for (m = 0; m < 3; m++) { /* as bf_study_analyse does after the fit */
+        bf_study_row_albedo(&rows[m]);
+    }
+    cr_assert(isnan(rows[0].albedo[0]) && isnan(rows[0].albedo[3]));
+    cr_assert(rows[1].albedo[0] > 0.0 && rows[1].albedo[0] < 1.0);
     t = bf_rep_energy_table(&spec, rows, &n, &over);
     cr_assert_not_null(t);
     cr_assert_eq(n, 2);
@@ -84,6 +90,14 @@ Test(energy, one_row_per_specular_fit_flagged_over_1)
     cr_assert_eq(sscanf(strchr(ward, '|') + 1, " %lf", &a0), 1);
     cr_assert(a0 > 1.19 && a0 <= 1.2, "WARD-DUER a(0) %g", a0);
     free(text);
+    /* a failed row has no albedo and no line */
+    rows[2].status = BF_EDOM;
+    bf_study_row_albedo(&rows[2]);
+    cr_assert(isnan(rows[2].albedo[0]) && isnan(rows[2].albedo[3]));
+    t = bf_rep_energy_table(&spec, rows, &n, &over);
+    cr_assert_not_null(t);
+    cr_assert(n == 1 && over == 0, "n %zu over %zu", n, over);
+    bf_tt_free(t);
     /* no specular fit: no table */
     spec.n_models = 1;
     cr_assert_null(bf_rep_energy_table(&spec, rows, &n, &over));
