@@ -168,6 +168,49 @@ static void legend(const bf_rep_study *st, char *buf, size_t len)
              level, 100.0 * BF_CALIBRATION_BAND);
 }
 
+/* The pairs whose fitted noise power sits on the bound BF_NOISE_PMAX of
+ * its range, as a sentence into buf ("" when none): the data do not
+ * bound the noise model there, and the check simulates from that bound
+ * (doc/methods.md §3: on the glossy Cornell paints every such check of
+ * LAMBERT+GGX was low). At most NOTE_PAIRS pairs named. */
+#define NOTE_PAIRS 8
+static void bound_note(const bf_rep_study *st, char *buf, size_t len)
+{
+    size_t i;
+    size_t n = 0;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (i = 0; i < st->cal.n; i++) {
+        const bf_study_row *r = &st->rows[st->cal.pair[i]];
+        const bf_fit_stats *f = &st->stats[st->cal.pair[i]];
+        if (!(f->noise_power >= BF_NOISE_PMAX)) {
+            continue;
+        }
+        if (n < NOTE_PAIRS && at < len) {
+            at += (size_t)snprintf(buf + at, len - at, "%s sample %d %s",
+                                   n == 0 ? "" : ",", r->sample,
+                                   r->type->name);
+        }
+        n++;
+    }
+    if (n == 0) {
+        return;
+    }
+    if (n > NOTE_PAIRS && at < len) {
+        at += (size_t)snprintf(buf + at, len - at, " and %zu more",
+                               n - NOTE_PAIRS);
+    }
+    if (at < len) {
+        snprintf(buf + at, len - at,
+                 ": the fitted noise power is at the bound %.0f of its "
+                 "range, which the data do not determine; the intervals "
+                 "hold it at that estimate and the simulations start from "
+                 "it, and such checks were low on the glossy Cornell "
+                 "paints (doc/methods.md \xc2\xa7" "3).",
+                 BF_NOISE_PMAX);
+    }
+}
+
 /* "200 simulations of each fit under its fitted noise model (--noise
  * auto), objective max, seed 1" into buf. */
 static void what(const bf_rep_study *st, char *buf, size_t len)
@@ -195,6 +238,10 @@ int bf_rep_calibration_print(const bf_rep_study *st, FILE *fp)
     bf_tt_print(t, fp);
     legend(st, text, sizeof text);
     fprintf(fp, "\n%s\n", text);
+    bound_note(st, text, sizeof text);
+    if (text[0] != '\0') {
+        fprintf(fp, "\nNoise power at its bound:%s\n", text);
+    }
     bf_tt_free(t);
     return BF_REPORT_OK;
 }
@@ -238,6 +285,12 @@ int bf_report_calibration(FILE *fp, const bf_rep_study *st)
     legend(st, text, sizeof text);
     bf_tt_html_text(fp, text);
     fputs("</p>\n", fp);
+    bound_note(st, text, sizeof text);
+    if (text[0] != '\0') {
+        fputs("<p>Noise power at its bound:", fp);
+        bf_tt_html_text(fp, text);
+        fputs("</p>\n", fp);
+    }
     if (t == NULL) {
         return -2;
     }
