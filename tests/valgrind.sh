@@ -89,8 +89,10 @@
 # test streams a large K in blocks (seconds of fitting); ASan runs it.
 # spec_intervals' coverage tests simulate 200 fits per case (about 15 s
 # of CPU plain each), its CLI runs on krylon_blue (bootstrap, calibrate's
-# 10 simulations) repeat on 1439 configurations the code its library
-# tests (the flat F0 profile, the Cornell intervals) run under valgrind.
+# 10 simulations; calibrate's note on mystique and krylon_blue, 7 s plain)
+# repeat on 1439 configurations the code its library tests (the flat F0
+# profile, the Cornell intervals) and report_calibrate's thread test run
+# under valgrind.
 # test_oom preloads its own allocator (tests/oom/oom_shim.c), which
 # valgrind's replaces; it runs in the plain build only.
 # test_cli_matrix runs report, compare and rank over every combination of
@@ -172,6 +174,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     spec_intervals/lambert_ggx_and_ward_cover_at_random_geometry
     spec_intervals/cornell_intervals_are_finite_and_hold_the_estimate
     spec_intervals/calibrate_runs_on_a_composite
+    spec_intervals/calibrate_says_when_the_noise_power_is_at_its_bound
     joint/report_draws_every_channel_from_the_shared_shape
     report/writes_every_figure_valid_and_sized_as_the_page_says"}
 
