@@ -7,13 +7,15 @@
  * normalised by their own maximum, as measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
- * [B [CORNELL_FILE]]]]]]]]
+ * [B [CORNELL_FILE [GEOMETRY]]]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
  * or names separated by commas; SEED = 1000, the simulations' seed is
  * SEED + 10 geometry + noise; B = 0, else the bootstrap's replicates: two
- * more columns, the bootstrap's coverage and width over the spread). Prints one Markdown
+ * more columns, the bootstrap's coverage and width over the spread;
+ * GEOMETRY = all, or one geometry's name: CURET, Cornell or random).
+ * Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
  * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
@@ -21,8 +23,8 @@
  * (open to a bound the estimate is not on). Never part of the tests.
  *
  * The specular family (SPEC §9; issue 17 item 6): MODELS may name
- * composites (LAMBERT+GGX, LAMBERT+WARD: the truths below; "all" means
- * the diffuse table only), fitted under
+ * the composites LAMBERT+X of every specular model X and AS alone (the
+ * truths below; "all" means the diffuse table only), fitted under
  * ngan at the Cornell geometry (argument 9, CORNELL_FILE, default
  * ../shared/data/cornell-pbrt-v2/krylon_blue.brdf: its 1439
  * configurations with theta_i, theta_o <= 80 deg) and at 300 random ones
@@ -156,16 +158,25 @@ static size_t cornell_geom(const char *path, bf_geom *geom)
 /* The specular rows: each composite with a truth below, both geometries,
  * both noises, objective ngan. */
 static void specular_rows(const char *models, const char *cornell,
-                          size_t reps, bf_noise noise, unsigned long seed0,
-                          size_t n_boot)
+                          const char *geometry, size_t reps, bf_noise noise,
+                          unsigned long seed0, size_t n_boot)
 {
-    /* LAMBERT+GGX: krylon_blue's ngan fit, rounded; LAMBERT+WARD: a
-     * broader lobe than krylon_blue's alpha 0.019 */
+    /* krylon_blue's ngan fits (compare --fit exact --objective ngan),
+     * rounded, except LAMBERT+WARD: a broader lobe than krylon_blue's
+     * alpha 0.019 */
     static const struct {
         const char *name;
         double truth[BF_MAX_PARAMS];
     } spec[] = {{"LAMBERT+GGX", {0.077, 0.76, 0.113, 0.059}},
-                {"LAMBERT+WARD", {0.1, 0.05, 0.08}}};
+                {"LAMBERT+WARD", {0.1, 0.05, 0.08}},
+                {"LAMBERT+BECKMANN", {0.093, 0.45, 0.095, 0.068}},
+                {"LAMBERT+CT", {0.093, 0.45, 0.095, 0.068}},
+                {"LAMBERT+BLINN-PHONG", {0.12, 0.008, 8500.0}},
+                {"LAMBERT+WARD-DUER", {0.063, 0.062, 0.065}},
+                {"LAMBERT+WARD-GMD", {0.063, 0.063, 0.065}},
+                {"AS", {0.095, 0.043, 107.0}},
+                {"LAMBERT+LAFORTUNE", {0.118, -1.03, 0.89, 142.0}},
+                {"LAMBERT+ABC", {0.057, 13.2, 395.0, 1.12, 1.66}}};
     static bf_geom geoms[2][MAX_SPEC_CONF];
     const char *gname[2] = {"Cornell", "random"};
     const char *nname[2] = {"rel 5%", "abs 2%"};
@@ -176,9 +187,12 @@ static void specular_rows(const char *models, const char *cornell,
     for (i = 0; i < sizeof spec / sizeof spec[0]; i++) {
         const bf_model_type *t = bf_model_find(spec[i].name);
         size_t g;
-        if (t == NULL || strcmp(models, "all") == 0 ||
-            !listed(models, spec[i].name)) {
+        if (strcmp(models, "all") == 0 || !listed(models, spec[i].name)) {
             continue;
+        }
+        if (t == NULL) {
+            fprintf(stderr, "bench_coverage: no model %s\n", spec[i].name);
+            exit(1);
         }
         if (n_geom[0] == 0) {
             n_geom[0] = cornell_geom(cornell, geoms[0]);
@@ -186,6 +200,9 @@ static void specular_rows(const char *models, const char *cornell,
         }
         for (g = 0; g < 2; g++) {
             size_t q;
+            if (!listed(geometry, gname[g])) {
+                continue;
+            }
             for (q = 0; q < 2; q++) {
                 bf_problem pb;
                 bf_calibration cal;
@@ -231,6 +248,7 @@ int main(int argc, char **argv)
     const char *cornell =
         argc > 8 ? argv[8]
                  : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
+    const char *geometry = argc > 9 ? argv[9] : "all";
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -245,17 +263,21 @@ int main(int argc, char **argv)
            n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
                        : "",
            n_boot >= 2 ? "---|---|" : "");
-    specular_rows(models, cornell, reps, noise, seed0, n_boot);
+    specular_rows(models, cornell, geometry, reps, noise, seed0, n_boot);
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
         size_t g;
         bf_model_variant_init(&v, bf_model_get(i));
         bf_model_variant_exact(&v, 0);
-        if (bf__fits_nothing(&v.type) || !listed(models, v.type.name)) {
+        if (bf__fits_nothing(&v.type) || v.type.kind == BF_MODEL_SPECULAR ||
+            !listed(models, v.type.name)) { /* specular: specular_rows */
             continue;
         }
         for (g = 0; g < 2; g++) {
             size_t q;
+            if (!listed(geometry, gname[g])) {
+                continue;
+            }
             for (q = 0; q < 2; q++) {
                 size_t o;
                 for (o = 0; o < 4; o++) {

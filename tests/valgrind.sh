@@ -88,7 +88,7 @@
 # intervals/calibrate_reports..., report/stats_add...). test_stream's one
 # test streams a large K in blocks (seconds of fitting); ASan runs it.
 # spec_intervals' coverage tests simulate 200 fits per case (about 15 s
-# of CPU plain each), its CLI runs on krylon_blue (bootstrap, calibrate's
+# of CPU plain each; AS alone's 11 s), its CLI runs on krylon_blue (bootstrap, calibrate's
 # 10 simulations; calibrate's note on mystique and krylon_blue, 7 s plain)
 # repeat on 1439 configurations the code its library tests (the flat F0
 # profile, the Cornell intervals) and report_calibrate's thread test run
@@ -172,6 +172,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     plane_abs/description_under_ngan
     spec_intervals/lambert_ggx_covers_at_the_cornell_geometry
     spec_intervals/lambert_ggx_and_ward_cover_at_random_geometry
+    spec_intervals/as_covers_at_the_cornell_geometry
     spec_intervals/cornell_intervals_are_finite_and_hold_the_estimate
     spec_intervals/calibrate_runs_on_a_composite
     spec_intervals/calibrate_says_when_the_noise_power_is_at_its_bound

@@ -2,10 +2,10 @@
  * composites D+S (SPEC §9, doc/methods.md §3; issue 17 item 6, issue 18
  * items 2 and 4) -- coverage of the profile intervals under relative and
  * absolute noise at the Cornell geometry and at random geometry, objective
- * ngan; the not-identified flag on a constructed flat profile (F0 without
- * effect); finite intervals holding the estimate, bootstrap and CV on the
- * real Cornell file; `brdffit calibrate` on a composite, and its note on
- * a noise power at its bound.
+ * ngan (LAMBERT+GGX, LAMBERT+WARD, AS); the not-identified flag on a
+ * constructed flat profile (F0 without effect); finite intervals holding
+ * the estimate, bootstrap and CV on the real Cornell file; `brdffit
+ * calibrate` on a composite, and its note on a noise power at its bound.
  *
  * Acceptance band as tests/fit/test_intervals.c: R = 200 simulations, a
  * correct 95% interval covers the truth Binomial(200, 0.95) times: sd
@@ -159,6 +159,19 @@ Test(spec_intervals, lambert_ggx_and_ward_cover_at_random_geometry,
     coverage("LAMBERT+GGX", ggx_truth, n, geom, 2.0, 0.05, "random rel 5%");
     coverage("LAMBERT+WARD", ward_truth, n, geom, 0.0, 0.02,
              "random abs 2%");
+}
+
+/* AS alone (SPEC §9.3), a complete model: only Rd is a scale solved
+ * linearly; Rs, the Fresnel reflectance, is non-linear and enters both
+ * the lobe and the diffuse term's (1 - Rs), so the profiles re-optimise
+ * it with n. Truth: krylon_blue's ngan fit, rounded (Rd, Rs, n; as
+ * bench/bench_coverage.c). */
+Test(spec_intervals, as_covers_at_the_cornell_geometry, .timeout = 600)
+{
+    static bf_geom geom[MAX_CONF];
+    static const double as_truth[3] = {0.095, 0.043, 107.0};
+    size_t n = cornell_geom(CORNELL_STRIDE, geom);
+    coverage("AS", as_truth, n, geom, 2.0, 0.05, "Cornell rel 5%");
 }
 
 /* ==== not identified ====================================================== */
