@@ -40,6 +40,14 @@
 # through make and sh (valgrind follows every child, every figure
 # process); the report code runs under valgrind in test_cmd_report, the
 # data script in the other two main_job tests.
+# The readers' unit tests with many small cases (test_table, test_brdf,
+# test_sample_table, test_pbrt, test_astm, test_csv: 132 tests, each a
+# process whose start under valgrind costs about 1.3 s of CPU, most of
+# their time): the readers' error paths run under valgrind through the
+# CLI in test_corpus (84 committed malformed files of every text format
+# and the cases made at test time: binary garbage, MERL headers), their
+# success paths in every test that loads data, and the readers are fuzzed
+# under ASan+UBSan (make fuzz).
 # The readers' sweeps: test_merl's runs over whole 35 MB tables (every cell
 # or tens of thousands of lookups, analytic tables fitted back), the MERL
 # all-cells load of test_format, test_csv's hundreds of thousands of random
@@ -111,6 +119,12 @@ build=$1
 jobs=${2:-$(nproc 2>/dev/null || echo 1)}
 here=$(cd "$(dirname "$0")" && pwd)
 skip=${VALGRIND_SKIP-"test_model_sweep
+    test_table
+    test_brdf
+    test_sample_table
+    test_pbrt
+    test_astm
+    test_csv
     test_oom
     test_cli_matrix
     report_calibrate/covers_a_known_material_as_calibrate_says
