@@ -110,6 +110,13 @@
 # report_calibrate/covers_a_known_material... simulates 200 measurements
 # twice (report and calibrate); the same code runs under valgrind in
 # report_calibrate's thread test (20 simulations, two reports).
+# Four single tests whose time under valgrind (its --verbose log) is
+# their own sweep, not start-up: wno_r/is_finite_and_non_negative... (45 s;
+# WNO-R over its whole domain) and wno_r/matches_gsls_adaptive... (22 s;
+# the rule against GSL's quadrature), whose code the other wno_r tests run;
+# report_calibrate/many_panels... (38 s), whose figure code its thread
+# test runs; dispersion/krylon_blue_mean_index... (18 s, 31 channels of a
+# real file), whose code dispersion's synthetic tests run.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -191,7 +198,11 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     spec_intervals/calibrate_runs_on_a_composite
     spec_intervals/calibrate_says_when_the_noise_power_is_at_its_bound
     joint/report_draws_every_channel_from_the_shared_shape
-    report/writes_every_figure_valid_and_sized_as_the_page_says"}
+    report/writes_every_figure_valid_and_sized_as_the_page_says
+    wno_r/is_finite_and_non_negative_over_the_hemisphere_and_domain
+    wno_r/matches_gsls_adaptive_quadrature_to_1e_8_of_the_value
+    report_calibrate/many_panels_are_split_into_figures_that_fit_a_page
+    dispersion/krylon_blue_mean_index_is_a_binders"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
