@@ -45,8 +45,8 @@
 #define CI_TOL 1e-7
 /* The root finder also stops at a point whose criterion is within CI_CRIT
  * of 0: the end is then within CI_CRIT / |dc/dtheta| of the root, about
- * 2.5e-5 standard errors at 95 % (dc/dtheta ~ 2 z / se). */
-#define CI_CRIT 1e-4
+ * 2.5e-6 standard errors at 95 % (dc/dtheta ~ 2 z / se). */
+#define CI_CRIT 1e-5
 /* The inner fits' Levenberg-Marquardt (a specular model's, varpro.c)
  * stops at an iteration that lowers S by less than CI_STALL of it: the
  * criterion n ln(S_p / S_min) is then off by about n CI_STALL per
