@@ -240,6 +240,10 @@ typedef struct {
      * 0's); curve holds blocks x n. 1 for every other fit. */
     size_t blocks;
     double *block_lin;
+    /* Levenberg-Marquardt's stall stop (varpro.c): 0, or the relative
+     * decrease of the cost below which an iteration ends the run (the
+     * profiles' inner fits, profile.c). */
+    double stall;
 } bf__fitctx;
 
 /* Scratch memory for pm. BF_OK or BF_ENOMEM. */

@@ -43,6 +43,15 @@
 
 /* Absolute tolerance of the interval ends (parameter units). */
 #define CI_TOL 1e-7
+/* The root finder also stops at a point whose criterion is within CI_CRIT
+ * of 0: the end is then within CI_CRIT / |dc/dtheta| of the root, about
+ * 2.5e-6 standard errors at 95 % (dc/dtheta ~ 2 z / se). */
+#define CI_CRIT 1e-5
+/* The inner fits' Levenberg-Marquardt (a specular model's, varpro.c)
+ * stops at an iteration that lowers S by less than CI_STALL of it: the
+ * criterion n ln(S_p / S_min) is then off by about n CI_STALL per
+ * iteration left (a flat valley can crawl at ~1e-9 for the 200 allowed). */
+#define CI_STALL 1e-10
 /* Iteration limit of the root finder and of the outward bracketing. */
 #define CI_MAXITER 200
 /* How often the end found is re-checked by a grid fit and the search
@@ -68,6 +77,8 @@ typedef struct {
     double chi2;                 /* the threshold: chi2_1(level), or the
                                     likelihood's F form (intervals.c) */
     int status;                  /* first failure, BF_OK if none */
+    double last_x;               /* the root finder's last point */
+    double last_c;               /* and its criterion */
 } profile_t;
 
 /* The grid fit of the nuisance parameters at sub's fixed values: their
@@ -210,7 +221,9 @@ static double crit_warm(double theta, void *arg)
     profile_t *p = arg;
     int improved;
     memcpy(p->start, p->anchor, sizeof p->start);
-    return crit_at(p, theta, 0, &improved);
+    p->last_x = theta;
+    p->last_c = crit_at(p, theta, 0, &improved);
+    return p->last_c;
 }
 
 /* Root of the warm criterion in [in, out] (crit(in) <= 0 < crit(out)). */
@@ -236,7 +249,10 @@ static int root(profile_t *p, double in, double out, double *x)
         status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
                                         gsl_root_fsolver_x_upper(s), CI_TOL,
                                         0.0);
-        if (status == GSL_SUCCESS) {
+        if (status == GSL_SUCCESS ||
+            (gsl_root_fsolver_root(s) == p->last_x &&
+             fabs(p->last_c) <= CI_CRIT)) {
+            status = GSL_SUCCESS;
             break;
         }
         status = GSL_SUCCESS;
@@ -367,6 +383,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
             p.s_min = DBL_MIN; /* an exact fit: the interval is a point */
         }
         bf__fitctx_use(fc, &p.sub);
+        fc->stall = CI_STALL;
         d0 = pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
         if (pb->type->kind == BF_MODEL_SPECULAR) {
             /* domains without a grid, the scales' up to 1e6 (SPEC §9.3):
@@ -380,6 +397,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
             rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
         }
         bf__fitctx_use(fc, pb);
+        fc->stall = 0.0;
     }
     *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u);
     return rc;

@@ -36,6 +36,7 @@
  * ngan solution starts Nelder-Mead over every free parameter, scales
  * included.
  */
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <gsl/gsl_multimin.h>
@@ -57,6 +58,9 @@
 /* The one-sided step of the bound test, a fraction of the span. */
 #define KKT_STEP 1e-6
 #define UNDEFINED 1e300
+/* Levenberg-Marquardt's iterations and tolerances (xtol, gtol, ftol). */
+#define LM_ITER 200
+#define LM_TOL 1e-14
 
 /* Grid points per parameter by the number of gridded parameters (log-
  * spaced, linear). */
@@ -423,6 +427,44 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     return GSL_SUCCESS;
 }
 
+/* The loop of GSL's gsl_multifit_nlinear_driver (LM_ITER iterations,
+ * tolerances LM_TOL; the same iterates and status), and with stall > 0 a
+ * stop at the first iteration that lowers the cost by less than stall of
+ * it (fitctx.stall). */
+static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
+{
+    double c0 = 0.0;
+    size_t iter = 0;
+    int st;
+    if (stall > 0.0) {
+        gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
+                      gsl_multifit_nlinear_residual(w), &c0);
+    }
+    do {
+        st = gsl_multifit_nlinear_iterate(w);
+        if (st == GSL_ENOPROG && iter == 0) {
+            *info = st;
+            return GSL_EMAXITER;
+        }
+        iter++;
+        st = gsl_multifit_nlinear_test(LM_TOL, LM_TOL, LM_TOL, info, w);
+        if (st == GSL_CONTINUE && stall > 0.0) {
+            double c;
+            gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
+                          gsl_multifit_nlinear_residual(w), &c);
+            if (c0 - c < stall * c) {
+                return GSL_SUCCESS;
+            }
+            c0 = c;
+        }
+    } while (st == GSL_CONTINUE && iter < LM_ITER);
+    if (st == GSL_ETOLF || st == GSL_ETOLX || st == GSL_ETOLG) {
+        *info = st; /* converged to rounding */
+        return GSL_SUCCESS;
+    }
+    return iter >= LM_ITER && st != GSL_SUCCESS ? GSL_EMAXITER : st;
+}
+
 /* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
  * from x in the search coordinates; x is replaced when it ends lower.
  * *done (when not NULL): 1 when the driver met its tolerances. */
@@ -479,8 +521,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        int st = gsl_multifit_nlinear_driver(200, 1e-14, 1e-14, 1e-14,
-                                             NULL, NULL, &info, w);
+        int st = drive(sp->fc->stall, w, &info);
         if (done != NULL) {
             *done = st == GSL_SUCCESS;
         }
@@ -813,7 +854,6 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
     double x[BF_MAX_PARAMS];
     double step[BF_MAX_PARAMS];
     double f;
-    double fl;
     size_t j;
     int rc;
     memset(result, 0, sizeof *result);
@@ -828,16 +868,8 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
         x[sp.idx[j]] = start[sp.idx[j]];
     }
     f = value_at(fc, x);
-    rc = f < UNDEFINED ? levenberg(&sp, x, &f, NULL) : BF_EDOM;
-    fl = f;
-    if (rc == BF_OK && on_bound(&sp, x)) {
-        /* LM's clamped Jacobian vanishes on a bound: Nelder-Mead */
-        grid_steps(&sp, step);
-        rc = polish(&sp, x, step, &f);
-    }
-    if (rc == BF_OK && f < fl) {
-        rc = levenberg(&sp, x, &f, NULL);
-    }
+    grid_steps(&sp, step);
+    rc = f < UNDEFINED ? descend(&sp, step, x, &f) : BF_EDOM;
     if (rc == BF_OK) {
         fill_scales(fc, x);
         memcpy(result->param, x, sizeof x);
