@@ -1226,6 +1226,12 @@ int bf_study_rows_check(const bf_study_row *rows, size_t n, size_t *bad);
  * a row built by hand needs it before those. NULL row: nothing. */
 void bf_study_row_albedo(bf_study_row *row);
 
+/* 1 when any of row->albedo (bf_study_row_albedo) is over 1, the
+ * white-furnace check's failure (fits.csv's albedo_over_1, the report's
+ * energy table); 0 otherwise: a NaN albedo (none) never counts, so a
+ * diffuse model's or a failed row's is 0. NULL row: 0. */
+int bf_study_row_albedo_over_1(const bf_study_row *row);
+
 /* The paper's default refractive index for FC models (SPEC §4.2). */
 #define BF_DEFAULT_N 1.7
 

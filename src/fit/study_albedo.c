@@ -30,3 +30,16 @@ void bf_study_row_albedo(bf_study_row *row)
         }
     }
 }
+
+int bf_study_row_albedo_over_1(const bf_study_row *row)
+{
+    int over = 0;
+    size_t a;
+    if (row == NULL) {
+        return 0;
+    }
+    for (a = 0; a < 4; a++) {
+        over |= row->albedo[a] > 1.0; /* NaN: false */
+    }
+    return over;
+}

@@ -73,10 +73,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->ndf = sp->ndf != NULL ? sp->ndf : "";
         l->masking = sp->masking != NULL ? sp->masking : "";
         l->fresnel = sp->fresnel_term != NULL ? sp->fresnel_term : "";
-        l->albedo_over_1 = 0;
-        for (a = 0; a < 4; a++) {
-            l->albedo_over_1 |= r->albedo[a] > 1.0;
-        }
+        l->albedo_over_1 = bf_study_row_albedo_over_1(r);
     }
 }
 

@@ -53,15 +53,12 @@ bf_tt *bf_rep_energy_table(const bf_study_spec *spec,
     }
     for (i = 0; i < n_rows; i++) {
         const bf_study_row *r = &rows[i];
-        int over = 0;
-        size_t a;
+        int over;
         if (r->status != BF_OK ||
             bf_model_specular_part(r->type, NULL) == NULL) {
             continue;
         }
-        for (a = 0; a < 4; a++) {
-            over |= r->albedo[a] > 1.0;
-        }
+        over = bf_study_row_albedo_over_1(r);
         (*n)++;
         *n_over += over;
         if (bf_tt_add_row(t) == 0) {

@@ -104,3 +104,28 @@ Test(energy, one_row_per_specular_fit_flagged_over_1)
     cr_assert_eq(n, 0);
     bf_dataset_free(ds);
 }
+
+/* bf_study_row_albedo_over_1, the check fits.csv and the energy table
+ * share: 1 exactly when an albedo exceeds 1; NaN (none) never counts. */
+Test(energy, albedo_over_1_counts_only_values_above_1)
+{
+    bf_study_row r;
+    memset(&r, 0, sizeof r);
+    r.albedo[0] = 0.2;
+    r.albedo[1] = 0.5;
+    r.albedo[2] = 0.9;
+    r.albedo[3] = 1.0; /* at 1: passive, not over */
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 0);
+    r.albedo[2] = 1.0000001;
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 1);
+    r.albedo[2] = 0.9;
+    r.albedo[3] = 1.3; /* the last incidence counts too */
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 1);
+    r.albedo[0] = r.albedo[1] = r.albedo[2] = r.albedo[3] = NAN;
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 0, "all NaN");
+    r.albedo[1] = 0.7; /* NaN beside values at most 1 */
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 0);
+    r.albedo[3] = 2.0; /* NaN beside one over 1 */
+    cr_assert_eq(bf_study_row_albedo_over_1(&r), 1);
+    cr_assert_eq(bf_study_row_albedo_over_1(NULL), 0);
+}
