@@ -732,9 +732,8 @@ static void axis_texts(const ctx_t *c, size_t i, const view_t *v)
         left -= L->pad + L->ynum_width[i];
     }
     if (p->xlabel != NULL) {
-        text(c, (v->box.x0 + v->box.x1) / 2,
-             below - L->pad - L->label_font * 0.55, 0.0, 0.5, L->label_font,
-             p->xlabel);
+        text(c, L->xlabel_x[i], below - L->pad - L->label_font * 0.55, 0.0,
+             0.5, L->xlabel_size[i], p->xlabel);
     }
     if (p->ylabel != NULL) {
         text(c, left - L->pad - L->label_font * 0.9,

@@ -180,6 +180,15 @@ typedef struct {
     int xrot[BF__MAX_PANELS];  /* x names written upwards (too many to fit
                                   side by side) */
     double xnum_height[BF__MAX_PANELS]; /* height of the x numbers */
+    double xlabel_x[BF__MAX_PANELS]; /* centre of the panel's x label:
+                                        under its axes, moved to stay
+                                        in its span (below) */
+    double xlabel_size[BF__MAX_PANELS]; /* its size, points: label_font,
+                                           smaller where it is wider than
+                                           its span -- from half way to the
+                                           axes on its left (the page's
+                                           edge) to half way to those on
+                                           its right */
     double polar_side;       /* polar panels: room beside the half-disc, */
     double polar_top;        /*   above it and below the surface line, */
     double polar_bottom;     /*   points */

@@ -25,6 +25,7 @@
 #define NUM_H 0.75      /* height of digits, in font sizes */
 #define GAP 5.0         /* between neighbouring panels */
 #define EDGE 2.0        /* free border of the page */
+#define LABEL_SHRINK 0.75 /* the smallest x label, of the label font */
 #define KEY 16.0        /* legend key line */
 #define ENTRY_GAP 9.0   /* between legend entries in a row */
 #define TEXT_MARGIN 1.04 /* the width estimates are raised by 4% */
@@ -391,6 +392,35 @@ static void polar_room(const bf__layout *L, double *side, double *top,
     *bottom = L->font * NUM_H + 2 * PAD;
 }
 
+/* Panel i's x label (axes placed): centred under its axes within its
+ * span, from half way to the axes on its left (the page's edge) to half
+ * way to those on its right; a label wider than the span is set smaller,
+ * down to LABEL_SHRINK of the label font. */
+static void xlabel_place(const bf_plot_figure *fig, bf__layout *L, size_t i)
+{
+    size_t c = i % fig->nx;
+    const bf__box *a = &L->axes[i];
+    double lo = c > 0 && i > 0 ? (L->axes[i - 1].x1 + a->x0) / 2 : EDGE;
+    double hi = c + 1 < fig->nx && i + 1 < fig->n_panels
+                    ? (a->x1 + L->axes[i + 1].x0) / 2
+                    : (double)fig->width - EDGE;
+    double w = fig->panels[i].xlabel != NULL
+                   ? bf__text_width(fig->panels[i].xlabel, L->label_font)
+                   : 0.0;
+    double size = L->label_font;
+    double half;
+    if (w > hi - lo) {
+        size = fmax(LABEL_SHRINK, (hi - lo) / w) * L->label_font;
+        w *= size / L->label_font;
+    }
+    half = w / 2;
+    L->xlabel_size[i] = size;
+    L->xlabel_x[i] = 2 * half > hi - lo
+                         ? (lo + hi) / 2
+                         : fmax(lo + half, fmin((a->x0 + a->x1) / 2,
+                                                hi - half));
+}
+
 int bf__layout_make(const bf_plot_figure *fig, bf__layout *L)
 {
     double colL[BF__MAX_PANELS] = {0};
@@ -624,6 +654,9 @@ int bf__layout_make(const bf_plot_figure *fig, bf__layout *L)
             x += aw + colR[c];
         }
         y -= ah + rowB[r];
+    }
+    for (i = 0; i < fig->n_panels; i++) {
+        xlabel_place(fig, L, i);
     }
     L->grid = L->axes[0];
     for (i = 1; i < fig->n_panels; i++) {

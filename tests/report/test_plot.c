@@ -14,6 +14,7 @@
 #include "formats.h"
 #include "model_style.h"
 #include "plot.h"
+#include "plot_internal.h"
 #include "support.h"
 
 /* A figure of two panels: a line and points with a legend entry each, and
@@ -483,4 +484,55 @@ Test(plot, names_the_format_extensions_and_the_column_widths)
     cr_assert_eq(BF_PLOT_SINGLE_COLUMN, 252u);
     cr_assert_eq(BF_PLOT_DOUBLE_COLUMN, 504u);
     cr_assert_eq(bf_plot_png_pixels(BF_PLOT_DOUBLE_COLUMN), 1050u);
+}
+
+/* A panel's x label wider than its column stays inside the page and off
+ * its neighbours' (the last column's used to run off the right edge: ABC's
+ * "refractive index ior" in a forest plot), set smaller where it must;
+ * one that fits stays centred under its axes at the label font. */
+Test(plot, keeps_every_x_label_inside_the_page_and_apart)
+{
+    static const char *const labels[3] = {"x", "fall-off C",
+                                          "refractive index ior"};
+    bf_plot_figure fig;
+    bf_plot_panel panel[3];
+    bf_plot_series ser;
+    bf__layout *L = malloc(sizeof *L);
+    double right = 0.0;
+    size_t i;
+    cr_assert_not_null(L);
+    memset(&ser, 0, sizeof ser);
+    ser.kind = BF_SERIES_POINTS;
+    ser.x = xs;
+    ser.y = xs;
+    ser.n = 5;
+    ser.style = BF_PLOT_INK;
+    memset(panel, 0, sizeof panel);
+    for (i = 0; i < 3; i++) {
+        panel[i].xmax = panel[i].ymax = 1.0;
+        panel[i].xlabel = labels[i];
+        panel[i].series = &ser;
+        panel[i].n_series = 1;
+    }
+    memset(&fig, 0, sizeof fig);
+    fig.width = BF_PLOT_SINGLE_COLUMN;
+    fig.nx = 3;
+    fig.ny = 1;
+    fig.panels = panel;
+    fig.n_panels = 3;
+    cr_assert_eq(bf__layout_make(&fig, L), BF_OK);
+    for (i = 0; i < 3; i++) {
+        double half = bf__text_width(labels[i], L->xlabel_size[i]) / 2;
+        cr_expect_geq(L->xlabel_x[i] - half, right, "label %zu", i);
+        right = L->xlabel_x[i] + half;
+        cr_expect_leq(right, (double)fig.width, "label %zu", i);
+    }
+    /* the last label is wider than its span: smaller, and moved left */
+    cr_expect_lt(L->xlabel_size[2], L->label_font);
+    cr_expect_lt(L->xlabel_x[2], (L->axes[2].x0 + L->axes[2].x1) / 2);
+    /* the first fits: the label font, centred under its axes */
+    cr_expect_float_eq(L->xlabel_size[0], L->label_font, 1e-12);
+    cr_expect_float_eq(L->xlabel_x[0], (L->axes[0].x0 + L->axes[0].x1) / 2,
+                       1e-12);
+    free(L);
 }
