@@ -506,6 +506,7 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     static const double thr_y[2] = {CHI2_95, CHI2_95};
 
     size_t all = 0; /* the family's panels so far */
+    int lik = 0; /* an interval of the noise model's likelihood drawn */
     np = bf_fig_profile_panels(st, s, e->family);
     panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
     ser = bf_fig_alloc(d, 4 * (np + 1) * sizeof *ser);
@@ -583,6 +584,7 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                     return rc;
                 }
             }
+            lik = lik || f->ci_method == BF_CI_PROFILE_LIK;
             ci[0] = lo;
             ci[1] = hi;
             ci[2] = ci[3] = CHI2_95;
@@ -664,10 +666,18 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "For each fitted parameter of each model, the profile "
              "n ln(S_p/S_min) of the objective \"%s\" (S_p minimised over "
              "the model's other free parameters, n = K = %zu configurations; "
-             "doc/methods.md §3) around the exact optimum (point); the 95%% "
-             "profile interval is where the curve lies below the dashed "
-             "threshold 3.84 (thick segment).",
-             bf_objective_name(st->opts.objective), D->smp[s].K);
+             "doc/methods.md §3) around the exact optimum (point); %s",
+             bf_objective_name(st->opts.objective), D->smp[s].K,
+             lik ? "the dashed line is its 95% threshold 3.84. The thick "
+                   "segment is the parameter's reported 95% interval "
+                   "(fits.csv ci_low, ci_high): the profile of the noise "
+                   "model's likelihood around its own estimate (ci_method "
+                   "profile-lik, doc/methods.md §3), which weighs each "
+                   "configuration by its noise, so it can lie away from "
+                   "where this curve is below the threshold (with --noise "
+                   "objective it is exactly that)."
+                 : "the 95% profile interval is where the curve lies below "
+                   "the dashed threshold 3.84 (thick segment).");
     snprintf(e->alt, sizeof e->alt,
              "%zu line plots: profile of the objective along each fitted "
              "parameter of %s, with the 95%% threshold.",

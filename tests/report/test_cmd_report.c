@@ -300,6 +300,11 @@ Test(report, stats_add_the_analysis_figures_and_tables, .timeout = 600)
     cr_expect_eq(csv_interval_rows(dir), 3u * 5u);
     cr_expect_not_null(strstr(page, "<details id=\"sample44\">"));
     cr_expect_null(strstr(page, "Not computed"));
+    /* the profiles' caption says what the thick segment is: the noise
+     * model's interval (the default), not where the objective's curve
+     * lies below its threshold */
+    cr_expect_not_null(strstr(page, "(ci_method profile-lik"));
+    cr_expect_null(strstr(page, "interval is where the curve lies below"));
     free(page);
 }
 
