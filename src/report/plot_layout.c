@@ -400,7 +400,7 @@ static void xlabel_place(const bf_plot_figure *fig, bf__layout *L, size_t i)
 {
     size_t c = i % fig->nx;
     const bf__box *a = &L->axes[i];
-    double lo = c > 0 && i > 0 ? (L->axes[i - 1].x1 + a->x0) / 2 : EDGE;
+    double lo = c > 0 ? (L->axes[i - 1].x1 + a->x0) / 2 : EDGE;
     double hi = c + 1 < fig->nx && i + 1 < fig->n_panels
                     ? (a->x1 + L->axes[i + 1].x0) / 2
                     : (double)fig->width - EDGE;
