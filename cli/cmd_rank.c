@@ -78,7 +78,9 @@ static int write_md(const bf_rep_study *st, const bf_tt *t,
             bf_rep_crit_names[crit]);
     bf_tt_print(best, fp);
     fputs("\n## Fitted parameters of every model\n\n"
-          "value [95% profile interval] {bootstrap interval, when run}; "
+          "value (the maximum-likelihood estimate the interval is about, "
+          "where it differs) [95% profile interval] {bootstrap interval, "
+          "when run}; "
           "flags as in fits.csv (README \"Output files\").\n",
           fp);
     for (m = 0; m < st->n_models; m++) {

@@ -1281,6 +1281,11 @@ typedef enum {
 /* "auto", "absolute", "relative", "objective" (static storage), NULL for
  * an unknown value; bf_noise_find: BF_ENOTFOUND for an unknown name. */
 const char *bf_noise_name(bf_noise noise);
+/* The variance the noise model states, for captions: "constant
+ * variance", "variance ~ value^2", "variance ~ value^p, p fitted per fit"
+ * (auto), "the objective's own S" (static storage), NULL for an unknown
+ * value. */
+const char *bf_noise_variance(bf_noise noise);
 int bf_noise_find(const char *name, bf_noise *noise);
 
 /* How an interval was computed (bf_interval.method, fits.csv ci_method). */
@@ -1672,6 +1677,24 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
 int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
                          size_t j, size_t n, const double *theta,
                          double *dev);
+
+/* The profile that bf_fit_intervals(pb, best, noise, level, ...)
+ * thresholds, as a curve along free parameter j (doc/methods.md §3):
+ * dev[i] = n ln(S_p(theta[i]) / S_min) of that criterion -- under a noise
+ * model (ci_method profile-lik) the likelihood of its fitted noise power
+ * (a specular model's: ngan under the noise weights), S_min at its
+ * maximum-likelihood estimate; under BF_NOISE_OBJECTIVE the objective's,
+ * as bf_fit_profile_curve around best. *thr gets the interval's
+ * threshold: the interval is where dev <= *thr (n ln(1 + F_{1,nu}(level)
+ * / nu) under a noise model, chi2_1(level) under the objective). iv, when
+ * not NULL, gets the noise model's fit (method, noise power, sigma, ml;
+ * its low, high NaN: the ends are bf_fit_intervals'). theta as
+ * bf_fit_profile_curve's. BF_EINVAL on bad arguments, BF_EDOM when the
+ * noise cannot be estimated, BF_ENOMEM. (src/fit/profile_curve.c) */
+int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
+                          bf_noise noise, double level, size_t j, size_t n,
+                          const double *theta, double *dev, double *thr,
+                          bf_interval *iv);
 
 /* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
  * model at the n configurations at[], divided by its maximum over the

@@ -492,6 +492,16 @@ double bf__weight_sum(const bf_problem *pb);
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double *low, double *high,
                        unsigned *open);
+/* What bf__intervals thresholds, without the profiles: out gets the
+ * estimate the intervals are about (ml), the noise power, sigma, scale
+ * and method; *lik the problem whose profile they take (fc->pb under a
+ * noise model's likelihood: BF__OBJ_LIK at the noise power, or a specular
+ * model's ngan under the weights w, n + 1 doubles, borrowed; under
+ * BF_NOISE_OBJECTIVE fc->pb itself) and *thr the criterion's threshold
+ * (n ln(S_p / S_min) <= thr). fc->pb is restored on return. */
+int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
+                         bf_noise noise, double level, double *w,
+                         bf_interval *out, bf_problem *lik, double *thr);
 /* bf_fit_intervals on fc (fc->pb the problem; restored on return). */
 int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
                   double level, bf_interval *out);

@@ -74,9 +74,8 @@ static void clear(bf_interval *out, bf_noise noise)
 }
 
 /* Each free parameter's interval around out->ml under fc->pb with the
- * threshold thr (level: the objective's own chi2 when thr is NaN). */
-static int profiles(bf__fitctx *fc, double level, double thr,
-                    bf_interval *out)
+ * criterion n ln(S_p / S_min) <= thr. */
+static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
 {
     const bf_problem *pb = fc->pb;
     size_t j;
@@ -86,11 +85,8 @@ static int profiles(bf__fitctx *fc, double level, double thr,
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
-        rc = isnan(thr) ? bf__profile_ci(fc, &out->ml, j, level,
-                                         &out->low[j], &out->high[j], &open)
-                        : bf__profile_ci_thr(fc, &out->ml, j, thr,
-                                             &out->low[j], &out->high[j],
-                                             &open);
+        rc = bf__profile_ci_thr(fc, &out->ml, j, thr, &out->low[j],
+                                &out->high[j], &open);
         if (rc != BF_OK) {
             out->low[j] = NAN;
             out->high[j] = NAN;
@@ -129,19 +125,18 @@ static int spec_power(bf__fitctx *fc, const double *param, double *p)
     return BF_OK;
 }
 
-/* A specular model's intervals: its scales are parameters, solved by NNLS
- * (varpro.c) in every evaluation, the likelihood's variances held at the
- * fit (noise.c, bf__spec_weights): from the objective's fit, p there, the
- * maximum-likelihood fit under the weights of p, p again (NOISE_PASSES);
- * then each free parameter's profile under the last weights, k = free
- * parameters + [p estimated] (no scale beside the model's own). w: n
- * doubles, the weights, borrowed by the profiles. */
-static int spec_intervals(bf__fitctx *fc, const bf_fit_result *best,
-                          bf_noise noise, double level, double *w,
-                          bf_interval *out)
+/* A specular model's likelihood (the setup of its intervals): its scales
+ * are parameters, solved by NNLS (varpro.c) in every evaluation, the
+ * likelihood's variances held at the fit (noise.c, bf__spec_weights):
+ * from the objective's fit, p there, the maximum-likelihood fit under the
+ * weights of p, p again (NOISE_PASSES); the profiles are then taken under
+ * the last weights, k = free parameters + [p estimated] (no scale beside
+ * the model's own). w: n doubles, the weights, borrowed by *lik. */
+static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
+                        bf_noise noise, double level, double *w,
+                        bf_interval *out, bf_problem *lik, double *thr)
 {
     const bf_problem *pb = fc->pb;
-    bf_problem lik = *pb;
     double n_w = bf__weight_sum(pb);
     double nu = n_w - (double)bf_problem_nfree(pb) -
                 (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
@@ -154,8 +149,9 @@ static int spec_intervals(bf__fitctx *fc, const bf_fit_result *best,
     if (!(nu >= 1.0)) {
         return BF_EDOM; /* K <= estimated parameters: no noise estimate */
     }
-    lik.objective = BF_OBJ_NGAN;
-    lik.weight = w;
+    *lik = *pb;
+    lik->objective = BF_OBJ_NGAN;
+    lik->weight = w;
     out->ml = *best;
     if (noise == BF_NOISE_AUTO) {
         rc = spec_power(fc, best->param, &p);
@@ -165,7 +161,7 @@ static int spec_intervals(bf__fitctx *fc, const bf_fit_result *best,
         bf_fit_result ml;
         rc = bf__spec_weights(fc, out->ml.param, p, w, NULL);
         if (rc == BF_OK) {
-            bf__fitctx_use(fc, &lik);
+            bf__fitctx_use(fc, lik);
             rc = bf__varpro_refine(fc, out->ml.param, &ml);
             bf__fitctx_use(fc, pb);
         }
@@ -201,20 +197,16 @@ static int spec_intervals(bf__fitctx *fc, const bf_fit_result *best,
         out->scale = 1.0; /* the model's own scales */
         out->sigma = sqrt(rss / nu) / top;
         out->method = BF_CI_PROFILE_LIK;
-        bf__fitctx_use(fc, &lik);
-        rc = profiles(fc, level,
-                      n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu),
-                      out);
-        bf__fitctx_use(fc, pb);
+        *thr = n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu);
     }
     return rc;
 }
 
-int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
-                  double level, bf_interval *out)
+int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
+                         bf_noise noise, double level, double *w,
+                         bf_interval *out, bf_problem *lik, double *thr)
 {
     const bf_problem *pb = fc->pb;
-    bf_problem lik;
     double n_w = bf__weight_sum(pb);
     double k = (double)bf_problem_nfree(pb) + 1.0 +
                (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
@@ -225,32 +217,30 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
     int rc = BF_OK;
 
     clear(out, noise);
-    if (pb->type->kind == BF_MODEL_SPECULAR && noise != BF_NOISE_OBJECTIVE) {
-        double *w = malloc((pb->n + 1) * sizeof *w);
-        rc = w == NULL ? BF_ENOMEM
-                       : spec_intervals(fc, best, noise, level, w, out);
-        free(w);
-        return rc;
-    }
     if (noise == BF_NOISE_OBJECTIVE) { /* the objective's own S */
         out->method = BF_CI_PROFILE;
         out->ml = *best;
-        return profiles(fc, level, NAN, out);
+        *lik = *pb;
+        *thr = gsl_cdf_chisq_Pinv(level, 1.0); /* Wilks, 3.841 at 95% */
+        return BF_OK;
+    }
+    if (pb->type->kind == BF_MODEL_SPECULAR) {
+        return spec_problem(fc, best, noise, level, w, out, lik, thr);
     }
     if (!(nu >= 1.0)) {
         return BF_EDOM; /* K <= estimated parameters: no noise estimate */
     }
-    lik = *pb;
-    lik.objective = BF__OBJ_LIK;
-    lik.noise_power = p;
-    bf__fitctx_use(fc, &lik);
+    *lik = *pb;
+    lik->objective = BF__OBJ_LIK;
+    lik->noise_power = p;
+    bf__fitctx_use(fc, lik);
     out->ml = *best;
     if (noise == BF_NOISE_AUTO) {
         rc = power_at(fc, best->param, &p);
     }
     for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
         double p_new;
-        lik.noise_power = p;
+        lik->noise_power = p;
         rc = ml_fit(fc, out->ml.param, &out->ml);
         if (rc != BF_OK || noise != BF_NOISE_AUTO) {
             break;
@@ -266,16 +256,33 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
         rc = bf__curve(fc->pm, out->ml.param, fc->work, fc->curve);
     }
     if (rc == BF_OK) {
-        bf__lik_scale(&lik, fc->curve, nu, fc->scratch, &out->scale,
+        bf__lik_scale(lik, fc->curve, nu, fc->scratch, &out->scale,
                       &sigma2);
         out->noise_power = p;
         out->sigma = sqrt(sigma2) / out->scale; /* of the fitted max */
         out->method = BF_CI_PROFILE_LIK;
-        rc = profiles(fc, level,
-                      n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu),
-                      out);
+        *thr = n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu);
     }
     bf__fitctx_use(fc, pb);
+    return rc;
+}
+
+int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
+                  double level, bf_interval *out)
+{
+    const bf_problem *pb = fc->pb;
+    bf_problem lik;
+    double thr = NAN;
+    double *w = malloc((pb->n + 1) * sizeof *w);
+    int rc = w == NULL ? BF_ENOMEM
+                       : bf__interval_problem(fc, best, noise, level, w, out,
+                                              &lik, &thr);
+    if (rc == BF_OK) {
+        bf__fitctx_use(fc, &lik);
+        rc = profiles(fc, thr, out);
+        bf__fitctx_use(fc, pb);
+    }
+    free(w);
     return rc;
 }
 

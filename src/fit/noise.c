@@ -212,9 +212,18 @@ static const char *const noise_names[] = {"auto", "absolute", "relative",
 
 #define N_NOISE (sizeof noise_names / sizeof noise_names[0])
 
+static const char *const noise_variances[N_NOISE] = {
+    "variance ~ value^p, p fitted per fit", "constant variance",
+    "variance ~ value^2", "the objective's own S"};
+
 const char *bf_noise_name(bf_noise noise)
 {
     return (unsigned)noise < N_NOISE ? noise_names[noise] : NULL;
+}
+
+const char *bf_noise_variance(bf_noise noise)
+{
+    return (unsigned)noise < N_NOISE ? noise_variances[noise] : NULL;
 }
 
 int bf_noise_find(const char *name, bf_noise *noise)

@@ -1,13 +1,18 @@
-/* profile_curve.c: the profile of a fit's objective along one parameter, as a
- * curve -- what the profile interval (uncertainty.c, doc/methods.md §3)
- * thresholds, for drawing it.
+/* profile_curve.c: the profile of a fit's criterion along one parameter,
+ * as a curve -- what a profile interval (profile.c, intervals.c,
+ * doc/methods.md §3) thresholds, for drawing it: the objective's own, or
+ * the noise model's likelihood that the reported intervals take.
  *
  * [1] Y. Pawitan, "In All Likelihood", OUP 2001, §9.2 (profile likelihood).
+ * [2] D. M. Bates, D. G. Watts, "Nonlinear Regression Analysis and Its
+ *     Applications", Wiley 1988, §6.1.2 (the F form of the threshold).
  *
  * Equation (doc/methods.md §3, Gaussian errors of unknown variance):
  *   D(theta_j) = n ln(S_p(theta_j) / S_min),  S_p(theta_j) = min over the
  *   other free parameters of S, n the sum of the weights;
- *   the 95% interval is { theta_j : D <= chi2_1(0.95) = 3.841 }.
+ *   the 95% interval is { theta_j : D <= chi2_1(0.95) = 3.841 } under the
+ *   objective [1], { theta_j : D <= n ln(1 + F_{1,nu}(0.95) / nu) } under
+ *   the likelihood, nu = n - k [2].
  */
 #include <float.h>
 #include <math.h>
@@ -43,9 +48,29 @@ static int profile_value(bf_problem *sub, size_t j, double theta,
     return BF_OK;
 }
 
-int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
-                         size_t j, size_t n, const double *theta,
-                         double *dev)
+/* The valid arguments of a profile curve of pb along j. */
+static int curve_args(const bf_problem *pb, const bf_fit_result *best,
+                      size_t j, size_t n, const double *theta,
+                      const double *dev)
+{
+    size_t i;
+    if (pb == NULL || best == NULL || pb->type == NULL || j >= pb->type->p ||
+        !((pb->free_mask >> j) & 1u) || (n > 0 && (theta == NULL ||
+                                                   dev == NULL))) {
+        return 0;
+    }
+    for (i = 0; i < n; i++) {
+        if (!(theta[i] >= pb->lo[j] && theta[i] <= pb->hi[j]) ||
+            (i > 0 && !(theta[i] > theta[i - 1]))) {
+            return 0; /* outside the search range, or not increasing */
+        }
+    }
+    return 1;
+}
+
+/* bf_fit_profile_curve for valid arguments. */
+static int curve(const bf_problem *pb, const bf_fit_result *best, size_t j,
+                 size_t n, const double *theta, double *dev)
 {
     bf_problem sub;
     bf__solo so;
@@ -55,22 +80,10 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
     double s_min;
     double n_w = 0.0;
     size_t mid = 0;
-    size_t i;
     size_t k;
     int side;
     int rc;
 
-    if (pb == NULL || best == NULL || pb->type == NULL || j >= pb->type->p ||
-        !((pb->free_mask >> j) & 1u) || (n > 0 && (theta == NULL ||
-                                                   dev == NULL))) {
-        return BF_EINVAL;
-    }
-    for (i = 0; i < n; i++) {
-        if (!(theta[i] >= pb->lo[j] && theta[i] <= pb->hi[j]) ||
-            (i > 0 && !(theta[i] > theta[i - 1]))) {
-            return BF_EINVAL; /* outside the search range, or not increasing */
-        }
-    }
     work = malloc(2 * pb->n * sizeof *work + 1);
     if (work == NULL) {
         return BF_ENOMEM;
@@ -122,5 +135,51 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
     if (spec) {
         bf__solo_free(&so);
     }
+    return rc;
+}
+
+int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
+                         size_t j, size_t n, const double *theta,
+                         double *dev)
+{
+    return curve_args(pb, best, j, n, theta, dev)
+               ? curve(pb, best, j, n, theta, dev)
+               : BF_EINVAL;
+}
+
+int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
+                          bf_noise noise, double level, size_t j, size_t n,
+                          const double *theta, double *dev, double *thr,
+                          bf_interval *iv)
+{
+    bf__solo so;
+    bf_problem lik;
+    bf_interval own;
+    double t = NAN;
+    double *w;
+    int rc;
+    if (!curve_args(pb, best, j, n, theta, dev) || pb->data == NULL ||
+        thr == NULL || bf_noise_name(noise) == NULL ||
+        !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    if (iv == NULL) {
+        iv = &own;
+    }
+    w = malloc((pb->n + 1) * sizeof *w);
+    if (w == NULL) {
+        return BF_ENOMEM;
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc == BF_OK) {
+        rc = bf__interval_problem(&so.fc, best, noise, level, w, iv, &lik,
+                                  &t);
+        bf__solo_free(&so);
+    }
+    if (rc == BF_OK) { /* around the estimate the intervals are about */
+        rc = curve(&lik, &iv->ml, j, n, theta, dev);
+    }
+    *thr = t;
+    free(w);
     return rc;
 }

@@ -33,6 +33,9 @@
 /* Profile panels: points per curve, the window around the interval (in
  * half-widths of the interval), panels per row and their shape. */
 #define PROFILE_POINTS 41
+/* A panel's values beside its curve: the interval (4), the threshold's x
+ * and the optimum's y (3), the threshold's y (2). */
+#define PROFILE_EXTRA 10
 #define PROFILE_SPAN 2.5
 #define PROFILE_COLS 5
 #define PROFILE_YMAX 12.0
@@ -503,14 +506,23 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     char key[64];
     char part[32];
     size_t rows;
-    static const double thr_y[2] = {CHI2_95, CHI2_95};
-
     size_t all = 0; /* the family's panels so far */
-    int lik = 0; /* an interval of the noise model's likelihood drawn */
+    /* every interval drawn is the noise model's likelihood's (profile-lik):
+     * its profile is drawn, else the objective's */
+    int lik = 1;
     np = bf_fig_profile_panels(st, s, e->family);
+    for (m = 0; m < M; m++) {
+        const bf_fit_stats *f = &st->stats[s * M + m];
+        if (f->done && f->free_mask != 0 &&
+            bf_fig_in_family(st, m, e->family) &&
+            f->ci_method != BF_CI_PROFILE_LIK) {
+            lik = 0;
+        }
+    }
     panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
     ser = bf_fig_alloc(d, 4 * (np + 1) * sizeof *ser);
-    v = bf_fig_alloc(d, (2 * PROFILE_POINTS + 8) * (np + 1) * sizeof *v);
+    v = bf_fig_alloc(d, (2 * PROFILE_POINTS + PROFILE_EXTRA) * (np + 1) *
+                            sizeof *v);
     xl = bf_fig_alloc(d, (np + 1) * sizeof *xl);
     open = bf_fig_alloc(d, (np + 1) * sizeof *open);
     if (panel == NULL || ser == NULL || v == NULL || xl == NULL ||
@@ -533,11 +545,16 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             }
         }
         for (j = 0; j < t->p; j++) {
-            double *theta = &v[(2 * PROFILE_POINTS + 8) * q];
+            double *theta = &v[(2 * PROFILE_POINTS + PROFILE_EXTRA) * q];
             double *dev = theta + PROFILE_POINTS;
             double *ci = dev + PROFILE_POINTS; /* low, high; y of both */
-            double *thr_x = ci + 4;
-            double est = f->refined.param[j];
+            double *thr_x = ci + 4;            /* x0, x1; the optimum's y */
+            double *thr_y = thr_x + 3;         /* the threshold's y */
+            /* the estimate the curve is around: the likelihood's (the
+             * interval's), or the objective's */
+            const double *at = lik ? &f->ml_param[j] : &f->refined.param[j];
+            double est = *at;
+            double thr = CHI2_95;
             double lo = f->ci_low[j];
             double hi = f->ci_high[j];
             double step = t->param[j].grid_n > 0 ? t->param[j].grid_step
@@ -562,11 +579,14 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             }
             all++;
             /* the window: the interval widened PROFILE_SPAN times on each
-             * side (at least 3 grid steps), within the search range */
-            x0 = est - PROFILE_SPAN * fmax(isfinite(lo) ? est - lo : 0.0,
-                                           3 * step);
-            x1 = est + PROFILE_SPAN * fmax(isfinite(hi) ? hi - est : 0.0,
-                                           3 * step);
+             * side (3 grid steps where it has no width), within the search
+             * range */
+            x0 = est - PROFILE_SPAN * (isfinite(lo) && est - lo > 0.0
+                                           ? est - lo
+                                           : 3 * step);
+            x1 = est + PROFILE_SPAN * (isfinite(hi) && hi - est > 0.0
+                                           ? hi - est
+                                           : 3 * step);
             x0 = fmax(x0, pb.lo[j]);
             x1 = fmin(x1, pb.hi[j]);
             if (!(x1 > x0)) {
@@ -578,16 +598,24 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                 dev[k] = NAN;
             }
             if (full) {
-                int rc = bf_fit_profile_curve(&pb, &f->refined, j,
-                                              PROFILE_POINTS, theta, dev);
+                int rc = lik ? bf_fit_interval_curve(
+                                   &pb, &f->refined, st->analysis.noise,
+                                   st->analysis.level, j, PROFILE_POINTS,
+                                   theta, dev, &thr, NULL)
+                             : bf_fit_profile_curve(&pb, &f->refined, j,
+                                                    PROFILE_POINTS, theta,
+                                                    dev);
                 if (rc == BF_ENOMEM) {
                     return rc;
                 }
+                if (!isfinite(thr)) {
+                    thr = CHI2_95; /* no noise fit: no curve either */
+                }
             }
-            lik = lik || f->ci_method == BF_CI_PROFILE_LIK;
             ci[0] = lo;
             ci[1] = hi;
-            ci[2] = ci[3] = CHI2_95;
+            ci[2] = ci[3] = thr;
+            thr_y[0] = thr_y[1] = thr;
             thr_x[0] = x0;
             thr_x[1] = x1;
             sq[0].kind = BF_SERIES_LINE;  /* the threshold */
@@ -596,7 +624,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             sq[0].n = 2;
             sq[0].style = BF_PLOT_REF;
             sq[0].weight = 0.8;
-            sq[0].label = "95% threshold, \xcf\x87\xc2\xb2\xe2\x82\x81 = 3.84";
+            sq[0].label = lik ? "95% threshold, n ln(1 + F/\xce\xbd)"
+                              : "95% threshold, \xcf\x87\xc2\xb2\xe2\x82\x81 = 3.84";
             sq[1].kind = BF_SERIES_LINE;  /* the profile */
             sq[1].x = theta;
             sq[1].y = dev;
@@ -614,7 +643,7 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             sq[2].dash = BF_DASH_SOLID;
             sq[2].weight = 2.0;
             sq[3].kind = BF_SERIES_POINTS; /* the optimum */
-            sq[3].x = &f->refined.param[j];
+            sq[3].x = at;
             sq[3].y = &thr_x[2];
             thr_x[2] = 0.0;
             sq[3].n = 1;
@@ -660,27 +689,41 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                          part, sizeof part);
     snprintf(e->base, sizeof e->base, "profile_%s%s",
              bf_fig_target_key(st, s, key, sizeof key), part);
-    snprintf(e->title, sizeof e->title, "%.160s: profiles of the objective",
-             who);
-    snprintf(e->caption, sizeof e->caption,
-             "For each fitted parameter of each model, the profile "
-             "n ln(S_p/S_min) of the objective \"%s\" (S_p minimised over "
-             "the model's other free parameters, n = K = %zu configurations; "
-             "doc/methods.md §3) around the exact optimum (point); %s",
-             bf_objective_name(st->opts.objective), D->smp[s].K,
-             lik ? "the dashed line is its 95% threshold 3.84. The thick "
-                   "segment is the parameter's reported 95% interval "
-                   "(fits.csv ci_low, ci_high): the profile of the noise "
-                   "model's likelihood around its own estimate (ci_method "
-                   "profile-lik, doc/methods.md §3), which weighs each "
-                   "configuration by its noise, so it can lie away from "
-                   "where this curve is below the threshold (with --noise "
-                   "objective it is exactly that)."
-                 : "the 95% profile interval is where the curve lies below "
-                   "the dashed threshold 3.84 (thick segment).");
+    snprintf(e->title, sizeof e->title, "%.160s: profiles of the %s", who,
+             lik ? "likelihood" : "objective");
+    if (lik) {
+        snprintf(e->caption, sizeof e->caption,
+                 "For each fitted parameter of each model, the profile "
+                 "n ln(S_p/S_min) of the noise model's likelihood (noise "
+                 "'%s': %s; fits.csv noise; ci_method profile-lik, "
+                 "doc/methods.md §3), S_p minimised "
+                 "over the model's other free parameters%s, n = K = %zu "
+                 "configurations, around the maximum-likelihood estimate "
+                 "(point). The dashed line is the 95%% threshold "
+                 "n ln(1 + F_{1,nu}(0.95)/nu), nu = n minus the estimated "
+                 "parameters (about 3.84); the thick segment, where the "
+                 "curve lies below it, is the parameter's reported 95%% "
+                 "interval (fits.csv ci_low, ci_high).",
+                 bf_noise_name(st->analysis.noise),
+                 bf_noise_variance(st->analysis.noise),
+                 bf_objective_keeps_scale(st->opts.objective)
+                     ? ""
+                     : " and the scale",
+                 D->smp[s].K);
+    } else {
+        snprintf(e->caption, sizeof e->caption,
+                 "For each fitted parameter of each model, the profile "
+                 "n ln(S_p/S_min) of the objective \"%s\" (S_p minimised "
+                 "over the model's other free parameters, n = K = %zu "
+                 "configurations; doc/methods.md §3) around the exact "
+                 "optimum (point); the 95%% profile interval is where the "
+                 "curve lies below the dashed threshold 3.84 (thick "
+                 "segment).",
+                 bf_objective_name(st->opts.objective), D->smp[s].K);
+    }
     snprintf(e->alt, sizeof e->alt,
-             "%zu line plots: profile of the objective along each fitted "
+             "%zu line plots: profile of the %s along each fitted "
              "parameter of %s, with the 95%% threshold.",
-             q, who);
+             q, lik ? "likelihood" : "objective", who);
     return BF_OK;
 }

@@ -482,9 +482,14 @@ static int list_analysis(const bf_fig_data *D, bf_fig_set *set)
         }
     }
     for (s = 0; s < st->n_samples && ok; s++) {
-        /* the diffuse models' profiles, then the specular ones' */
+        /* the diffuse models' profiles, then the specular ones' (none for
+         * a joint fit: it has no profile interval, and its profile is the
+         * channels' together) */
         int none = bf_fig_profile_panels(st, s, 0) == 0;
         int f;
+        if (st->targets[s].joint) {
+            continue;
+        }
         for (f = none ? 0 : BF_FIG_DIFFUSE; f <= BF_FIG_SPECULAR && ok;
              f++) {
             if (!none && bf_fig_profile_panels(st, s, f) == 0) {

@@ -144,11 +144,25 @@ bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit)
     return complete(t);
 }
 
-/* "1.2345 [1.20, 1.30]" (profile interval), with " {1.21, 1.29}" for the
- * bootstrap interval when there is one; "-" without a value. */
+int bf_rep_estimate_text(char *buf, size_t n, double value, double ml,
+                         double lo, double hi)
+{
+    char v[32];
+    char m[32];
+    snprintf(v, sizeof v, "%.4g", value);
+    snprintf(m, sizeof m, "%.4g", ml);
+    if (!isfinite(ml) || strcmp(v, m) == 0) {
+        return snprintf(buf, n, "%s [%.4g, %.4g]", v, lo, hi);
+    }
+    return snprintf(buf, n, "%s (ML %s) [%.4g, %.4g]", v, m, lo, hi);
+}
+
+/* bf_rep_estimate_text's cell, with " {1.21, 1.29}" for the bootstrap
+ * interval when there is one; "-" without a value. */
 static void param_cell(bf_tt *t, size_t col, const bf_fit_stats *f,
                        const bf_study_row *r, size_t j)
 {
+    char est[128];
     char boot[96] = "";
     if (r->status != BF_OK || !f->done) {
         bf_tt_set(t, col, "-");
@@ -158,8 +172,9 @@ static void param_cell(bf_tt *t, size_t col, const bf_fit_stats *f,
         snprintf(boot, sizeof boot, " {%.4g, %.4g}", f->boot_low[j],
                  f->boot_high[j]);
     }
-    bf_tt_set(t, col, "%.4g [%.4g, %.4g]%s", r->fit.param[j], f->ci_low[j],
-              f->ci_high[j], boot);
+    bf_rep_estimate_text(est, sizeof est, r->fit.param[j], f->ml_param[j],
+                         f->ci_low[j], f->ci_high[j]);
+    bf_tt_set(t, col, "%s%s", est, boot);
 }
 
 /* Fitted parameters of model type, in order, into idx; returns count. */
@@ -223,7 +238,7 @@ bf_tt *bf_rep_best_table(const bf_rep_study *st, int crit)
     }
     sample_headers(t);
     bf_tt_header(t, 2, "best");
-    bf_tt_header(t, 3, "fitted parameters [95% profile interval]");
+    bf_tt_header(t, 3, "fitted parameters (ML estimate) [95% interval]");
     for (s = 0; s < st->n_samples; s++) {
         size_t b = rank_sample(st, s, crit, NULL);
         size_t idx[BF_MAX_PARAMS];
@@ -246,12 +261,14 @@ bf_tt *bf_rep_best_table(const bf_rep_study *st, int crit)
         np = fitted_params(st->models[b], idx);
         for (q = 0; q < np && at < sizeof cell; q++) {
             const bf_fit_stats *f = &st->stats[i];
-            at += (size_t)snprintf(cell + at, sizeof cell - at,
-                                   "%s%s %.4g [%.4g, %.4g]",
+            size_t j = idx[q];
+            char est[128];
+            bf_rep_estimate_text(est, sizeof est, st->rows[i].fit.param[j],
+                                 f->ml_param[j], f->ci_low[j],
+                                 f->ci_high[j]);
+            at += (size_t)snprintf(cell + at, sizeof cell - at, "%s%s %s",
                                    q > 0 ? "; " : "",
-                                   st->models[b]->param[idx[q]].name,
-                                   st->rows[i].fit.param[idx[q]],
-                                   f->ci_low[idx[q]], f->ci_high[idx[q]]);
+                                   st->models[b]->param[j].name, est);
         }
         bf_tt_set(t, 3, "%s", np == 0 ? "(none)" : cell);
     }

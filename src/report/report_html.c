@@ -565,7 +565,8 @@ static void per_sample(FILE *fp, const bf_rep_study *st,
           "(open a section to see them): the fitted models in the plane of "
           "incidence, Cartesian and polar",
           fp);
-    fputs(st->stats != NULL ? ", and the profiles of the objective" : "", fp);
+    fputs(st->stats != NULL ? ", and the profiles behind the intervals" : "",
+          fp);
     fputs(".</p>\n", fp);
     for (s = 0; s < st->n_samples; s++) {
         char key[64];

@@ -167,7 +167,8 @@ void bf_report_intervals(FILE *fp, const bf_rep_study *st)
     int boot = st->opts.n_boot >= 2;
     fputs("<table id=\"intervals\">\n<thead><tr><th>No.</th><th>Sample</th>"
           "<th>Model</th><th>Parameter</th><th>Grid optimum</th>"
-          "<th>Exact optimum</th><th>Profile 95% interval</th>",
+          "<th>Exact optimum</th><th>Its interval's estimate (ML)</th>"
+          "<th>Profile 95% interval</th>",
           fp);
     if (boot) {
         fputs("<th>Bootstrap 95% interval</th>", fp);
@@ -191,8 +192,9 @@ void bf_report_intervals(FILE *fp, const bf_rep_study *st)
                 fputs("</td><td>", fp);
                 bf_tt_html_text(fp, t->param[j].label);
                 fprintf(fp, "</td><td class=\"n\">%.4g</td><td class=\"n\">"
-                            "%.6g</td>",
-                        f->grid.param[j], f->refined.param[j]);
+                            "%.6g</td><td class=\"n\">%.6g</td>",
+                        f->grid.param[j], f->refined.param[j],
+                        f->ml_param[j]);
                 interval(fp, f->ci_low[j], f->ci_high[j],
                          (f->ci_open >> (2 * j)) & 3u);
                 if (boot) {

@@ -10,6 +10,7 @@
 
 #include "calibration.h"
 #include "energy.h"
+#include "ranking.h"
 #include "tables.h"
 #include "texttable.h"
 
@@ -313,7 +314,16 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
                     "intervals, AIC, BIC and CV)\n");
         return;
     }
-    fprintf(fp, "Intervals: 95%% profile, n ln(S/S_min) <= 3.841");
+    if (st->analysis.noise == BF_NOISE_OBJECTIVE) {
+        fprintf(fp, "Intervals: 95%% profile of the objective, "
+                    "n ln(S_p/S_min) <= 3.841");
+    } else {
+        fprintf(fp, "Intervals: 95%% profile likelihood under the noise "
+                    "model '%s' (%s; fits.csv noise), n ln(S_p/S_min) <= "
+                    "n ln(1 + F_{1,n-k}(0.95)/(n-k))",
+                bf_noise_name(st->analysis.noise),
+                bf_noise_variance(st->analysis.noise));
+    }
     if (o->n_boot >= 2) {
         fprintf(fp, "; residual bootstrap, %zu replicates, seed %lu",
                 o->n_boot, o->seed);
@@ -613,15 +623,16 @@ static void on_compare(const bf_rep_study *st, FILE *fp)
     }
     bf_tt_header(t, 0, "No.");
     bf_tt_header(t, 1, "Sample");
-    bf_tt_header(t, 2, "rho fitted [95% CI]");
+    bf_tt_header(t, 2, "rho fitted (ML) [95% CI]");
     bf_tt_header(t, 3, "rho CURET");
-    bf_tt_header(t, 4, "sigma fitted [95% CI]");
+    bf_tt_header(t, 4, "sigma fitted (ML) [95% CI]");
     bf_tt_header(t, 5, "sigma CURET");
     for (s = 0; s < st->n_samples; s++) {
         size_t i = s * st->n_models + m;
         const bf_fit_stats *f = &st->stats[i];
         double rho;
         double sigma;
+        char cell[128];
         if (st->rows[i].status != BF_OK || !f->done ||
             bf_sample_table_get(st->in.on_params, st->samples[s],
                                 st->models[m]->param[0].input_col, &rho) !=
@@ -633,11 +644,13 @@ static void on_compare(const bf_rep_study *st, FILE *fp)
         }
         bf_tt_set(t, 0, "%d", st->samples[s]);
         bf_tt_set(t, 1, "%s", bf_rep_sample_name(st, s));
-        bf_tt_set(t, 2, "%.3f [%.3f, %.3f]", f->refined.param[0],
-                  f->ci_low[0], f->ci_high[0]);
+        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[0],
+                             f->ml_param[0], f->ci_low[0], f->ci_high[0]);
+        bf_tt_set(t, 2, "%s", cell);
         bf_tt_set(t, 3, "%.2f", rho);
-        bf_tt_set(t, 4, "%.3f [%.3f, %.3f]", f->refined.param[1],
-                  f->ci_low[1], f->ci_high[1]);
+        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[1],
+                             f->ml_param[1], f->ci_low[1], f->ci_high[1]);
+        bf_tt_set(t, 4, "%s", cell);
         bf_tt_set(t, 5, "%.2f", sigma);
     }
     fprintf(fp, "\nOren-Nayar fitted (exact) against CURET's tabulated "

@@ -255,7 +255,8 @@ Test(cli_analysis, rank_writes_every_model_s_parameters_and_intervals)
                         "--folds", "0", "--out", NULL, "-q", NULL};
     static const char *const pars[2][2] = {{"m", "n"}, {"rho", "sigma"}};
     static const char *const models[2] = {"FC-E", "ON"};
-    double want[2][2][3][2]; /* sample, model, value/low/high, param */
+    double want[2][2][4][2]; /* sample, model, value/low/high/ML, param */
+    char cell[128];
     char path[1024];
     const char *md;
     size_t s;
@@ -273,6 +274,7 @@ Test(cli_analysis, rank_writes_every_model_s_parameters_and_intervals)
                 want[s][m][0][j] = bf_test_csv_num(r, "value");
                 want[s][m][1][j] = bf_test_csv_num(r, "ci_low");
                 want[s][m][2][j] = bf_test_csv_num(r, "ci_high");
+                want[s][m][3][j] = bf_test_csv_num(r, "ml_value");
             }
         }
     }
@@ -304,6 +306,16 @@ Test(cli_analysis, rank_writes_every_model_s_parameters_and_intervals)
     cr_assert_not_null(strstr(md, "### FC-E"));
     cr_assert_not_null(strstr(md, "### ON"));
     cr_assert_null(strstr(md, "### LAMBERT"), "LAMBERT fits nothing");
+    /* Felt (1), FC-E's m: the paper protocol's optimum lies outside the
+     * likelihood's interval, whose own estimate the cell shows beside it */
+    cr_assert(want[0][0][0][0] > want[0][0][2][0] ||
+                  want[0][0][0][0] < want[0][0][1][0],
+              "m %g in [%g, %g]", want[0][0][0][0], want[0][0][1][0],
+              want[0][0][2][0]);
+    snprintf(cell, sizeof cell, "%.4g (ML %.4g) [%.4g, %.4g]",
+             want[0][0][0][0], want[0][0][3][0], want[0][0][1][0],
+             want[0][0][2][0]);
+    cr_assert_not_null(strstr(md, cell), "%s not in\n%s", cell, md);
     cr_assert_not_null(strstr(md, "Best model by BIC"));
     /* Loofa (26): ON's sigma is 0, LAMBERT is best (the tie-break) */
     cr_assert_not_null(strstr(md, "|  26 | Loofa  | LAMBERT | (none)"), "%s",

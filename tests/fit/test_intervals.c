@@ -362,6 +362,13 @@ Test(intervals, an_unknown_noise_word_is_not_found)
     cr_assert_eq(bf_noise_find("relative", &nz), BF_OK);
     cr_assert_eq(nz, BF_NOISE_RELATIVE);
     cr_assert_null(bf_noise_name((bf_noise)17));
+    /* what each model states, for the captions */
+    cr_assert_str_eq(bf_noise_variance(BF_NOISE_ABSOLUTE),
+                     "constant variance");
+    cr_assert_str_eq(bf_noise_variance(BF_NOISE_RELATIVE),
+                     "variance ~ value^2");
+    cr_assert_not_null(strstr(bf_noise_variance(BF_NOISE_AUTO), "fitted"));
+    cr_assert_null(bf_noise_variance((bf_noise)17));
 }
 
 Test(intervals, calibrate_refuses_fewer_than_ten_simulations)

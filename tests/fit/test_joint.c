@@ -248,7 +248,9 @@ Test(joint, report_draws_every_channel_from_the_shared_shape, .timeout = 300)
 {
     /* the report's figures of a joint fit: one plane-of-incidence figure
      * per channel (its curve the shared shape with its scales), fits.csv
-     * with the shape on "joint" */
+     * with the shape on "joint"; no profile figure (a joint fit has no
+     * profile interval, and one channel's profile is not its profile: it
+     * was drawn flat at 0) */
     static const char *const fig[] = {"plane_sample1_R.png",
                                       "plane_sample1_G.png",
                                       "plane_sample1_B.png"};
@@ -276,6 +278,9 @@ Test(joint, report_draws_every_channel_from_the_shared_shape, .timeout = 300)
         snprintf(path, sizeof path, "%s/figures/%s", out, fig[i]);
         cr_assert_not_null(bf_test_slurp(path, &len), "%s", fig[i]);
         cr_assert(len > 1000, "%s: %zu bytes", fig[i], len);
+        snprintf(path, sizeof path, "%s/figures/profile_sample1_%c.png", out,
+                 "RGB"[i]);
+        cr_expect(!bf_test_exists(path), "%s", path);
     }
     lines = bf_test_csv_load(out, "fits.csv");
     bf_assert_rel(bf_test_csv_num(row_of("joint", "alpha", lines), "value"),

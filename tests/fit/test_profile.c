@@ -1,10 +1,12 @@
 /* test_profile.c: what the report's figures draw from the library --
  * bf_fit_profile_curve (doc/methods.md §3) against the objective evaluated
- * directly and against the profile interval's ends, bf_fit_curve (SPEC §2)
+ * directly and against the profile interval's ends, bf_fit_interval_curve
+ * against the noise model's interval ends and its F threshold, bf_fit_curve (SPEC §2)
  * against the model evaluated and normalised by hand, and the plane of
  * incidence (bf_geom_in_plane, bf_geom_plane_angle) against CURET's
  * in-plane configurations. On the real CURET data. */
 #include <criterion/criterion.h>
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -59,6 +61,19 @@ static void optimum(const bf_problem *pb, bf_fit_result *best)
     bf_curves_free(c);
 }
 
+/* FC-E with n free on (geom, data) as pb, its exact optimum in best. */
+static void fc_e_n_free(bf_model_variant *v, size_t n, const bf_geom *geom,
+                        const double *data, bf_problem *pb,
+                        bf_fit_result *best)
+{
+    bf_model_variant_init(v, bf_model_fc_e);
+    cr_assert_eq(bf_model_variant_fit(v, "n", BF_FREE_N_LO, BF_FREE_N_HI,
+                                      BF_FREE_N_STEP),
+                 BF_OK);
+    cr_assert_eq(bf_problem_init(pb, &v->type, NULL, n, geom, data), BF_OK);
+    optimum(pb, best);
+}
+
 /* With one free parameter the profile is the objective itself:
  * dev = K ln(S(theta) / S_min), S from bf_problem_value. */
 Test(profile, is_k_ln_of_the_objective_ratio_with_one_free_parameter)
@@ -105,12 +120,7 @@ Test(profile, crosses_the_threshold_at_the_profile_interval_ends)
     bf_fit_result best;
     size_t closed = 0;
     size_t j;
-    bf_model_variant_init(&v, bf_model_fc_e);
-    cr_assert_eq(bf_model_variant_fit(&v, "n", BF_FREE_N_LO, BF_FREE_N_HI,
-                                      BF_FREE_N_STEP),
-                 BF_OK);
-    cr_assert_eq(bf_problem_init(&pb, &v.type, NULL, n, geom, data), BF_OK);
-    optimum(&pb, &best);
+    fc_e_n_free(&v, n, geom, data, &pb, &best);
     for (j = 0; j < v.type.p; j++) {
         double lo;
         double hi;
@@ -136,6 +146,77 @@ Test(profile, crosses_the_threshold_at_the_profile_interval_ends)
             bf_assert_abs(dev[2], CHI2_95, TOL_END);
             closed++;
         }
+    }
+    cr_assert_geq(closed, 3u, "m's two ends and at least one of n's");
+}
+
+/* bf_fit_interval_curve: the curve the reported intervals threshold.
+ * Under the noise model (auto) it crosses its threshold -- the F form
+ * n ln(1 + F_{1,nu}(0.95) / nu), nu = n - (2 free + the scale + the noise
+ * power), computed here from GSL -- exactly where bf_fit_intervals puts
+ * the ends, and is 0 at the maximum-likelihood estimate; under
+ * BF_NOISE_OBJECTIVE it is bf_fit_profile_curve with chi2_1's 3.841. */
+Test(profile, the_interval_curve_crosses_its_threshold_at_the_reported_ends)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    bf_model_variant v;
+    size_t n = linen(geom, data);
+    double nu = (double)n - 4.0;
+    bf_problem pb;
+    bf_fit_result best;
+    bf_interval iv;
+    bf_interval own;
+    size_t closed = 0;
+    size_t j;
+    size_t k;
+    fc_e_n_free(&v, n, geom, data, &pb, &best);
+    cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_AUTO, 0.95, &iv),
+                 BF_OK);
+    cr_assert_eq(iv.method, BF_CI_PROFILE_LIK);
+    for (j = 0; j < v.type.p; j++) {
+        double ends[3];
+        double dev[3];
+        double obj[3];
+        double thr = NAN;
+        if (!((pb.free_mask >> j) & 1u)) {
+            continue;
+        }
+        ends[0] = iv.low[j];
+        ends[1] = iv.ml.param[j];
+        ends[2] = iv.high[j];
+        cr_assert_eq(bf_fit_interval_curve(&pb, &best, BF_NOISE_AUTO, 0.95,
+                                           j, 3, ends, dev, &thr, &own),
+                     BF_OK);
+        bf_assert_rel(thr,
+                      (double)n *
+                          log1p(gsl_cdf_fdist_Pinv(0.95, 1.0, nu) / nu),
+                      1e-12);
+        cr_expect_gt(thr, CHI2_95, "the F form is wider than chi2 at finite n");
+        cr_expect_eq(own.noise_power, iv.noise_power);
+        cr_expect_eq(own.ml.param[j], iv.ml.param[j]);
+        bf_assert_abs(dev[1], 0.0, TOL_END);
+        if (!((iv.open >> (2 * j)) & 1u)) {
+            bf_assert_abs(dev[0], thr, TOL_END);
+            closed++;
+        }
+        if (!((iv.open >> (2 * j)) & 2u)) {
+            bf_assert_abs(dev[2], thr, TOL_END);
+            closed++;
+        }
+        /* the objective's own: bf_fit_profile_curve, chi2_1 (around its
+         * optimum, which can lie outside the likelihood's interval: m's
+         * does here), at a quarter, half, three quarters of the range */
+        for (k = 0; k < 3; k++) {
+            ends[k] = pb.lo[j] + 0.25 * (double)(k + 1) * (pb.hi[j] - pb.lo[j]);
+        }
+        cr_assert_eq(bf_fit_interval_curve(&pb, &best, BF_NOISE_OBJECTIVE,
+                                           0.95, j, 3, ends, dev, &thr, NULL),
+                     BF_OK);
+        cr_assert_eq(bf_fit_profile_curve(&pb, &best, j, 3, ends, obj),
+                     BF_OK);
+        bf_assert_rel(thr, CHI2_95, 1e-12);
+        cr_expect_eq(memcmp(dev, obj, sizeof dev), 0);
     }
     cr_assert_geq(closed, 3u, "m's two ends and at least one of n's");
 }

@@ -14,6 +14,7 @@
  * [1/1.3, 1.3] (issue 18's contract). */
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
@@ -273,36 +274,45 @@ Test(spec_intervals, cornell_intervals_are_finite_and_hold_the_estimate,
     }
 }
 
-Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
-     .timeout = 300)
+/* krylon_blue's rho (SPEC §10) at its configurations with theta_i,
+ * theta_o <= 80 deg, as LAMBERT+GGX's ngan problem pb. */
+static void krylon_problem(bf_geom *geom, double *rho, bf_problem *pb)
 {
     const bf_model_type *t = bf_model_find("LAMBERT+GGX");
     bf_dataset *ds = NULL;
     bf_error err;
     bf_selection s;
     static size_t sel[MAX_CONF];
+    size_t n = 0;
+    size_t k;
+    cr_assert_eq(bf_dataset_load(bf_test_cornell_path("krylon_blue.brdf"),
+                                 NULL, &ds, &err),
+                 BF_OK, "cannot load krylon_blue.brdf: %s", err.msg);
+    bf_selection_init(&s);
+    s.max_theta = BF_KEEP_SCALE_THETA;
+    cr_assert_eq(bf_dataset_select(ds, 0, BF_CHANNEL_MEAN, &s, sel, &n, NULL),
+                 BF_OK);
+    cr_assert(n <= MAX_CONF);
+    for (k = 0; k < n; k++) {
+        geom[k] = bf_dataset_geom(ds, 0)[sel[k]];
+    }
+    cr_assert_eq(bf__dataset_rho(ds, 0, BF_CHANNEL_MEAN, n, sel, rho), BF_OK);
+    cr_assert_eq(bf_problem_init(pb, t, NULL, n, geom, rho), BF_OK);
+    pb->objective = BF_OBJ_NGAN;
+    bf_dataset_free(ds);
+}
+
+Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
+     .timeout = 300)
+{
     static bf_geom geom[MAX_CONF];
     static double rho[MAX_CONF];
     bf__solo so;
     bf_problem pb;
     bf_fit_result fit;
     bf_interval iv;
-    size_t n = 0;
-    size_t k;
     size_t j;
-    cr_assert_eq(bf_dataset_load(bf_test_cornell_path("krylon_blue.brdf"),
-                                 NULL, &ds, &err),
-                 BF_OK);
-    bf_selection_init(&s);
-    s.max_theta = BF_KEEP_SCALE_THETA;
-    cr_assert_eq(bf_dataset_select(ds, 0, BF_CHANNEL_MEAN, &s, sel, &n, NULL),
-                 BF_OK);
-    for (k = 0; k < n; k++) {
-        geom[k] = bf_dataset_geom(ds, 0)[sel[k]];
-    }
-    cr_assert_eq(bf__dataset_rho(ds, 0, BF_CHANNEL_MEAN, n, sel, rho), BF_OK);
-    cr_assert_eq(bf_problem_init(&pb, t, NULL, n, geom, rho), BF_OK);
-    pb.objective = BF_OBJ_NGAN;
+    krylon_problem(geom, rho, &pb);
     cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
     cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
     cr_assert_eq(bf__intervals(&so.fc, &fit, BF_NOISE_AUTO, LEVEL, &iv),
@@ -312,14 +322,66 @@ Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
     for (j = 0; j < 4; j++) {
         cr_assert(isfinite(iv.low[j]) && isfinite(iv.high[j]) &&
                       iv.low[j] < iv.high[j],
-                  "%s [%g, %g]", t->param[j].name, iv.low[j], iv.high[j]);
+                  "%s [%g, %g]", pb.type->param[j].name, iv.low[j],
+                  iv.high[j]);
         cr_assert(iv.low[j] <= iv.ml.param[j] && iv.ml.param[j] <= iv.high[j],
-                  "%s ML %g outside [%g, %g]", t->param[j].name,
+                  "%s ML %g outside [%g, %g]", pb.type->param[j].name,
                   iv.ml.param[j], iv.low[j], iv.high[j]);
     }
     cr_assert_eq(iv.not_identified, 0u);
     bf__solo_free(&so);
-    bf_dataset_free(ds);
+}
+
+/* The curve a profile figure draws (bf_fit_interval_curve) is the one the
+ * intervals threshold: on krylon_blue's LAMBERT+GGX it is 0 at the
+ * maximum-likelihood estimate and crosses its threshold n ln(1 +
+ * F_{1,nu}(0.95) / nu), nu = K - 4 free - the noise power, at each
+ * interval end bf_fit_intervals reports. The objective's own profile
+ * (bf_fit_profile_curve) does not: its value at those ends is off. */
+Test(spec_intervals, the_interval_curve_crosses_its_threshold_at_the_ends,
+     .timeout = 300)
+{
+    static bf_geom geom[MAX_CONF];
+    static double rho[MAX_CONF];
+    bf_problem pb;
+    bf_fit_result fit;
+    bf_interval iv;
+    bf__solo so;
+    double nu;
+    size_t off = 0; /* ends where the objective's profile is off */
+    size_t j;
+    krylon_problem(geom, rho, &pb);
+    nu = (double)pb.n - 5.0;
+    cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
+    bf__solo_free(&so);
+    cr_assert_eq(bf_fit_intervals(&pb, &fit, BF_NOISE_AUTO, LEVEL, &iv),
+                 BF_OK);
+    for (j = 0; j < 4; j++) {
+        double ends[3] = {iv.low[j], iv.ml.param[j], iv.high[j]};
+        double dev[3];
+        double obj[3];
+        double thr = NAN;
+        bf_interval own;
+        cr_assert_eq(bf_fit_interval_curve(&pb, &fit, BF_NOISE_AUTO, LEVEL, j,
+                                           3, ends, dev, &thr, &own),
+                     BF_OK, "%s", pb.type->param[j].name);
+        bf_assert_rel(thr,
+                      (double)pb.n *
+                          log1p(gsl_cdf_fdist_Pinv(LEVEL, 1.0, nu) / nu),
+                      1e-12);
+        cr_expect_eq(own.noise_power, iv.noise_power);
+        bf_assert_abs(dev[1], 0.0, 1e-3);
+        bf_assert_abs(dev[0], thr, 1e-3);
+        bf_assert_abs(dev[2], thr, 1e-3);
+        ends[1] = iv.high[j];
+        cr_assert_eq(bf_fit_profile_curve(&pb, &fit, j, 2, ends, obj), BF_OK);
+        cr_log_info("%s: objective's profile %g, %g at the ends",
+                    pb.type->param[j].name, obj[0], obj[1]);
+        off += !(fabs(obj[0] - thr) <= 0.1);
+        off += !(fabs(obj[1] - thr) <= 0.1);
+    }
+    cr_expect_eq(off, 8u, "the objective's profile is another curve");
 }
 
 /* `brdffit calibrate` on a composite: one row per parameter, coverage in

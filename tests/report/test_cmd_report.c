@@ -300,11 +300,12 @@ Test(report, stats_add_the_analysis_figures_and_tables, .timeout = 600)
     cr_expect_eq(csv_interval_rows(dir), 3u * 5u);
     cr_expect_not_null(strstr(page, "<details id=\"sample44\">"));
     cr_expect_null(strstr(page, "Not computed"));
-    /* the profiles' caption says what the thick segment is: the noise
-     * model's interval (the default), not where the objective's curve
-     * lies below its threshold */
-    cr_expect_not_null(strstr(page, "(ci_method profile-lik"));
-    cr_expect_null(strstr(page, "interval is where the curve lies below"));
+    /* the profiles drawn are the noise model's likelihood's, whose
+     * threshold the reported intervals (the default, profile-lik) take,
+     * not the objective's */
+    cr_expect_not_null(strstr(page, "profiles of the likelihood"));
+    cr_expect_not_null(strstr(page, "ci_method profile-lik"));
+    cr_expect_null(strstr(page, "profiles of the objective"));
     free(page);
 }
 
