@@ -1696,6 +1696,27 @@ int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
                           const double *theta, double *dev, double *thr,
                           bf_interval *iv);
 
+/* The profiles behind pair u's reported intervals (u: target u / n_models,
+ * model u % n_models of a study analysed by bf_study_analyse(spec, opts,
+ * rows, stats)), as the report draws them (figures/profile_sampleN): for
+ * each free parameter, in order, n >= 2 values theta evenly over its
+ * window -- its interval around the estimate the interval is about
+ * (stats[u].ml_param) widened 2.5 times on each side (3 search steps on a
+ * side where it has no width), within its search range -- and dev there,
+ * n ln(S_p/S_min) of the criterion the interval thresholds
+ * (bf_fit_interval_curve under opts's noise model and level, on the
+ * target's data as fitted: bf_study_fit_data); thr gets each parameter's
+ * threshold. theta, dev: n x (free parameters) doubles, parameter-major
+ * (dev NaN where the model is undefined); thr: one per free parameter.
+ * BF_EINVAL (bad arguments; a pair not analysed, without free parameters,
+ * or a joint fit's: it has no profile interval), BF_EDOM (its noise cannot
+ * be estimated), BF_ENOMEM; err->msg names the pair.
+ * (src/fit/study_profile.c) */
+int bf_study_profiles(const bf_study_spec *spec, const bf_analysis_opts *opts,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      size_t u, size_t n, double *theta, double *dev,
+                      double *thr, bf_error *err);
+
 /* A fitted model drawn anywhere, normalised as in the fit (SPEC §2): the
  * model at the n configurations at[], divided by its maximum over the
  * n_used configurations used[] the fit saw. work holds n_used doubles.

@@ -502,6 +502,15 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
 int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
                          bf_noise noise, double level, double *w,
                          bf_interval *out, bf_problem *lik, double *thr);
+/* bf_fit_interval_curve for every free parameter j of mask at once (one
+ * noise fit): theta, dev n values per parameter, parameter-major in the
+ * order of j (dev NaN where not computed); thr one per parameter; iv as
+ * bf_fit_interval_curve's (may be NULL). BF_EINVAL for a parameter that is
+ * not free or values outside its range or not increasing. */
+int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
+                        bf_noise noise, double level, unsigned mask, size_t n,
+                        const double *theta, double *dev, double *thr,
+                        bf_interval *iv);
 /* bf_fit_intervals on fc (fc->pb the problem; restored on return). */
 int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
                   double level, bf_interval *out);

@@ -147,39 +147,68 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
                : BF_EINVAL;
 }
 
-int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
-                          bf_noise noise, double level, size_t j, size_t n,
-                          const double *theta, double *dev, double *thr,
-                          bf_interval *iv)
+int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
+                        bf_noise noise, double level, unsigned mask, size_t n,
+                        const double *theta, double *dev, double *thr,
+                        bf_interval *iv)
 {
     bf__solo so;
     bf_problem lik;
     bf_interval own;
     double t = NAN;
-    double *w;
-    int rc;
-    if (!curve_args(pb, best, j, n, theta, dev) || pb->data == NULL ||
-        thr == NULL || bf_noise_name(noise) == NULL ||
-        !(level > 0.0 && level < 1.0)) {
-        return BF_EINVAL;
+    double *w = malloc((pb->n + 1) * sizeof *w);
+    size_t j;
+    size_t k;
+    size_t q = 0;
+    int rc = BF_OK;
+    for (j = 0; j < pb->type->p; j++) {
+        if (!((mask >> j) & 1u)) {
+            continue;
+        }
+        if (!curve_args(pb, best, j, n, theta + q * n, dev + q * n)) {
+            rc = BF_EINVAL;
+        }
+        for (k = 0; k < n; k++) {
+            dev[q * n + k] = NAN;
+        }
+        q++;
     }
+    q = 0;
     if (iv == NULL) {
         iv = &own;
     }
-    w = malloc((pb->n + 1) * sizeof *w);
-    if (w == NULL) {
-        return BF_ENOMEM;
+    if (rc == BF_OK) {
+        rc = w == NULL ? BF_ENOMEM : bf__solo_init(&so, pb);
     }
-    rc = bf__solo_init(&so, pb);
     if (rc == BF_OK) {
         rc = bf__interval_problem(&so.fc, best, noise, level, w, iv, &lik,
                                   &t);
         bf__solo_free(&so);
     }
-    if (rc == BF_OK) { /* around the estimate the intervals are about */
-        rc = curve(&lik, &iv->ml, j, n, theta, dev);
+    for (j = 0; j < pb->type->p; j++) {
+        if (!((mask >> j) & 1u)) {
+            continue;
+        }
+        thr[q] = t;
+        if (rc == BF_OK) { /* around the estimate the intervals are about */
+            rc = curve(&lik, &iv->ml, j, n, theta + q * n, dev + q * n);
+        }
+        q++;
     }
-    *thr = t;
     free(w);
     return rc;
+}
+
+int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
+                          bf_noise noise, double level, size_t j, size_t n,
+                          const double *theta, double *dev, double *thr,
+                          bf_interval *iv)
+{
+    if (!curve_args(pb, best, j, n, theta, dev) || pb->data == NULL ||
+        thr == NULL || bf_noise_name(noise) == NULL ||
+        !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    return bf__interval_curves(pb, best, noise, level, 1u << j, n, theta,
+                               dev, thr, iv);
 }

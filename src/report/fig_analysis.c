@@ -30,13 +30,12 @@
 #define FOREST_NAMES_PT 150.0
 #define FOREST_MIN_AXES 50.0
 #define XLABEL_PT 34.0
-/* Profile panels: points per curve, the window around the interval (in
- * half-widths of the interval), panels per row and their shape. */
+/* Profile panels: points per curve (over the window bf_study_profiles
+ * chooses), panels per row and their shape. */
 #define PROFILE_POINTS 41
 /* A panel's values beside its curve: the interval (4), the threshold's x
  * and the optimum's y (3), the threshold's y (2). */
 #define PROFILE_EXTRA 10
-#define PROFILE_SPAN 2.5
 #define PROFILE_COLS 5
 #define PROFILE_YMAX 12.0
 #define PROFILE_ASPECT 0.75
@@ -452,27 +451,6 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 
 /* ==== profiles =========================================================== */
 
-/* The problem of sample index s and model m as the analysis posed it: the
- * model's free parameters over their search ranges, the others at the
- * fitted row's values, under the run's objective. */
-/* The problem model m was fitted as on sample s: its configurations and
- * data (bf_fig_fit_data: rho under the objectives that keep the scale). */
-static int problem_of(const bf_fig_data *D, size_t s, size_t m,
-                      bf_fig_desc *d, bf_problem *pb)
-{
-    const bf_study_row *row = bf_fig_row(D->st, s, m);
-    const bf_geom *geom;
-    const double *data;
-    size_t K;
-    int abs;
-    int rc = bf_fig_fit_data(D, s, d, &K, &geom, &data, &abs);
-    if (rc == BF_OK) {
-        rc = bf_problem_init(pb, row->type, row->fit.param, K, geom, data);
-        pb->objective = D->st->opts.objective;
-    }
-    return rc;
-}
-
 size_t bf_fig_profile_panels(const bf_rep_study *st, size_t s, int family)
 {
     size_t M = st->n_models;
@@ -507,18 +485,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     char part[32];
     size_t rows;
     size_t all = 0; /* the family's panels so far */
-    /* every interval drawn is the noise model's likelihood's (profile-lik):
-     * its profile is drawn, else the objective's */
-    int lik = 1;
+    /* the intervals' criterion: the noise model's likelihood, or with
+     * --noise objective the objective's own S */
+    int lik = st->analysis.noise != BF_NOISE_OBJECTIVE;
     np = bf_fig_profile_panels(st, s, e->family);
-    for (m = 0; m < M; m++) {
-        const bf_fit_stats *f = &st->stats[s * M + m];
-        if (f->done && f->free_mask != 0 &&
-            bf_fig_in_family(st, m, e->family) &&
-            f->ci_method != BF_CI_PROFILE_LIK) {
-            lik = 0;
-        }
-    }
     panel = bf_fig_alloc(d, (np + 1) * sizeof *panel);
     ser = bf_fig_alloc(d, 4 * (np + 1) * sizeof *ser);
     v = bf_fig_alloc(d, (2 * PROFILE_POINTS + PROFILE_EXTRA) * (np + 1) *
@@ -533,15 +503,33 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     for (m = 0; m < M; m++) {
         const bf_fit_stats *f = &st->stats[s * M + m];
         const bf_model_type *t = bf_fig_row(st, s, m)->type;
-        bf_problem pb;
+        size_t nf = popcount(f->free_mask);
+        size_t first = all; /* this model's first panel in the family */
+        double *tm = NULL;  /* the library's profiles: theta, dev, thr */
+        double *dm = NULL;
+        double *thm = NULL;
+        size_t qq = 0;
         if (!f->done || f->free_mask == 0 ||
             !bf_fig_in_family(st, m, e->family)) {
             continue;
         }
-        {
-            int rc = problem_of(D, s, m, d, &pb);
-            if (rc != BF_OK) {
-                return rc;
+        all += nf;
+        if (e->count > 0 && (first + nf <= e->first ||
+                             first >= e->first + e->count)) {
+            continue; /* every panel on another page of the family's */
+        }
+        if (full) {
+            bf_error err;
+            tm = bf_fig_alloc(d, 2 * PROFILE_POINTS * nf * sizeof *tm);
+            thm = bf_fig_alloc(d, nf * sizeof *thm);
+            if (tm == NULL || thm == NULL) {
+                return BF_ENOMEM;
+            }
+            dm = tm + PROFILE_POINTS * nf;
+            if (bf_study_profiles(&st->spec, &st->analysis, st->rows,
+                                  st->stats, s * M + m, PROFILE_POINTS, tm,
+                                  dm, thm, &err) == BF_ENOMEM) {
+                return BF_ENOMEM;
             }
         }
         for (j = 0; j < t->p; j++) {
@@ -550,74 +538,31 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             double *ci = dev + PROFILE_POINTS; /* low, high; y of both */
             double *thr_x = ci + 4;            /* x0, x1; the optimum's y */
             double *thr_y = thr_x + 3;         /* the threshold's y */
-            /* the estimate the curve is around: the likelihood's (the
-             * interval's), or the objective's */
-            const double *at = lik ? &f->ml_param[j] : &f->refined.param[j];
-            double est = *at;
             double thr = CHI2_95;
-            double lo = f->ci_low[j];
-            double hi = f->ci_high[j];
-            double step = t->param[j].grid_n > 0 ? t->param[j].grid_step
-                                                 : (pb.hi[j] - pb.lo[j]) /
-                                                       100.0;
-            if (t->kind == BF_MODEL_SPECULAR) {
-                /* no grid, scales up to 1e6 (SPEC §9.3): a share of the
-                 * estimate, as the profile's first step (profile.c) */
-                step = est > 0.0 ? 0.05 * est : 1e-3;
-            }
-            double x0;
-            double x1;
             size_t k;
             bf_plot_series *sq = &ser[4 * q];
             if (!((f->free_mask >> j) & 1u)) {
                 continue;
             }
-            if (e->count > 0 && (all < e->first ||
-                                 all >= e->first + e->count)) {
-                all++;
+            qq++;
+            if (e->count > 0 && (first + qq - 1 < e->first ||
+                                 first + qq - 1 >= e->first + e->count)) {
                 continue; /* on another page of the family's panels */
             }
-            all++;
-            /* the window: the interval widened PROFILE_SPAN times on each
-             * side (3 grid steps where it has no width), within the search
-             * range */
-            x0 = est - PROFILE_SPAN * (isfinite(lo) && est - lo > 0.0
-                                           ? est - lo
-                                           : 3 * step);
-            x1 = est + PROFILE_SPAN * (isfinite(hi) && hi - est > 0.0
-                                           ? hi - est
-                                           : 3 * step);
-            x0 = fmax(x0, pb.lo[j]);
-            x1 = fmin(x1, pb.hi[j]);
-            if (!(x1 > x0)) {
-                x0 = pb.lo[j];
-                x1 = pb.hi[j];
-            }
             for (k = 0; k < PROFILE_POINTS; k++) {
-                theta[k] = x0 + (x1 - x0) * (double)k / (PROFILE_POINTS - 1);
-                dev[k] = NAN;
+                theta[k] = full ? tm[(qq - 1) * PROFILE_POINTS + k]
+                                : (double)k / (PROFILE_POINTS - 1);
+                dev[k] = full ? dm[(qq - 1) * PROFILE_POINTS + k] : NAN;
             }
-            if (full) {
-                int rc = lik ? bf_fit_interval_curve(
-                                   &pb, &f->refined, st->analysis.noise,
-                                   st->analysis.level, j, PROFILE_POINTS,
-                                   theta, dev, &thr, NULL)
-                             : bf_fit_profile_curve(&pb, &f->refined, j,
-                                                    PROFILE_POINTS, theta,
-                                                    dev);
-                if (rc == BF_ENOMEM) {
-                    return rc;
-                }
-                if (!isfinite(thr)) {
-                    thr = CHI2_95; /* no noise fit: no curve either */
-                }
+            if (full && isfinite(thm[qq - 1])) {
+                thr = thm[qq - 1]; /* else no noise fit, no curve */
             }
-            ci[0] = lo;
-            ci[1] = hi;
+            ci[0] = f->ci_low[j];
+            ci[1] = f->ci_high[j];
             ci[2] = ci[3] = thr;
             thr_y[0] = thr_y[1] = thr;
-            thr_x[0] = x0;
-            thr_x[1] = x1;
+            thr_x[0] = theta[0];
+            thr_x[1] = theta[PROFILE_POINTS - 1];
             sq[0].kind = BF_SERIES_LINE;  /* the threshold */
             sq[0].x = thr_x;
             sq[0].y = thr_y;
@@ -642,15 +587,15 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             sq[2].style = sq[1].style;
             sq[2].dash = BF_DASH_SOLID;
             sq[2].weight = 2.0;
-            sq[3].kind = BF_SERIES_POINTS; /* the optimum */
-            sq[3].x = at;
+            sq[3].kind = BF_SERIES_POINTS; /* the estimate it is about */
+            sq[3].x = &f->ml_param[j];
             sq[3].y = &thr_x[2];
             thr_x[2] = 0.0;
             sq[3].n = 1;
             sq[3].style = sq[1].style;
             bf_fig_param_label(&t->param[j], xl[q], sizeof xl[q]);
-            panel[q].xmin = x0;
-            panel[q].xmax = x1;
+            panel[q].xmin = theta[0];
+            panel[q].xmax = theta[PROFILE_POINTS - 1];
             panel[q].ymin = -0.8;
             panel[q].ymax = PROFILE_YMAX;
             panel[q].ytick = 4.0;

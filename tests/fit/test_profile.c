@@ -20,6 +20,15 @@
  * there is 3.841 to within slope * 1e-7 and the minimiser's tolerance. */
 #define TOL_END 1e-3
 
+static size_t popcount_of(unsigned mask)
+{
+    size_t c = 0;
+    for (; mask != 0; mask &= mask - 1) {
+        c++;
+    }
+    return c;
+}
+
 static void setup(void)
 {
     gsl_set_error_handler_off();
@@ -219,6 +228,129 @@ Test(profile, the_interval_curve_crosses_its_threshold_at_the_reported_ends)
         cr_expect_eq(memcmp(dev, obj, sizeof dev), 0);
     }
     cr_assert_geq(closed, 3u, "m's two ends and at least one of n's");
+}
+
+/* bf_study_profiles, what the report draws, on Linen (44) analysed with
+ * FC-E (n free) and ON by the library (bf_study_analyse, --fit exact,
+ * noise auto): every free parameter's window holds its interval and
+ * estimate, within the search range; the curve is about 0 at the estimate
+ * the interval is about and crosses the F-form threshold between the grid
+ * points either side of each closed end (the drawn curve meets the thick
+ * segment's ends); refusals: a pair not analysed, n < 2. */
+Test(profile, the_study_profiles_cross_their_thresholds_at_the_reported_ends,
+     .timeout = 120)
+{
+    bf_dataset *ds = NULL;
+    bf_target *targets = NULL;
+    size_t n_targets = 0;
+    size_t mat = 43; /* material index of sample 44 */
+    bf_model_variant v[2];
+    const bf_model_type *models[2];
+    bf_study_spec spec;
+    bf_analysis_opts opts;
+    bf_study_row rows[2];
+    bf_fit_stats stats[2];
+    bf_error err;
+    double theta[2 * 41];
+    double dev[2 * 41];
+    double thr[2];
+    size_t u;
+    size_t crossings = 0;
+    cr_assert_eq(bf_curet_load(BF_CURET_DIR, NULL, &ds, &err), BF_OK, "%s",
+                 err.msg);
+    cr_assert_eq(bf_study_targets(ds, &mat, 1, NULL, &targets, &n_targets,
+                                  &err),
+                 BF_OK);
+    bf_model_variant_init(&v[0], bf_model_fc_e);
+    bf_model_variant_init(&v[1], bf_model_find("ON"));
+    for (u = 0; u < 2; u++) {
+        bf_model_variant_exact(&v[u], 0); /* --fit exact */
+        models[u] = &v[u].type;
+    }
+    memset(&spec, 0, sizeof spec);
+    spec.data = ds;
+    spec.targets = targets;
+    spec.n_targets = n_targets;
+    bf_selection_init(&spec.select);
+    spec.models = models;
+    spec.n_models = 2;
+    spec.n_default = BF_DEFAULT_N;
+    bf_analysis_opts_init(&opts);
+    opts.exact = 1;
+    opts.folds = 0;
+    memset(rows, 0, sizeof rows);
+    memset(stats, 0, sizeof stats);
+    cr_assert_eq(bf_study_analyse(&spec, &opts, rows, stats, &err), BF_OK,
+                 "%s", err.msg);
+    for (u = 0; u < 2; u++) {
+        const bf_fit_stats *f = &stats[u];
+        double nu = (double)f->n - (double)popcount_of(f->free_mask) - 2.0;
+        size_t j;
+        size_t q = 0;
+        cr_assert(f->done && f->ci_method == BF_CI_PROFILE_LIK);
+        cr_assert_eq(bf_study_profiles(&spec, &opts, rows, stats, u, 41,
+                                       theta, dev, thr, &err),
+                     BF_OK, "%s", err.msg);
+        for (j = 0; j < models[u]->p; j++) {
+            const double *x = theta + 41 * q;
+            const double *y = dev + 41 * q;
+            double ymin = HUGE_VAL;
+            size_t k;
+            if (!((f->free_mask >> j) & 1u)) {
+                continue;
+            }
+            bf_assert_rel(thr[q],
+                          (double)f->n *
+                              log1p(gsl_cdf_fdist_Pinv(0.95, 1.0, nu) / nu),
+                          1e-12);
+            cr_assert(x[0] <= f->ci_low[j] && f->ci_high[j] <= x[40],
+                      "window [%g, %g], interval [%g, %g]", x[0], x[40],
+                      f->ci_low[j], f->ci_high[j]);
+            cr_assert(x[0] <= f->ml_param[j] && f->ml_param[j] <= x[40]);
+            for (k = 0; k < 41; k++) {
+                cr_assert(k == 0 || x[k] > x[k - 1]);
+                cr_assert(isfinite(y[k]), "%s %s at %g", models[u]->name,
+                          models[u]->param[j].name, x[k]);
+                ymin = fmin(ymin, y[k]);
+            }
+            cr_expect(ymin >= -1e-9 && ymin < 0.5, "minimum %g", ymin);
+            for (k = 0; k + 1 < 41; k++) { /* the grid points around an end */
+                int end_low = !((f->ci_open >> (2 * j)) & 1u) &&
+                              x[k] <= f->ci_low[j] && f->ci_low[j] < x[k + 1];
+                int end_high = !((f->ci_open >> (2 * j)) & 2u) &&
+                               x[k] < f->ci_high[j] &&
+                               f->ci_high[j] <= x[k + 1];
+                if (end_low) {
+                    cr_expect(y[k] >= thr[q] - 1e-6 &&
+                                  y[k + 1] <= thr[q] + 1e-6,
+                              "%s %s: %g, %g around low end %g (thr %g)",
+                              models[u]->name, models[u]->param[j].name,
+                              y[k], y[k + 1], f->ci_low[j], thr[q]);
+                    crossings++;
+                }
+                if (end_high) {
+                    cr_expect(y[k] <= thr[q] + 1e-6 &&
+                                  y[k + 1] >= thr[q] - 1e-6,
+                              "%s %s: %g, %g around high end %g (thr %g)",
+                              models[u]->name, models[u]->param[j].name,
+                              y[k], y[k + 1], f->ci_high[j], thr[q]);
+                    crossings++;
+                }
+            }
+            q++;
+        }
+    }
+    cr_expect_geq(crossings, 3u, "FC-E's m (two ends) and more");
+    cr_assert_eq(bf_study_profiles(&spec, &opts, rows, stats, 0, 1, theta,
+                                   dev, thr, &err),
+                 BF_EINVAL);
+    stats[1].done = 0;
+    cr_assert_eq(bf_study_profiles(&spec, &opts, rows, stats, 1, 41, theta,
+                                   dev, thr, &err),
+                 BF_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "not analysed"), "%s", err.msg);
+    free(targets);
+    bf_dataset_free(ds);
 }
 
 Test(profile, refuses_values_outside_the_search_range_or_unordered)
