@@ -215,6 +215,20 @@ const char *bf_test_fixture_path(const char *file)
     return path_in("BRDFFIT_FIXTURES_DIR", BF_FIXTURES_DIR, file);
 }
 
+void bf_test_study_spec(bf_study_spec *spec, const bf_dataset *ds,
+                        const bf_target *targets, size_t n_targets,
+                        const bf_model_type *const *models, size_t n_models)
+{
+    memset(spec, 0, sizeof *spec);
+    spec->data = ds;
+    spec->targets = targets;
+    spec->n_targets = n_targets;
+    bf_selection_init(&spec->select);
+    spec->models = models;
+    spec->n_models = n_models;
+    spec->n_default = BF_DEFAULT_N;
+}
+
 bf_table *bf_test_load_table(void)
 {
     bf_table *t = NULL;

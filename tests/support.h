@@ -162,6 +162,12 @@ const char *bf_test_fixture_path(const char *file);
 
 /* Loads CURET's table.txt and abrdf.dat, failing the test loudly. */
 bf_table *bf_test_load_table(void);
+
+/* A study of models on targets of ds as the CLI poses it: the default
+ * selection, n 1.7, one thread. */
+void bf_test_study_spec(bf_study_spec *spec, const bf_dataset *ds,
+                        const bf_target *targets, size_t n_targets,
+                        const bf_model_type *const *models, size_t n_models);
 /* Every stride-th of the 198 non-specular CURET configurations into geom
  * (room for BF_CURET_NCONF); returns how many. */
 size_t bf_test_curet_geometry(bf_geom *geom, size_t stride);

@@ -160,14 +160,7 @@ Test(before, the_engine_gives_the_analysis_of_the_code_before_it,
         models[n_models] = &variants[n_models].type;
         n_models++;
     }
-    memset(&spec, 0, sizeof spec);
-    spec.data = ds;
-    spec.targets = targets;
-    spec.n_targets = n_targets;
-    bf_selection_init(&spec.select);
-    spec.models = models;
-    spec.n_models = n_models;
-    spec.n_default = BF_DEFAULT_N;
+    bf_test_study_spec(&spec, ds, targets, n_targets, models, n_models);
     spec.n_threads = 2;
     bf_analysis_opts_init(&opts);
     opts.exact = 1;

@@ -267,14 +267,7 @@ Test(profile, the_study_profiles_cross_their_thresholds_at_the_reported_ends,
         bf_model_variant_exact(&v[u], 0); /* --fit exact */
         models[u] = &v[u].type;
     }
-    memset(&spec, 0, sizeof spec);
-    spec.data = ds;
-    spec.targets = targets;
-    spec.n_targets = n_targets;
-    bf_selection_init(&spec.select);
-    spec.models = models;
-    spec.n_models = 2;
-    spec.n_default = BF_DEFAULT_N;
+    bf_test_study_spec(&spec, ds, targets, n_targets, models, 2);
     bf_analysis_opts_init(&opts);
     opts.exact = 1;
     opts.folds = 0;

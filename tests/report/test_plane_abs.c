@@ -34,12 +34,7 @@ static bf_target *spec_of(bf_dataset *ds, bf_study_spec *spec)
     bf_error err;
     cr_assert_eq(bf_study_targets(ds, NULL, 0, NULL, &targets, &n, &err),
                  BF_OK, "%s", err.msg);
-    memset(spec, 0, sizeof *spec);
-    spec->data = ds;
-    spec->targets = targets;
-    spec->n_targets = n;
-    bf_selection_init(&spec->select);
-    spec->n_default = BF_DEFAULT_N;
+    bf_test_study_spec(spec, ds, targets, n, NULL, 0);
     return targets;
 }
 
