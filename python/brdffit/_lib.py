@@ -326,6 +326,10 @@ typedef struct {
 } bf_calibration_summary;
 int bf_calibration_summarise(const bf_calibration *c, size_t j, double level,
                              bf_calibration_summary *out);
+int bf_study_profiles(const bf_study_spec *spec, const bf_analysis_opts *opts,
+                      const bf_study_row *rows, const bf_fit_stats *stats,
+                      size_t u, size_t n, double *theta, double *dev,
+                      double *thr, bf_error *err);
 int bf_study_calibrate(const bf_study_spec *spec,
                        const bf_analysis_opts *opts,
                        const bf_study_row *rows, const bf_fit_stats *stats,

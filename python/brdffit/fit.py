@@ -6,7 +6,8 @@ exact-fit variant of the model (bf_model_variant_exact, the CLI's --fit
 exact) and ranges= moves search ranges (bf_model_variant_range, --range).
 """
 
-from ._errors import InvalidArgumentError, NotFoundError
+from . import _arrays
+from ._errors import InvalidArgumentError, NotFoundError, check, new_error
 from ._lib import CHANNEL_MEAN, ffi, lib, text
 from ._study import Study
 
@@ -143,6 +144,7 @@ class FitResult:
         self.bootstrap_failed = self.bootstrap_split = None
         self.bootstrap_method = None
         self.scales = self.per_channel = None
+        self._study = study  # what profiles() asks the library about
         if stats is not None:
             self._stats(m, stats[t], mask, int(study.opts.n_boot) > 0)
         if whole and spec.spec.targets[t].joint:
@@ -220,6 +222,41 @@ class FitResult:
         self.bootstrap_failed = bool(f & lib.BF_STAT_BOOT_FAIL)
         self.bootstrap_split = _names(m, int(st.boot_split)) if (
             f & lib.BF_STAT_BOOT_SPLIT) else ()
+
+    def profiles(self, n=41):
+        """The profiles behind the intervals, as the report's profile
+        figure draws them (bf_study_profiles, doc/methods.md §3): {name:
+        (theta, dev, threshold)} for every free parameter -- n values
+        theta (numpy) over a window around the estimate the interval is
+        about (ml_estimate; the interval widened 2.5 times each side,
+        within the search range), dev = n ln(S_p/S_min) of the criterion
+        the interval thresholds there (the noise model's likelihood, or
+        the objective's with noise="objective"), and its threshold: the
+        interval is where dev <= threshold. Needs the analysis (stats);
+        a joint fit has no profile interval (InvalidArgumentError)."""
+        import numpy as np
+        if self.intervals is None:
+            raise InvalidArgumentError("profiles: the fit has no analysis "
+                                       "(stats=False)", 1)
+        if self.per_channel is not None:
+            raise InvalidArgumentError("profiles: a joint fit (SPEC 9.4) "
+                                       "has no profile interval", 1)
+        n = int(n)
+        st = self._study
+        names = [q.name for q in self.model.parameters
+                 if q.name in self.intervals]
+        theta = np.zeros(n * len(names))
+        dev = np.zeros(n * len(names))
+        thr = np.zeros(max(len(names), 1))
+        err = new_error()
+        check(lib.bf_study_profiles(st.spec.spec, st.opts, st.rows, st.stats,
+                                    0, n, _arrays.doubles(theta),
+                                    _arrays.doubles(dev),
+                                    _arrays.doubles(thr), err),
+              err, "profiles")
+        return {name: (theta[q * n:(q + 1) * n].copy(),
+                       dev[q * n:(q + 1) * n].copy(), float(thr[q]))
+                for q, name in enumerate(names)}
 
     @property
     def residuals(self):

@@ -189,3 +189,33 @@ def test_a_composite_has_intervals_bootstrap_and_cv():
     assert r.n_params == 4  # no scale beside rho_d and rho_s
     assert np.isfinite(r.cv) and r.cv > 0 and r.not_identified == ()
     assert not r.interval_failed and not r.bootstrap_failed
+
+
+def test_profiles_cross_their_threshold_at_the_interval_ends(curet):
+    # Linen (44), FC-E with n free: what the report's profile figure draws
+    # (bf_study_profiles) -- for each free parameter a window that holds
+    # the interval and the estimate it is about, a curve near 0 there, and
+    # the F-form threshold crossed at each end of the reported interval
+    # (linear interpolation between the window's points).
+    import numpy as np
+    r = brdffit.fit(curet, "FC-E", material=44, fit="exact", folds=0)
+    prof = r.profiles(n=81)
+    assert set(prof) == set(r.intervals) == {"m", "n"}
+    for name, (theta, dev, thr) in prof.items():
+        lo, hi = r.intervals[name]
+        assert len(theta) == len(dev) == 81 and np.all(np.diff(theta) > 0)
+        assert theta[0] <= lo < r.ml_estimate[name] < hi <= theta[-1]
+        # K ln(1 + F(1, K - 4)/(K - 4)) = 3.93 at K = 198 (chi2_1: 3.84)
+        assert 3.9 < thr < 3.96 and np.all(np.isfinite(dev))
+        assert -1e-9 <= dev.min() < 0.5
+        for end, is_open in zip((lo, hi), r.intervals_open[name]):
+            if not is_open:
+                assert abs(np.interp(end, theta, dev) - thr) < 0.05, (
+                    name, end, np.interp(end, theta, dev), thr)
+    # the objective's own profile under noise="objective": chi2_1
+    o = brdffit.fit(curet, "FC-E", material=44, fit="exact", folds=0,
+                    noise="objective")
+    assert all(abs(t - 3.841458820694124) < 1e-9
+               for _, _, t in o.profiles().values())
+    with pytest.raises(brdffit.InvalidArgumentError):
+        brdffit.fit(curet, "FC-E", material=44, stats=False).profiles()
