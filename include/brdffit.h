@@ -1708,6 +1708,7 @@ int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
  * target's data as fitted: bf_study_fit_data); thr gets each parameter's
  * threshold. theta, dev: n x (free parameters) doubles, parameter-major
  * (dev NaN where the model is undefined); thr: one per free parameter.
+ * With dev NULL only the windows (thr unused: what a layout needs).
  * BF_EINVAL (bad arguments; a pair not analysed, without free parameters,
  * or a joint fit's: it has no profile interval), BF_EDOM (its noise cannot
  * be estimated), BF_ENOMEM; err->msg names the pair.

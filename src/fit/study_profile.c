@@ -69,7 +69,7 @@ int bf_study_profiles(const bf_study_spec *spec, const bf_analysis_opts *opts,
     size_t q = 0;
     int rc;
     if (spec == NULL || opts == NULL || rows == NULL || stats == NULL ||
-        theta == NULL || dev == NULL || thr == NULL || n < 2 ||
+        theta == NULL || (dev != NULL && thr == NULL) || n < 2 ||
         spec->n_models == 0 || u >= spec->n_targets * spec->n_models ||
         !stats[u].done || stats[u].free_mask == 0) {
         return STUDY_ERR(err, BF_EINVAL, "profiles: the pair was not "
@@ -112,7 +112,7 @@ int bf_study_profiles(const bf_study_spec *spec, const bf_analysis_opts *opts,
             q++;
         }
     }
-    if (rc == BF_OK) {
+    if (rc == BF_OK && dev != NULL) {
         rc = bf__interval_curves(&pb, &st->refined, opts->noise, opts->level,
                                  st->free_mask, n, theta, dev, thr, NULL);
         if (rc == BF_EDOM) {

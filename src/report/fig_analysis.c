@@ -518,7 +518,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                              first >= e->first + e->count)) {
             continue; /* every panel on another page of the family's */
         }
-        if (full) {
+        {   /* the windows always (the layout's tick labels), the curves
+             * when drawn */
             bf_error err;
             tm = bf_fig_alloc(d, 2 * PROFILE_POINTS * nf * sizeof *tm);
             thm = bf_fig_alloc(d, nf * sizeof *thm);
@@ -526,9 +527,16 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                 return BF_ENOMEM;
             }
             dm = tm + PROFILE_POINTS * nf;
+            for (j = 0; j < 2 * PROFILE_POINTS * nf; j++) {
+                tm[j] = NAN; /* what a failure leaves undrawn */
+            }
+            for (j = 0; j < nf; j++) {
+                thm[j] = NAN;
+            }
             if (bf_study_profiles(&st->spec, &st->analysis, st->rows,
                                   st->stats, s * M + m, PROFILE_POINTS, tm,
-                                  dm, thm, &err) == BF_ENOMEM) {
+                                  full ? dm : NULL, thm,
+                                  &err) == BF_ENOMEM) {
                 return BF_ENOMEM;
             }
         }
@@ -550,11 +558,11 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                 continue; /* on another page of the family's panels */
             }
             for (k = 0; k < PROFILE_POINTS; k++) {
-                theta[k] = full ? tm[(qq - 1) * PROFILE_POINTS + k]
-                                : (double)k / (PROFILE_POINTS - 1);
-                dev[k] = full ? dm[(qq - 1) * PROFILE_POINTS + k] : NAN;
+                double x = tm[(qq - 1) * PROFILE_POINTS + k];
+                theta[k] = isfinite(x) ? x : (double)k / (PROFILE_POINTS - 1);
+                dev[k] = dm[(qq - 1) * PROFILE_POINTS + k];
             }
-            if (full && isfinite(thm[qq - 1])) {
+            if (isfinite(thm[qq - 1])) {
                 thr = thm[qq - 1]; /* else no noise fit, no curve */
             }
             ci[0] = f->ci_low[j];

@@ -252,6 +252,7 @@ Test(profile, the_study_profiles_cross_their_thresholds_at_the_reported_ends,
     bf_fit_stats stats[2];
     bf_error err;
     double theta[2 * 41];
+    double window[2 * 41];
     double dev[2 * 41];
     double thr[2];
     size_t u;
@@ -282,8 +283,14 @@ Test(profile, the_study_profiles_cross_their_thresholds_at_the_reported_ends,
         size_t q = 0;
         cr_assert(f->done && f->ci_method == BF_CI_PROFILE_LIK);
         cr_assert_eq(bf_study_profiles(&spec, &opts, rows, stats, u, 41,
+                                       window, NULL, NULL, &err),
+                     BF_OK, "%s", err.msg); /* the windows alone */
+        cr_assert_eq(bf_study_profiles(&spec, &opts, rows, stats, u, 41,
                                        theta, dev, thr, &err),
                      BF_OK, "%s", err.msg);
+        cr_assert_eq(memcmp(window, theta,
+                            41 * popcount_of(f->free_mask) * sizeof *theta),
+                     0, "the same windows with and without the curves");
         for (j = 0; j < models[u]->p; j++) {
             const double *x = theta + 41 * q;
             const double *y = dev + 41 * q;
