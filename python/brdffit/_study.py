@@ -590,7 +590,7 @@ class Study:
         crit = [c.lower() for c in CRITERIA]
         slot = {"": "param", "_value": "value", "_ci_low": "ci_low",
                 "_ci_high": "ci_high", "_boot_low": "boot_low",
-                "_boot_high": "boot_high"}
+                "_boot_high": "boot_high", "_ml": "ml"}
 
         def value(ln, c):
             kind, _, which = c.partition("_")

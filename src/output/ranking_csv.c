@@ -10,7 +10,7 @@
 #include "output/output.h"
 
 static const char *const slot_cols[] = {"", "_value", "_ci_low", "_ci_high",
-                                        "_boot_low", "_boot_high"};
+                                        "_boot_low", "_boot_high", "_ml"};
 
 size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows)
 {
@@ -76,6 +76,7 @@ static void fill_line(bf_ranking_line *l, const bf_study_spec *spec,
         l->ci_high[q] = f->ci_high[j];
         l->boot_low[q] = f->boot_low[j];
         l->boot_high[q] = f->boot_high[j];
+        l->ml[q] = f->ml_param[j];
         l->n_params++;
     }
 }
@@ -132,9 +133,10 @@ static void slots(FILE *fp, const bf_ranking_line *l, size_t n_par)
         bf__csv_num(fp, l->ci_high[q]);
         bf__csv_num(fp, l->boot_low[q]);
         bf__csv_num(fp, l->boot_high[q]);
+        bf__csv_num(fp, l->ml[q]);
     }
     for (; q < n_par; q++) {
-        fputs(",,,,,,", fp);
+        fputs(",,,,,,,", fp);
     }
 }
 

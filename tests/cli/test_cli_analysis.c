@@ -296,6 +296,9 @@ Test(cli_analysis, rank_writes_every_model_s_parameters_and_intervals)
                 snprintf(col, sizeof col, "p%zu_ci_high", j + 1);
                 cr_assert_float_eq(bf_test_csv_num(r, col),
                                    want[s][m][2][j], 0.0);
+                snprintf(col, sizeof col, "p%zu_ml", j + 1);
+                cr_assert_float_eq(bf_test_csv_num(r, col),
+                                   want[s][m][3][j], 0.0);
             }
         }
     }
