@@ -62,6 +62,14 @@
 #define CI_BETTER 1e-12
 /* The local minima of the nuisance grid refined at a grid fit. */
 #define CI_STARTS 4
+/* Dense data (more than BF__DENSE_K configurations): the bracket is
+ * narrowed by at most CI_NARROW predicted points while its outside end's
+ * -2 ln Lambda exceeds CI_NARROW_Q times the threshold; each predicted
+ * point lies CI_BEYOND (of its distance from the estimate) past the
+ * predicted end, so that it usually becomes the new outside end. */
+#define CI_NARROW 4
+#define CI_NARROW_Q 1.5
+#define CI_BEYOND 0.02
 
 /* The profile of parameter j: the problem with j held at theta. */
 typedef struct {
@@ -79,6 +87,12 @@ typedef struct {
     int status;                  /* first failure, BF_OK if none */
     double last_x;               /* the root finder's last point */
     double last_c;               /* and its criterion */
+    /* dense data: the bracket's ends and their criteria, known from the
+     * outward steps, which the root finder's first two evaluations then
+     * do not repeat */
+    double known_x[2];
+    double known_c[2];
+    size_t n_known;
 } profile_t;
 
 /* The grid fit of the nuisance parameters at sub's fixed values: their
@@ -220,8 +234,15 @@ static double crit_warm(double theta, void *arg)
 {
     profile_t *p = arg;
     int improved;
-    memcpy(p->start, p->anchor, sizeof p->start);
+    size_t i;
     p->last_x = theta;
+    for (i = 0; i < p->n_known; i++) {
+        if (theta == p->known_x[i]) {
+            p->last_c = p->known_c[i];
+            return p->last_c;
+        }
+    }
+    memcpy(p->start, p->anchor, sizeof p->start);
     p->last_c = crit_at(p, theta, 0, &improved);
     return p->last_c;
 }
@@ -262,14 +283,64 @@ static int root(profile_t *p, double in, double out, double *x)
     return status == GSL_SUCCESS ? BF_OK : BF_ENOCONV;
 }
 
+/* The end predicted in the bracket [x, out] (criteria cx <= 0 < co): on a
+ * profile quadratic about theta_hat (Wilks' asymptotics, dense data),
+ * sqrt(n ln(S_p / S_min)) = sqrt(c + chi2) is linear in |theta -
+ * theta_hat|; interpolated linearly there to sqrt(chi2), then moved
+ * CI_BEYOND of its distance from theta_hat outwards. */
+static double predict(const profile_t *p, double theta_hat, double x,
+                      double cx, double out, double co)
+{
+    double gx = sqrt(cx + p->chi2 > 0.0 ? cx + p->chi2 : 0.0);
+    double go = sqrt(co + p->chi2);
+    double e = x + (out - x) * (sqrt(p->chi2) - gx) / (go - gx);
+    return e + CI_BEYOND * (e - theta_hat);
+}
+
+/* Dense data: the bracket [*x, *out] (criteria *cx <= 0 < *co; inside the
+ * nuisance optimum at *x) narrowed by predicted points, each judged by the
+ * thorough criterion as the outward steps are; the root finder then needs
+ * a few points of the warm criterion instead of some twenty (the first
+ * step, 5 % of the estimate, lies far outside a dense table's interval). */
+static int narrow(profile_t *p, double theta_hat, double *x, double *cx,
+                  double *inside, double *out, double *co)
+{
+    size_t i;
+    for (i = 0; i < CI_NARROW && *co + p->chi2 > CI_NARROW_Q * p->chi2;
+         i++) {
+        double t = predict(p, theta_hat, *x, *cx, *out, *co);
+        double c;
+        int improved;
+        if (!((t - *x) * (*out - t) > 0.0)) {
+            break; /* not strictly inside the bracket */
+        }
+        c = crit_at(p, t, 1, &improved);
+        if (p->status != BF_OK) {
+            return p->status;
+        }
+        if (c > 0.0) {
+            *out = t;
+            *co = c;
+        } else {
+            *x = t;
+            *cx = c;
+            memcpy(inside, p->start, BF_MAX_PARAMS * sizeof *inside);
+        }
+    }
+    return BF_OK;
+}
+
 /* One end of the interval: walks from the optimum towards limit in steps
- * that double until the criterion (grid fits) turns positive, finds the
- * root, and re-checks it with a grid fit (see the file comment). *at_limit
+ * that double until the criterion (grid fits) turns positive, on dense data
+ * narrows that bracket (narrow), finds the root, and re-checks it with a
+ * grid fit (see the file comment). *at_limit
  * is set when the interval reaches limit. */
 static int one_side(profile_t *p, double theta_hat, double limit, double d0,
                     double *end, int *at_limit)
 {
     double x = theta_hat;
+    double cx = -p->chi2; /* the criterion at x: S_p = S_min there */
+    double co = 0.0;      /* and at out */
     double d = d0;
     double nuisance[BF_MAX_PARAMS];
     double inside[BF_MAX_PARAMS]; /* the nuisance optimum at x */
@@ -299,6 +370,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
         }
         if (c > 0.0) {
             out = next;
+            co = c;
             break;
         }
         if (next == limit) {
@@ -308,17 +380,32 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
             return BF_OK;
         }
         x = next;
+        cx = c;
         memcpy(inside, p->start, sizeof inside);
         d *= 2.0;
     }
     if (iter == CI_MAXITER) {
         return BF_ENOCONV;
     }
+    if (p->fc->pb->n > BF__DENSE_K) {
+        rc = narrow(p, theta_hat, &x, &cx, inside, &out, &co);
+        if (rc != BF_OK) {
+            return rc;
+        }
+    }
     for (verify = 0; verify < CI_VERIFY; verify++) {
         double c;
         /* the warm starts begin at the bracket's inside point */
         memcpy(p->anchor, inside, sizeof inside);
+        if (p->fc->pb->n > BF__DENSE_K) {
+            p->known_x[0] = x;
+            p->known_c[0] = cx;
+            p->known_x[1] = out;
+            p->known_c[1] = co;
+            p->n_known = 2;
+        }
         rc = root(p, x, out, end);
+        p->n_known = 0;
         if (rc != BF_OK || p->status != BF_OK) {
             break;
         }
@@ -327,6 +414,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
             break; /* the grid fit agrees: the end stands */
         }
         x = *end; /* a lower nuisance minimum: the end lies further out */
+        cx = c;
         memcpy(inside, p->start, sizeof inside);
     }
     memcpy(p->start, nuisance, sizeof nuisance);
