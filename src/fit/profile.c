@@ -66,10 +66,14 @@
  * narrowed by at most CI_NARROW predicted points while its outside end's
  * -2 ln Lambda exceeds CI_NARROW_Q times the threshold; each predicted
  * point lies CI_BEYOND (of its distance from the estimate) past the
- * predicted end, so that it usually becomes the new outside end. */
+ * predicted end, so that it usually becomes the new outside end; not
+ * below CI_NARROW_TOL times the root's tolerance, which the root finder
+ * reaches in a few bisections (data without noise: the criterion jumps
+ * at rounding level, no quadratic predicts it). */
 #define CI_NARROW 4
 #define CI_NARROW_Q 1.5
 #define CI_BEYOND 0.02
+#define CI_NARROW_TOL 100.0
 
 /* The profile of parameter j: the problem with j held at theta. */
 typedef struct {
@@ -306,7 +310,8 @@ static int narrow(profile_t *p, double theta_hat, double *x, double *cx,
                   double *inside, double *out, double *co)
 {
     size_t i;
-    for (i = 0; i < CI_NARROW && *co + p->chi2 > CI_NARROW_Q * p->chi2;
+    for (i = 0; i < CI_NARROW && *co + p->chi2 > CI_NARROW_Q * p->chi2 &&
+                fabs(*out - *x) > CI_NARROW_TOL * CI_TOL;
          i++) {
         double t = predict(p, theta_hat, *x, *cx, *out, *co);
         double c;
