@@ -227,13 +227,14 @@ Test(spec_intervals, f0_without_effect_is_flagged_not_identified)
 /* ==== dense data: the profile's narrowed bracket (profile.c) ============= */
 
 /* theta_i on 30 and theta_s on 40 zeniths below 80 deg, 60 azimuths: K =
- * 72,000, above BF__DENSE_K, so each profile end's bracket is narrowed by
- * predicted points before the root finder. Each end must still be a root
- * of the profile on all the data: LAMBERT+GGX refitted there, the
- * parameter held at the end, by the separable fit itself (its own grid and
- * descent, no profile code), gives n ln(S_p / S_min) = chi2_1(0.95) =
- * 3.841 -- a predicted point taken for the end would be off by about 0.3
- * (CI_BEYOND 2 % of the distance); the root finder's own tolerance is
+ * 72,000, above BF__DENSE_K, so each profile end is searched from a
+ * predicted first step (Gauss-Newton at the estimate) and a bracket
+ * narrowed by prediction (profile.c). Each end must still be a root of
+ * the profile on all the data: LAMBERT+GGX refitted there, the parameter
+ * held at the end, by the separable fit itself (its own grid and descent,
+ * no profile code), gives n ln(S_p / S_min) = chi2_1(0.95) = 3.841 -- a
+ * predicted point taken for the end would be off by about 0.15-0.3
+ * (CI_BEYOND: 2 % of the distance); the root finder's own tolerance is
  * 1e-5, the inner fits' stall n 1e-10 per iteration (7e-6). */
 #define DENSE_TI 30
 #define DENSE_TS 40
