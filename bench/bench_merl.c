@@ -23,6 +23,9 @@
  *   bench_merl [--data DIR] [--numpy SCRIPT] [--quick] [--keep FILE]
  *   bench_merl --glossy FILE   (writes LAMBERT+GGX's table to FILE, no
  *                               more: bench/glossy_peer.sh fits it)
+ *   bench_merl --glossy-noisy FILE  (the same with 5 % log-normal noise
+ *                               per cell, fixed seed: the dense profile
+ *                               intervals' bench, bench/RESULTS.md)
  */
 #include <math.h>
 #include <stdio.h>
@@ -70,10 +73,27 @@ static int centre(size_t i, size_t j, size_t k, double a[4])
     return 1;
 }
 
-/* Writes the FC-E table to path. */
-static void write_table(const char *path, const bf_model_type *model,
-                        const double *param)
+/* A standard normal deviate from the 64-bit xorshift state *x
+ * (Box-Muller; deterministic across platforms' libc). */
+static double gauss(unsigned long long *x)
 {
+    double u[2];
+    int i;
+    for (i = 0; i < 2; i++) {
+        *x ^= *x << 13;
+        *x ^= *x >> 7;
+        *x ^= *x << 17;
+        u[i] = ((double)(*x >> 11) + 0.5) / 9007199254740992.0;
+    }
+    return sqrt(-2.0 * log(u[0])) * cos(2.0 * M_PI * u[1]);
+}
+
+/* Writes model's table to path, each cell's value times exp(noise z),
+ * z standard normal (one per cell, all channels; noise 0: exact). */
+static void write_table(const char *path, const bf_model_type *model,
+                        const double *param, double noise)
+{
+    unsigned long long state = 20261204ull;
     static const int dims[3] = {90, 90, 180};
     double *raw = malloc(3 * (size_t)N_CELLS * sizeof *raw);
     bf_geom *g = malloc(N_CELLS * sizeof *g);
@@ -110,6 +130,9 @@ static void write_table(const char *path, const bf_model_type *model,
         double brdf = model->kind == BF_MODEL_SPECULAR
                           ? f[k]
                           : f[k] / fmax(cos(g[k].theta_i), 1e-300);
+        if (noise > 0.0) {
+            brdf *= exp(noise * gauss(&state));
+        }
         for (j = 0; j < 3; j++) {
             raw[j * N_CELLS + at[k]] = brdf / scale[j];
         }
@@ -354,12 +377,16 @@ int main(int argc, char **argv)
             keep = argv[++a];
         } else if (strcmp(argv[a], "--numpy") == 0 && a + 1 < argc) {
             numpy = argv[++a];
-        } else if (strcmp(argv[a], "--glossy") == 0 && a + 1 < argc) {
+        } else if ((strcmp(argv[a], "--glossy") == 0 ||
+                    strcmp(argv[a], "--glossy-noisy") == 0) &&
+                   a + 1 < argc) {
             /* only the table of a glossy paint, for the dense fit of
              * bench/glossy_peer.sh: LAMBERT+GGX about krylon_blue's fit
              * (rho_d, rho_s, alpha, F0) */
             const double param[4] = {0.14, 1.0, 0.113, 0.0588};
-            write_table(argv[++a], bf_model_find("LAMBERT+GGX"), param);
+            int noisy = strcmp(argv[a], "--glossy-noisy") == 0;
+            write_table(argv[++a], bf_model_find("LAMBERT+GGX"), param,
+                        noisy ? 0.05 : 0.0);
             return 0;
         } else if (strcmp(argv[a], "--quick") == 0) {
             reps_load = 5;
@@ -367,7 +394,8 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr,
                     "usage: bench_merl [--data DIR] [--numpy SCRIPT] "
-                    "[--quick] [--keep FILE] [--glossy FILE]\n");
+                    "[--quick] [--keep FILE] [--glossy FILE] "
+                    "[--glossy-noisy FILE]\n");
             return 2;
         }
     }
@@ -378,7 +406,7 @@ int main(int argc, char **argv)
     close(fd);
     {
         const double param[2] = {0.42, BF_DEFAULT_N};
-        write_table(path, bf_model_fc_e, param);
+        write_table(path, bf_model_fc_e, param, 0.0);
     }
 
     printf("# brdffit %s: MERL tables\n\n", bf_version());

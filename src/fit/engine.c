@@ -273,6 +273,7 @@ void bf__fitctx_free(bf__fitctx *fc)
     if (fc == NULL) {
         return;
     }
+    bf__varpro_free(fc);
     free(fc->work);
     free(fc->curve);
     fc->work = NULL;

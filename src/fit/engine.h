@@ -244,6 +244,14 @@ typedef struct {
      * decrease of the cost below which an iteration ends the run (the
      * profiles' inner fits, profile.c). */
     double stall;
+    /* Levenberg-Marquardt's workspace for lm_n residuals and lm_p
+     * parameters and lm_n square roots of the weights (varpro.c), kept
+     * between its runs: a dense table's is tens of MB, whose allocation
+     * and page faults cost more than a run's iterations. NULL: none. */
+    void *lm;
+    double *lm_sw;
+    size_t lm_n;
+    size_t lm_p;
 } bf__fitctx;
 
 /* Scratch memory for pm. BF_OK or BF_ENOMEM. */
@@ -253,6 +261,8 @@ int bf__fitctx_init(bf__fitctx *fc, const bf__prep *pm);
 int bf__fitctx_init_blocks(bf__fitctx *fc, const bf__prep *pm,
                            size_t blocks);
 void bf__fitctx_free(bf__fitctx *fc);
+/* Frees what the separable fit keeps in fc between runs (varpro.c). */
+void bf__varpro_free(bf__fitctx *fc);
 
 /* Points fc at pb (same model and configurations as fc->pm; borrowed):
  * every change of problem, data or weights goes through here, so that
@@ -341,6 +351,12 @@ void bf__solo_free(bf__solo *s);
  * fc->lin_mask solved exactly, non-negative, into fc->lin (param's values
  * of them are not read). At most two scales. BF_OK, BF_EDOM. */
 int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
+
+/* Dense data: above this many configurations (every cell of a MERL
+ * table, issue 17 item 10) the separable fit picks its basin on a
+ * subsample (varpro.c) and a profile's bracket is narrowed by prediction
+ * (profile.c). */
+#define BF__DENSE_K 65536
 
 /* The fit of a specular model (BF_MODEL_SPECULAR: SPEC §9.3 and the
  * composites of §9.4) under an objective that keeps the scale (SPEC §10):

@@ -422,7 +422,7 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     }
     for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
         double w = sp->sw != NULL ? sp->sw[k % pb->n] : 1.0;
-        gsl_vector_set(f, k, w * (sp->fc->curve[k] - pb->data[k]));
+        f->data[k * f->stride] = w * (sp->fc->curve[k] - pb->data[k]);
     }
     return GSL_SUCCESS;
 }
@@ -465,13 +465,44 @@ static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
     return iter >= LM_ITER && st != GSL_SUCCESS ? GSL_EMAXITER : st;
 }
 
+/* GSL's workspace for n residuals and p parameters (default parameters)
+ * and n doubles for the weights' square roots, kept in fc between runs;
+ * NULL when out of memory. */
+static gsl_multifit_nlinear_workspace *lm_workspace(bf__fitctx *fc,
+                                                    size_t n, size_t p)
+{
+    if (fc->lm == NULL || fc->lm_n != n || fc->lm_p != p) {
+        gsl_multifit_nlinear_parameters prm =
+            gsl_multifit_nlinear_default_parameters();
+        bf__varpro_free(fc);
+        fc->lm = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust,
+                                            &prm, n, p);
+        fc->lm_sw = malloc(n * sizeof *fc->lm_sw);
+        if (fc->lm == NULL || fc->lm_sw == NULL) {
+            bf__varpro_free(fc);
+            return NULL;
+        }
+        fc->lm_n = n;
+        fc->lm_p = p;
+    }
+    return fc->lm;
+}
+
+void bf__varpro_free(bf__fitctx *fc)
+{
+    gsl_multifit_nlinear_free(fc->lm);
+    free(fc->lm_sw);
+    fc->lm = NULL;
+    fc->lm_sw = NULL;
+    fc->lm_n = 0;
+    fc->lm_p = 0;
+}
+
 /* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
  * from x in the search coordinates; x is replaced when it ends lower.
  * *done (when not NULL): 1 when the driver met its tolerances. */
 static int levenberg(space_t *sp, double *x, double *f, int *done)
 {
-    gsl_multifit_nlinear_parameters prm =
-        gsl_multifit_nlinear_default_parameters();
     gsl_multifit_nlinear_workspace *w;
     gsl_multifit_nlinear_fdf fdf;
     gsl_vector *u;
@@ -487,19 +518,13 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     if (sp->m == 0 || n_res <= sp->m) {
         return BF_OK;
     }
-    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n_res,
-                                   sp->m);
+    w = lm_workspace(sp->fc, n_res, sp->m);
     u = gsl_vector_alloc(sp->m);
-    sw = sp->fc->pb->weight != NULL
-             ? malloc(sp->fc->pb->n * sizeof *sw)
-             : NULL;
-    if (w == NULL || u == NULL ||
-        (sw == NULL && sp->fc->pb->weight != NULL)) {
-        gsl_multifit_nlinear_free(w);
+    if (w == NULL || u == NULL) {
         gsl_vector_free(u);
-        free(sw);
         return BF_ENOMEM;
     }
+    sw = sp->fc->pb->weight != NULL ? sp->fc->lm_sw : NULL;
     for (a = 0; sw != NULL && a < sp->fc->pb->n; a++) {
         sw[a] = sqrt(sp->fc->pb->weight[a]); /* once, not per residual */
     }
@@ -537,10 +562,8 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
             *f = fy;
         }
     }
-    gsl_multifit_nlinear_free(w);
     gsl_vector_free(u);
     sp->sw = NULL;
-    free(sw);
     return BF_OK;
 }
 
@@ -910,14 +933,13 @@ int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
 
 /* ==== dense data ========================================================= */
 
-/* Above DENSE_K configurations (every cell of a MERL table, issue 17
+/* Above BF__DENSE_K configurations (every cell of a MERL table, issue 17
  * item 10) the grid and the descents from its minima run on about
  * DENSE_SUB of them, every s-th in index order, and only their best end
  * descends again on all of them: the grid and the starts only pick the
  * basin, which a regular subsample of dense data shows as well, at 1/s
  * of the cost. The grid's reported value is the full data's at its
  * point. */
-#define DENSE_K 65536
 #define DENSE_SUB 16384
 
 /* varpro_ngan of fc's problem on its configurations 0, s, 2s, ... */
@@ -1021,7 +1043,7 @@ static size_t grid_points(bf__fitctx *fc, unsigned lin)
     size_t points = 1;
     size_t a;
     if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
-        pb->n > DENSE_K || fc->blocks > 1) {
+        pb->n > BF__DENSE_K || fc->blocks > 1) {
         return 0;
     }
     space_init(&sp, fc, pb->free_mask & ~lin);
@@ -1095,7 +1117,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
     bf__fitctx_use(fc, &ngan);
     /* dense data on a subsample; a joint fit's channels always whole
      * (the subsample holds one channel) */
-    rc = pb->n > DENSE_K && fc->blocks == 1
+    rc = pb->n > BF__DENSE_K && fc->blocks == 1
              ? varpro_dense(fc, lin, grid, result)
              : varpro_ngan(fc, lin, pre, grid, result);
     bf__fitctx_use(fc, pb);

@@ -225,6 +225,98 @@ Test(spec_intervals, f0_without_effect_is_flagged_not_identified)
     gsl_rng_free(rng);
 }
 
+/* ==== dense data: the profile's narrowed bracket (profile.c) ============= */
+
+/* theta_i on 30 and theta_s on 40 zeniths below 80 deg, 60 azimuths: K =
+ * 72,000, above BF__DENSE_K, so each profile end is searched from a
+ * predicted first step (Gauss-Newton at the estimate) and a bracket
+ * narrowed by prediction (profile.c). Each end must still be a root of
+ * the profile on all the data: LAMBERT+GGX refitted there, the parameter
+ * held at the end, by the separable fit itself (its own grid and descent,
+ * no profile code), gives n ln(S_p / S_min) = chi2_1(0.95) = 3.841 -- a
+ * predicted point taken for the end would be off by about 0.15-0.3
+ * (CI_BEYOND: 2 % of the distance); the root finder's own tolerance is
+ * 1e-5, the inner fits' stall n 1e-10 per iteration (7e-6). */
+#define DENSE_TI 30
+#define DENSE_TS 40
+#define DENSE_PHI 60
+#define DENSE_N (DENSE_TI * DENSE_TS * DENSE_PHI)
+#define DENSE_CRIT_TOL 0.01
+
+Test(spec_intervals, dense_profile_ends_are_roots_on_all_the_data,
+     .timeout = 600)
+{
+    const bf_model_type *t = bf_model_find("LAMBERT+GGX");
+    const double truth[4] = {0.3, 0.8, 0.15, 0.05};
+    const double chi2 = 3.841458820694124; /* chi2_1(0.95) */
+    bf_geom *geom = malloc(DENSE_N * sizeof *geom);
+    double *data = malloc(DENSE_N * sizeof *data);
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    bf__solo so;
+    bf_problem pb;
+    bf_fit_result fit;
+    size_t n = 0;
+    size_t j;
+    int a;
+    int b;
+    int c;
+    cr_assert(geom != NULL && data != NULL && rng != NULL);
+    gsl_rng_set(rng, 17);
+    for (a = 0; a < DENSE_TI; a++) {
+        for (b = 0; b < DENSE_TS; b++) {
+            for (c = 0; c < DENSE_PHI; c++) {
+                geom[n].theta_i = (1.0 + 78.0 * a / (DENSE_TI - 1)) * M_PI /
+                                  180.0;
+                geom[n].phi_i = M_PI;
+                geom[n].theta_s = (1.0 + 78.0 * b / (DENSE_TS - 1)) * M_PI /
+                                  180.0;
+                geom[n].phi_s = (0.5 + 360.0 * c / DENSE_PHI) * M_PI / 180.0;
+                n++;
+            }
+        }
+    }
+    cr_assert_eq(bf_problem_init(&pb, t, truth, DENSE_N, geom, data), BF_OK);
+    pb.objective = BF_OBJ_NGAN;
+    cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
+    cr_assert_eq(bf__curve(&so.pm, truth, so.fc.work, so.fc.curve), BF_OK);
+    for (n = 0; n < DENSE_N; n++) { /* 3% relative noise */
+        data[n] = so.fc.curve[n] * (1.0 + 0.03 * gsl_ran_gaussian(rng, 1.0));
+    }
+    bf__fitctx_use(&so.fc, &pb);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
+    for (j = 0; j < 4; j++) {
+        double end[2];
+        unsigned open = 7;
+        size_t e;
+        cr_assert_eq(bf__profile_ci(&so.fc, &fit, j, LEVEL, &end[0], &end[1],
+                                    &open),
+                     BF_OK, "parameter %zu", j);
+        cr_assert_eq(open, 0u, "parameter %zu [%g, %g]", j, end[0], end[1]);
+        cr_assert(end[0] < fit.param[j] && fit.param[j] < end[1],
+                  "parameter %zu: %g not inside [%g, %g]", j, fit.param[j],
+                  end[0], end[1]);
+        for (e = 0; e < 2; e++) { /* S_p at the end, fitted afresh */
+            bf_problem held = pb;
+            bf_fit_result r;
+            double crit;
+            held.free_mask &= ~(1u << j);
+            held.fixed[j] = end[e];
+            bf__fitctx_use(&so.fc, &held);
+            cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &r), BF_OK);
+            bf__fitctx_use(&so.fc, &pb);
+            crit = (double)DENSE_N * log(r.lse / fit.lse);
+            cr_assert(fabs(crit - chi2) < DENSE_CRIT_TOL,
+                      "parameter %zu's %s end %.10g: n ln(S_p / S_min) = "
+                      "%.6g, not %.6g",
+                      j, e == 0 ? "lower" : "upper", end[e], crit, chi2);
+        }
+    }
+    bf__solo_free(&so);
+    gsl_rng_free(rng);
+    free(geom);
+    free(data);
+}
+
 /* ==== the real file ======================================================== */
 
 /* krylon_blue, LAMBERT+GGX through the CLI with --stats: under --noise
