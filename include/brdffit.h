@@ -1701,10 +1701,10 @@ int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
  * rows, stats)), as the report draws them (figures/profile_sampleN): for
  * each free parameter, in order, n >= 2 values theta evenly over its
  * window -- its interval around the estimate the interval is about
- * (stats[u].ml_param) widened 2.5 times on each side (3 search steps on a
- * side where it has no width), within its search range -- and dev there,
- * n ln(S_p/S_min) of the criterion the interval thresholds
- * (bf_fit_interval_curve under opts's noise model and level, on the
+ * (stats[u].ml_param) widened 2.5 times on each side (3 of the profile's
+ * first steps on a side where it has no width), within its search range
+ * -- and dev there, n ln(S_p/S_min) of the criterion the interval
+ * thresholds (bf_fit_interval_curve under opts's noise model and level, on the
  * target's data as fitted: bf_study_fit_data); thr gets each parameter's
  * threshold. theta, dev: n x (free parameters) doubles, parameter-major
  * (dev NaN where the model is undefined); thr: one per free parameter.

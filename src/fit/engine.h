@@ -504,10 +504,26 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
 /* The sum of pb's weights (n without weights): the n of the profile
  * criteria. */
 double bf__weight_sum(const bf_problem *pb);
-/* bf__profile_ci with the criterion n ln(S_p / S_min) <= thr. */
+/* The default first outward step of parameter j's profile from est: a
+ * grid step (1 % of the range without a grid); a specular model's 5 % of
+ * est (1e-3 of its domain, at most 1e-3, from 0). */
+double bf__profile_step(const bf_problem *pb, size_t j, double est);
+/* The first outward steps of the profiles of fc->pb around best with the
+ * threshold thr, d0[j] for every parameter j: bf__profile_step's; on
+ * dense data (more than BF__DENSE_K configurations) of a specular model
+ * predicted by Gauss-Newton at best, from one Jacobian for all of them.
+ * BF_OK, BF_ENOMEM. */
+int bf__profile_steps(bf__fitctx *fc, const bf_fit_result *best, double thr,
+                      double *d0);
+/* bf__profile_ci with the criterion n ln(S_p / S_min) <= thr and the
+ * first outward step d0 (bf__profile_steps). */
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
-                       double thr, double *low, double *high,
+                       double thr, double d0, double *low, double *high,
                        unsigned *open);
+/* The likelihood intervals' threshold n ln(1 + F_{1,nu}(level) / nu)
+ * (intervals.c, [Bates & Watts §6.1.2]) for n the sum of the weights and
+ * nu = n - k, finite at every nu >= 1. */
+double bf__lik_threshold(double n, double nu, double level);
 /* What bf__intervals thresholds, without the profiles: out gets the
  * estimate the intervals are about (ml), the noise power, sigma, scale
  * and method; *lik the problem whose profile they take (fc->pb under a

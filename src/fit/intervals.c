@@ -31,6 +31,14 @@
 /* The noise power has converged when it moves less than this. */
 #define NOISE_TOL 1e-3
 
+double bf__lik_threshold(double n, double nu, double level)
+{
+    /* F_{1,nu}(level) = t_nu((1 + level) / 2)^2: GSL's F quantile is NaN
+     * for nu above about 2e5 (dense data), its t quantile is not */
+    double t = gsl_cdf_tdist_Pinv(0.5 * (1.0 + level), nu);
+    return n * log1p(t * t / nu);
+}
+
 /* The optimum of fc->pb (the likelihood), refined from start (the
  * objective's optimum: the same basin wherever the objective and the
  * likelihood agree on the data; where they do not, the profile's grid
@@ -78,14 +86,18 @@ static void clear(bf_interval *out, bf_noise noise)
 static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
 {
     const bf_problem *pb = fc->pb;
+    double d0[BF_MAX_PARAMS];
     size_t j;
+    int rc = bf__profile_steps(fc, &out->ml, thr, d0); /* one for all */
+    if (rc != BF_OK) {
+        return rc;
+    }
     for (j = 0; j < pb->type->p; j++) {
         unsigned open = 0;
-        int rc;
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
-        rc = bf__profile_ci_thr(fc, &out->ml, j, thr, &out->low[j],
+        rc = bf__profile_ci_thr(fc, &out->ml, j, thr, d0[j], &out->low[j],
                                 &out->high[j], &open);
         if (rc != BF_OK) {
             out->low[j] = NAN;
@@ -197,7 +209,7 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
         out->scale = 1.0; /* the model's own scales */
         out->sigma = sqrt(rss / nu) / top;
         out->method = BF_CI_PROFILE_LIK;
-        *thr = n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu);
+        *thr = bf__lik_threshold(n_w, nu, level);
     }
     return rc;
 }
@@ -261,7 +273,7 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
         out->noise_power = p;
         out->sigma = sqrt(sigma2) / out->scale; /* of the fitted max */
         out->method = BF_CI_PROFILE_LIK;
-        *thr = n_w * log1p(gsl_cdf_fdist_Pinv(level, 1.0, nu) / nu);
+        *thr = bf__lik_threshold(n_w, nu, level);
     }
     bf__fitctx_use(fc, pb);
     return rc;

@@ -32,7 +32,7 @@
  * first outward step is 5 % of the estimate; on dense data (more than
  * BF__DENSE_K configurations, where that step lies far outside) it is
  * predicted by Gauss-Newton at the estimate, and the bracket found is
- * narrowed by predicted points before the root finder (gauss_newton_step,
+ * narrowed by predicted points before the root finder (gauss_newton_steps,
  * narrow): the same roots, in a third of the inner fits.
  */
 #include <float.h>
@@ -432,33 +432,38 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     return p->status != BF_OK ? p->status : rc;
 }
 
-/* Dense data, a specular model: the first outward step from the
- * Gauss-Newton approximation at the estimate. With J the residuals'
- * finite-difference Jacobian over the free parameters (scales included)
- * and H = J' W J, S(theta) ~ S_min + d' H d, so the profile rises as
- * S_p - S_min ~ d_j^2 / [H^-1]_jj and n ln(S_p / S_min) reaches chi2 at
- * d_j = sqrt(chi2 S_min [H^-1]_jj / n) [1] §9.2; the step is CI_BEYOND
- * past it, and at least the ends' tolerance CI_TOL (data without noise:
- * S_min at rounding level, d_j ~ 1e-15, where the criterion is rounding
- * noise and doubling steps would take some thirty inner fits to leave
- * it). *d0 is left as it is when H is not positive definite or a
- * residual is not defined. */
-static int gauss_newton_step(profile_t *p, const bf_problem *pb,
-                             const double *est, double *d0)
+/* Dense data, a specular model: the first outward steps from the
+ * Gauss-Newton approximation at the estimate, every free parameter's from
+ * one Jacobian. With J the residuals' finite-difference Jacobian over the
+ * free parameters (scales included) and H = J' W J, S(theta) ~ S_min +
+ * d' H d, so the profile of theta_j rises as S_p - S_min ~ d_j^2 /
+ * [H^-1]_jj and n ln(S_p / S_min) reaches thr at d_j = sqrt(thr S_min
+ * [H^-1]_jj / n) [1] §9.2; the step is CI_BEYOND past it, and at least the
+ * ends' tolerance CI_TOL (data without noise: S_min at rounding level,
+ * d_j ~ 1e-15, where the criterion is rounding noise and doubling steps
+ * would take some thirty inner fits to leave it). d0[j] is left as it is
+ * when H is not positive definite or a residual is not defined. fc->pb is
+ * the problem. */
+static int gauss_newton_steps(bf__fitctx *fc, const double *est, double thr,
+                              double *d0)
 {
+    const bf_problem *pb = fc->pb;
     const size_t n = pb->n;
     size_t idx[BF_MAX_PARAMS];
     size_t m = 0;
     size_t a;
     size_t b;
     size_t k;
-    size_t jj = 0;
+    double s_min;
     double *r;
     gsl_matrix *h;
-    int rc = BF_OK;
+    int rc = bf__fit_value(fc, est, &s_min);
+    if (rc != BF_OK) {
+        return BF_OK; /* no prediction: the default steps */
+    }
+    s_min = s_min > DBL_MIN ? s_min : DBL_MIN; /* as the profiles' */
     for (a = 0; a < pb->type->p; a++) {
         if ((pb->free_mask >> a) & 1u) {
-            jj = a == p->j ? m : jj;
             idx[m++] = a;
         }
     }
@@ -478,7 +483,7 @@ static int gauss_newton_step(profile_t *p, const bf_problem *pb,
             x[q] = est[q] + step <= pb->hi[q] ? est[q] + step
                                                : est[q] - step;
         }
-        rc = bf__fit_residuals(p->fc, x, r + a * n);
+        rc = bf__fit_residuals(fc, x, r + a * n);
         for (k = 0; rc == BF_OK && a > 0 && k < n; k++) {
             r[a * n + k] = (r[a * n + k] - r[k]) / (x[idx[a - 1]] -
                                                     est[idx[a - 1]]);
@@ -498,14 +503,42 @@ static int gauss_newton_step(profile_t *p, const bf_problem *pb,
     free(r);
     if (rc == BF_OK && gsl_linalg_cholesky_decomp1(h) == GSL_SUCCESS &&
         gsl_linalg_cholesky_invert(h) == GSL_SUCCESS) {
-        double d = sqrt(p->chi2 * p->s_min * gsl_matrix_get(h, jj, jj) /
-                        p->n_w);
-        if (d > 0.0 && isfinite(d)) {
-            *d0 = fmax((1.0 + CI_BEYOND) * d, CI_TOL);
+        double n_w = bf__weight_sum(pb);
+        for (a = 0; a < m; a++) {
+            double d = sqrt(thr * s_min * gsl_matrix_get(h, a, a) / n_w);
+            if (d > 0.0 && isfinite(d)) {
+                d0[idx[a]] = fmax((1.0 + CI_BEYOND) * d, CI_TOL);
+            }
         }
     }
     gsl_matrix_free(h);
     return rc == BF_ENOMEM ? rc : BF_OK;
+}
+
+double bf__profile_step(const bf_problem *pb, size_t j, double est)
+{
+    const bf_param *pj = &pb->type->param[j];
+    if (pb->type->kind == BF_MODEL_SPECULAR) {
+        /* domains without a grid, the scales' up to 1e6 (SPEC §9.3): 5 %
+         * of the estimate (1e-3 of the domain, at most 1e-3, from 0) */
+        return est > 0.0 ? 0.05 * est : 1e-3 * fmin(pb->hi[j] - pb->lo[j],
+                                                     1.0);
+    }
+    return pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
+}
+
+int bf__profile_steps(bf__fitctx *fc, const bf_fit_result *best, double thr,
+                      double *d0)
+{
+    const bf_problem *pb = fc->pb;
+    size_t j;
+    for (j = 0; j < pb->type->p; j++) {
+        d0[j] = bf__profile_step(pb, j, best->param[j]);
+    }
+    if (pb->n > BF__DENSE_K && pb->type->kind == BF_MODEL_SPECULAR) {
+        return gauss_newton_steps(fc, best->param, thr, d0);
+    }
+    return BF_OK;
 }
 
 double bf__weight_sum(const bf_problem *pb)
@@ -525,19 +558,21 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                    double level, double *low, double *high, unsigned *open)
 {
     /* Wilks: chi2_1(level), 3.841 at 95% [1] §2.6 */
-    return bf__profile_ci_thr(fc, best, j, gsl_cdf_chisq_Pinv(level, 1.0),
-                              low, high, open);
+    double thr = gsl_cdf_chisq_Pinv(level, 1.0);
+    double d0[BF_MAX_PARAMS];
+    int rc = bf__profile_steps(fc, best, thr, d0);
+    return rc != BF_OK ? rc
+                       : bf__profile_ci_thr(fc, best, j, thr, d0[j], low,
+                                            high, open);
 }
 
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
-                       double thr, double *low, double *high,
+                       double thr, double d0, double *low, double *high,
                        unsigned *open)
 {
     const bf_problem *pb = fc->pb;
     profile_t p;
-    const bf_param *pj = &pb->type->param[j];
     double theta_hat = best->param[j];
-    double d0;
     int at_lo = 0;
     int at_hi = 0;
     int rc;
@@ -559,20 +594,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
         }
         bf__fitctx_use(fc, &p.sub);
         fc->stall = CI_STALL;
-        d0 = pj->grid_n > 0 ? pj->grid_step : (pb->hi[j] - pb->lo[j]) / 100.0;
-        if (pb->type->kind == BF_MODEL_SPECULAR) {
-            /* domains without a grid, the scales' up to 1e6 (SPEC §9.3):
-             * a first step of 5 % of the estimate (of 1e-3 of the domain,
-             * at most 1e-3, from 0) */
-            d0 = theta_hat > 0.0 ? 0.05 * theta_hat
-                                 : 1e-3 * fmin(pb->hi[j] - pb->lo[j], 1.0);
-        }
-        if (pb->n > BF__DENSE_K && pb->type->kind == BF_MODEL_SPECULAR) {
-            rc = gauss_newton_step(&p, pb, best->param, &d0);
-        }
-        if (rc == BF_OK) {
-            rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
-        }
+        rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
         if (rc == BF_OK) {
             rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
         }

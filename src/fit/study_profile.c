@@ -19,21 +19,15 @@
 
 /* n values of parameter j of pb evenly over its window into theta: the
  * interval [lo, hi] around est widened PROFILE_SPAN times on each side
- * (3 search steps on a side where it has no width), within pb's range. */
+ * (3 of the profile's first steps on a side where it has no width),
+ * within pb's range. */
 static void window(const bf_problem *pb, size_t j, double est, double lo,
                    double hi, size_t n, double *theta)
 {
-    const bf_param *pj = &pb->type->param[j];
-    double step = pj->grid_n > 0 ? pj->grid_step
-                                 : (pb->hi[j] - pb->lo[j]) / 100.0;
+    double step = bf__profile_step(pb, j, est); /* the profile's own */
     double x0;
     double x1;
     size_t k;
-    if (pb->type->kind == BF_MODEL_SPECULAR) {
-        /* no grid, scales up to 1e6 (SPEC §9.3): a share of the estimate,
-         * as the profile's first step (profile.c) */
-        step = est > 0.0 ? 0.05 * est : 1e-3;
-    }
     x0 = est - PROFILE_SPAN *
                    (isfinite(lo) && est - lo > 0.0 ? est - lo : 3.0 * step);
     x1 = est + PROFILE_SPAN *

@@ -16,6 +16,7 @@
  * [1/1.3, 1.3] (issue 18's contract). */
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <string.h>
@@ -414,4 +415,24 @@ Test(intervals, the_noise_of_too_few_configurations_cannot_be_estimated)
     /* with p fixed one degree of freedom is left: intervals exist */
     cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_RELATIVE, LEVEL, &iv),
                  BF_OK);
+}
+
+/* The likelihood threshold n ln(1 + F_{1,nu}(0.95) / nu): GSL's F
+ * quantile at small nu, and finite on dense data (a MERL table, nu ~ 9e5),
+ * where GSL's F quantile is NaN and every interval would run to its
+ * bounds; it tends to chi2_1's 3.841 (n = nu + 4 here). */
+Test(intervals, the_threshold_is_the_f_form_and_finite_on_dense_data)
+{
+    static const double nus[] = {3.0, 194.0, 1435.0, 71995.0};
+    size_t i;
+    for (i = 0; i < sizeof nus / sizeof nus[0]; i++) {
+        double nu = nus[i];
+        bf_assert_rel(bf__lik_threshold(nu + 4.0, nu, 0.95),
+                      (nu + 4.0) *
+                          log1p(gsl_cdf_fdist_Pinv(0.95, 1.0, nu) / nu),
+                      1e-10);
+    }
+    bf_assert_abs(bf__lik_threshold(909696.0, 909691.0, 0.95),
+                  3.841458820694124, 1e-4);
+    cr_assert(isfinite(bf__lik_threshold(1e9 + 4.0, 1e9, 0.95)));
 }
