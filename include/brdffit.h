@@ -1275,8 +1275,10 @@ typedef enum {
     BF_NOISE_OBJECTIVE
 } bf_noise;
 
-/* Largest noise power p BF_NOISE_AUTO considers. */
-#define BF_NOISE_PMAX 3.0
+/* Largest noise power p BF_NOISE_AUTO considers: relative noise (a variance
+ * growing faster than the squared mean is a lack of fit, not noise;
+ * doc/methods.md §3). */
+#define BF_NOISE_PMAX 2.0
 
 /* "auto", "absolute", "relative", "objective" (static storage), NULL for
  * an unknown value; bf_noise_find: BF_ENOTFOUND for an unknown name. */

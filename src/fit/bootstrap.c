@@ -18,7 +18,7 @@
  * Equations: with theta^ the maximum-likelihood estimate under the noise
  * model (bf_interval.ml, power p), s^ its profiled scale,
  * e_k = D_k - s^ L_k(theta^) the residuals and h_k the leverages of the
- * linearised weighted fit (leverages()),
+ * linearised weighted fit (leverage.c),
  *   u_k   = e_k / (sqrt(v_k) sqrt(1 - h_k)),  u_k -= mean(u)        [1]
  *   D*_bk = s^ L_k(theta^) + sqrt(v_k) u_J,   J uniform on 1..n     [1]
  * replicate b's estimate maximises the likelihood [2] of D*_b at the same
@@ -36,8 +36,6 @@
  * 2 theta^ - [q_hi, q_lo] turns a bound's skew the wrong way (FC-E's n
  * 0.77 of 200).
  */
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_linalg.h>
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_sort.h>
 #include <math.h>
@@ -114,95 +112,6 @@ static void percentiles(const bf_problem *pb, double *e, size_t n_boot,
     }
 }
 
-/* Relative step of the derivatives of the leverages (of the search
- * range): central differences, error O(step^2). */
-#define LEV_STEP 1e-4
-
-/* The leverages h_k = z_k (Z'Z)^-1 z_k' of the maximum-likelihood fit iv
- * [1] §6.3: z_k the derivatives of the mean s L_k(theta) over the free
- * parameters and s, divided by the noise sd sqrt(v_k) (noise.c). fit:
- * L(theta^) unscaled; z: n x (free + 1) scratch; t0, t1: n scratch.
- * Where Z'Z is singular (a parameter without effect) every h_k is the
- * mean leverage q / n. */
-static int leverages(bf__fitctx *fc, const bf_interval *iv, const double *fit,
-                     double top, double *z, double *t0, double *t1,
-                     double *h)
-{
-    const bf_problem *pb = fc->pb;
-    size_t n = pb->n;
-    /* a specular model (SPEC §9): no scale beside its own parameters */
-    int spec = pb->type->kind == BF_MODEL_SPECULAR;
-    size_t q = spec ? 0 : 1;
-    double a[(BF_MAX_PARAMS + 1) * (BF_MAX_PARAMS + 1)] = {0};
-    double x[BF_MAX_PARAMS + 1];
-    gsl_matrix_view av;
-    gsl_vector_view xv;
-    size_t i;
-    size_t j;
-    size_t k;
-    int rc = BF_OK;
-    for (k = 0; k < n; k++) {
-        double l = fit[k] / top;
-        l = l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR;
-        h[k] = pow(l, -0.5 * iv->noise_power); /* 1 / sqrt(v_k) */
-        z[k * (BF_MAX_PARAMS + 1)] = fit[k] * h[k];
-    }
-    for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
-        double p0[BF_MAX_PARAMS];
-        double p1[BF_MAX_PARAMS];
-        double dx = LEV_STEP * (pb->hi[j] - pb->lo[j]);
-        if (spec) { /* domains up to 1e6 wide: relative to the value */
-            dx = LEV_STEP * fmax(fabs(iv->ml.param[j]), dx * LEV_STEP);
-        }
-        if (!((pb->free_mask >> j) & 1u)) {
-            continue;
-        }
-        memcpy(p0, iv->ml.param, sizeof p0);
-        memcpy(p1, iv->ml.param, sizeof p1);
-        p0[j] = p0[j] - dx < pb->lo[j] ? pb->lo[j] : p0[j] - dx;
-        p1[j] = p1[j] + dx > pb->hi[j] ? pb->hi[j] : p1[j] + dx;
-        rc = bf__curve(fc->pm, p0, fc->work, t0);
-        if (rc == BF_OK) {
-            rc = bf__curve(fc->pm, p1, fc->work, t1);
-        }
-        for (k = 0; rc == BF_OK && k < n; k++) {
-            z[k * (BF_MAX_PARAMS + 1) + q] =
-                iv->scale * (t1[k] - t0[k]) / (p1[j] - p0[j]) * h[k];
-        }
-        q++;
-    }
-    if (rc != BF_OK) {
-        return rc;
-    }
-    for (k = 0; k < n; k++) {
-        for (i = 0; i < q; i++) {
-            for (j = 0; j < q; j++) {
-                a[i * q + j] += z[k * (BF_MAX_PARAMS + 1) + i] *
-                                z[k * (BF_MAX_PARAMS + 1) + j];
-            }
-        }
-    }
-    av = gsl_matrix_view_array(a, q, q);
-    xv = gsl_vector_view_array(x, q);
-    if (gsl_linalg_cholesky_decomp1(&av.matrix) != GSL_SUCCESS) {
-        for (k = 0; k < n; k++) {
-            h[k] = (double)q / (double)n;
-        }
-        return BF_OK;
-    }
-    for (k = 0; k < n; k++) {
-        gsl_vector_const_view zk =
-            gsl_vector_const_view_array(z + k * (BF_MAX_PARAMS + 1), q);
-        double hk = 0.0;
-        gsl_linalg_cholesky_solve(&av.matrix, &zk.vector, &xv.vector);
-        for (i = 0; i < q; i++) {
-            hk += zk.vector.data[i] * x[i];
-        }
-        h[k] = hk;
-    }
-    return BF_OK;
-}
-
 int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split)
@@ -260,7 +169,8 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
         rc = bf__curve(fc->pm, iv->ml.param, fc->work, fit);
     }
     if (rc == BF_OK) {
-        rc = leverages(fc, iv, fit, top, z, d, t1, lev);
+        rc = bf__leverages(fc, iv->ml.param, iv->scale, iv->noise_power,
+                           fit, top, z, d, t1, lev);
     }
     for (i = 0; rc == BF_OK && i < n; i++) { /* [1] alg. 6.3 */
         double l = fit[i] / top > BF_LOG_FLOOR ? fit[i] / top : BF_LOG_FLOOR;

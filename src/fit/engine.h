@@ -321,9 +321,16 @@ double bf__lik_value(const bf_problem *pb, const double *curve,
 void bf__lik_residuals(const bf_problem *pb, const double *curve,
                        double *resid);
 /* The noise power p in [0, BF_NOISE_PMAX] that maximises the likelihood
- * at the normalised curve (sigma and s profiled; scratch: n doubles). */
+ * at the normalised curve (sigma and s profiled; scratch: n doubles), its
+ * residuals standardised by the fit's leverages lev (n; NULL: none). */
 double bf__noise_power(const bf_problem *pb, const double *curve,
-                       double *scratch);
+                       const double *lev, double *scratch);
+/* The leverages h (n) of the fit at param (mean scale times the model's
+ * curve fit, n, of maximum top) under fc->pb's weights and noise power p
+ * (leverage.c); z: n (BF_MAX_PARAMS + 1), t0, t1: n doubles of scratch. */
+int bf__leverages(bf__fitctx *fc, const double *param, double scale,
+                  double p, const double *fit, double top, double *z,
+                  double *t0, double *t1, double *h);
 /* The likelihood's scale s* and sigma^2 = RSS_v / dof at the curve
  * (scratch: n doubles). */
 void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,

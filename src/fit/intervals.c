@@ -30,6 +30,9 @@
 #define NOISE_PASSES 4
 /* The noise power has converged when it moves less than this. */
 #define NOISE_TOL 1e-3
+/* Passes of (leverages at the noise power, noise power from the residuals
+ * they standardise). */
+#define LEV_PASSES 3
 
 double bf__lik_threshold(double n, double nu, double level)
 {
@@ -73,12 +76,44 @@ static int ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out)
     return rc;
 }
 
+/* The noise power of the fit at param whose normalised curve is in
+ * fc->curve, under fc->pb's weights: the likelihood's estimate from the
+ * residuals standardised by their leverages (doc/methods.md §3; a narrow
+ * lobe's few configurations are nearly interpolated, and their raw
+ * residuals understate their variance), the leverages taken at the power
+ * they give (LEV_PASSES). buf: (BF_MAX_PARAMS + 4) n doubles. */
+static int adjusted_power(bf__fitctx *fc, const double *param, double *buf,
+                          double *p)
+{
+    size_t n = fc->pb->n;
+    double *z = buf;
+    double *t0 = buf + (BF_MAX_PARAMS + 1) * n;
+    double *h = t0 + 2 * n;
+    size_t pass;
+    int rc = BF_OK;
+    *p = bf__noise_power(fc->pb, fc->curve, NULL, fc->scratch);
+    for (pass = 0; rc == BF_OK && pass < LEV_PASSES; pass++) {
+        double q;
+        /* the columns' scale leaves the leverages as they are: 1 */
+        rc = bf__leverages(fc, param, 1.0, *p, fc->curve, 1.0, z, t0,
+                           t0 + n, h);
+        q = bf__noise_power(fc->pb, fc->curve, h, fc->scratch);
+        if (rc == BF_OK && fabs(q - *p) < NOISE_TOL) {
+            *p = q;
+            break;
+        }
+        *p = rc == BF_OK ? q : *p;
+    }
+    return rc;
+}
+
 /* The noise power at param under lik (fc->pb). */
-static int power_at(bf__fitctx *fc, const double *param, double *p)
+static int power_at(bf__fitctx *fc, const double *param, double *buf,
+                    double *p)
 {
     int rc = bf__curve(fc->pm, param, fc->work, fc->curve);
     if (rc == BF_OK) {
-        *p = bf__noise_power(fc->pb, fc->curve, fc->scratch);
+        rc = adjusted_power(fc, param, buf, p);
     }
     return rc;
 }
@@ -135,7 +170,8 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
 
 /* The noise power at param of a specular model under fc->pb (its data and
  * weights): bf__noise_power on the mean's shape rho_hat / max. */
-static int spec_power(bf__fitctx *fc, const double *param, double *p)
+static int spec_power(bf__fitctx *fc, const double *param, double *buf,
+                      double *p)
 {
     double top = 0.0;
     size_t k;
@@ -149,8 +185,7 @@ static int spec_power(bf__fitctx *fc, const double *param, double *p)
     for (k = 0; k < fc->pb->n; k++) {
         fc->curve[k] /= top;
     }
-    *p = bf__noise_power(fc->pb, fc->curve, fc->scratch);
-    return BF_OK;
+    return adjusted_power(fc, param, buf, p);
 }
 
 /* A specular model's likelihood (the setup of its intervals): its scales
@@ -162,7 +197,8 @@ static int spec_power(bf__fitctx *fc, const double *param, double *p)
  * the model's own). w: n doubles, the weights, borrowed by *lik. */
 static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
                         bf_noise noise, double level, double *w,
-                        bf_interval *out, bf_problem *lik, double *thr)
+                        double *buf, bf_interval *out, bf_problem *lik,
+                        double *thr)
 {
     const bf_problem *pb = fc->pb;
     double n_w = bf__weight_sum(pb);
@@ -182,7 +218,7 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
     lik->weight = w;
     out->ml = *best;
     if (noise == BF_NOISE_AUTO) {
-        rc = spec_power(fc, best->param, &p);
+        rc = spec_power(fc, best->param, buf, &p);
     }
     for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
         double p_new;
@@ -200,7 +236,7 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
         if (noise != BF_NOISE_AUTO) {
             break;
         }
-        rc = spec_power(fc, out->ml.param, &p_new);
+        rc = spec_power(fc, out->ml.param, buf, &p_new);
         if (rc != BF_OK || fabs(p_new - p) < NOISE_TOL ||
             pass + 1 == NOISE_PASSES) {
             break;
@@ -230,9 +266,12 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
     return rc;
 }
 
-int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
-                         bf_noise noise, double level, double *w,
-                         bf_interval *out, bf_problem *lik, double *thr)
+/* bf__interval_problem with buf: (BF_MAX_PARAMS + 4) n doubles of
+ * scratch for the noise power's leverages (adjusted_power). */
+static int interval_problem(bf__fitctx *fc, const bf_fit_result *best,
+                            bf_noise noise, double level, double *w,
+                            double *buf, bf_interval *out, bf_problem *lik,
+                            double *thr)
 {
     const bf_problem *pb = fc->pb;
     double n_w = bf__weight_sum(pb);
@@ -253,7 +292,8 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
         return BF_OK;
     }
     if (pb->type->kind == BF_MODEL_SPECULAR) {
-        return spec_problem(fc, best, noise, level, w, out, lik, thr);
+        return spec_problem(fc, best, noise, level, w, buf, out, lik,
+                            thr);
     }
     if (!(nu >= 1.0)) {
         return BF_EDOM; /* K <= estimated parameters: no noise estimate */
@@ -264,7 +304,7 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
     bf__fitctx_use(fc, lik);
     out->ml = *best;
     if (noise == BF_NOISE_AUTO) {
-        rc = power_at(fc, best->param, &p);
+        rc = power_at(fc, best->param, buf, &p);
     }
     for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
         double p_new;
@@ -273,7 +313,7 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
         if (rc != BF_OK || noise != BF_NOISE_AUTO) {
             break;
         }
-        rc = power_at(fc, out->ml.param, &p_new);
+        rc = power_at(fc, out->ml.param, buf, &p_new);
         if (rc != BF_OK || fabs(p_new - p) < NOISE_TOL ||
             pass + 1 == NOISE_PASSES) {
             break;
@@ -292,6 +332,21 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
         *thr = bf__lik_threshold(n_w, nu, level);
     }
     bf__fitctx_use(fc, pb);
+    return rc;
+}
+
+int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
+                         bf_noise noise, double level, double *w,
+                         bf_interval *out, bf_problem *lik, double *thr)
+{
+    double *buf = noise == BF_NOISE_AUTO
+                      ? malloc((BF_MAX_PARAMS + 4) * fc->pb->n * sizeof *buf)
+                      : NULL;
+    int rc = noise == BF_NOISE_AUTO && buf == NULL
+                 ? BF_ENOMEM
+                 : interval_problem(fc, best, noise, level, w, buf, out, lik,
+                                    thr);
+    free(buf);
     return rc;
 }
 

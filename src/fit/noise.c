@@ -32,6 +32,10 @@
 #define P_STEPS 30
 /* Golden-section tolerance of p. */
 #define P_TOL 1e-4
+/* The largest leverage a residual is standardised by: a configuration the
+ * fit interpolates (h = 1) tells nothing of its variance, and its residual
+ * (zero to rounding) is not blown up by 1 / (1 - h). */
+#define LEV_MAX 0.99
 
 static double weight_of(const bf_problem *pb, size_t k)
 {
@@ -65,10 +69,11 @@ static void variances(const bf_problem *pb, const double *curve, double p,
     *g = sw > 0.0 ? exp(sl / sw) : 1.0;
 }
 
-/* S at noise power p (v: n doubles of scratch; resid: NULL, or v itself
- * to get r_k with S = sum w r_k^2). */
+/* S at noise power p (v: n doubles of scratch; want_resid: v gets r_k
+ * with S = sum w r_k^2), each squared residual divided by 1 - h_k where
+ * lev (the leverages h, or NULL) is given. */
 static double value_at(const bf_problem *pb, const double *curve, double p,
-                       double *v, int want_resid)
+                       const double *lev, double *v, int want_resid)
 {
     double s;
     double g;
@@ -78,6 +83,9 @@ static double value_at(const bf_problem *pb, const double *curve, double p,
     for (k = 0; k < pb->n; k++) {
         double e = s * curve[k] - pb->data[k];
         double q = weight_of(pb, k) * e * e / v[k];
+        if (lev != NULL) {
+            q /= 1.0 - (lev[k] < LEV_MAX ? lev[k] : LEV_MAX);
+        }
         if (want_resid) {
             v[k] = sqrt(g / v[k]) * e;
         }
@@ -89,17 +97,17 @@ static double value_at(const bf_problem *pb, const double *curve, double p,
 double bf__lik_value(const bf_problem *pb, const double *curve,
                      double *scratch)
 {
-    return value_at(pb, curve, pb->noise_power, scratch, 0);
+    return value_at(pb, curve, pb->noise_power, NULL, scratch, 0);
 }
 
 void bf__lik_residuals(const bf_problem *pb, const double *curve,
                        double *resid)
 {
-    value_at(pb, curve, pb->noise_power, resid, 1);
+    value_at(pb, curve, pb->noise_power, NULL, resid, 1);
 }
 
 double bf__noise_power(const bf_problem *pb, const double *curve,
-                       double *scratch)
+                       const double *lev, double *scratch)
 {
     const double phi = 0.5 * (sqrt(5.0) - 1.0);
     double best = HUGE_VAL;
@@ -114,7 +122,7 @@ double bf__noise_power(const bf_problem *pb, const double *curve,
     /* -2 ln L(p) = n ln S(p) + const: minimise S over p [2] §3.2 */
     for (i = 0; i <= P_STEPS; i++) {
         double p = BF_NOISE_PMAX * i / P_STEPS;
-        double f = value_at(pb, curve, p, scratch, 0);
+        double f = value_at(pb, curve, p, lev, scratch, 0);
         if (f < best) {
             best = f;
             p_best = p;
@@ -126,25 +134,25 @@ double bf__noise_power(const bf_problem *pb, const double *curve,
     b = b > BF_NOISE_PMAX ? BF_NOISE_PMAX : b;
     c = b - phi * (b - a);
     d = a + phi * (b - a);
-    fc = value_at(pb, curve, c, scratch, 0);
-    fd = value_at(pb, curve, d, scratch, 0);
+    fc = value_at(pb, curve, c, lev, scratch, 0);
+    fd = value_at(pb, curve, d, lev, scratch, 0);
     while (b - a > P_TOL) {
         if (fc < fd) {
             b = d;
             d = c;
             fd = fc;
             c = b - phi * (b - a);
-            fc = value_at(pb, curve, c, scratch, 0);
+            fc = value_at(pb, curve, c, lev, scratch, 0);
         } else {
             a = c;
             c = d;
             fc = fd;
             d = a + phi * (b - a);
-            fd = value_at(pb, curve, d, scratch, 0);
+            fd = value_at(pb, curve, d, lev, scratch, 0);
         }
     }
     c = 0.5 * (a + b);
-    return value_at(pb, curve, c, scratch, 0) < best ? c : p_best;
+    return value_at(pb, curve, c, lev, scratch, 0) < best ? c : p_best;
 }
 
 void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,

@@ -168,11 +168,13 @@ static void legend(const bf_rep_study *st, char *buf, size_t len)
              level, 100.0 * BF_CALIBRATION_BAND);
 }
 
-/* The pairs whose fitted noise power sits on the bound BF_NOISE_PMAX of
- * its range, as a sentence into buf ("" when none): the data do not
- * bound the noise model there, and the check simulates from that bound
- * (doc/methods.md §3: on the glossy Cornell paints every such check of
- * LAMBERT+GGX was low). At most NOTE_PAIRS pairs named. */
+/* The pairs whose noise power, estimated (--noise auto), sits on the bound
+ * BF_NOISE_PMAX of its range, as a sentence into buf ("" when none): the
+ * data would take a variance growing faster than the squared mean, which
+ * measurement noise does not, and the check simulates from the bound
+ * (doc/methods.md §3: on the two Cornell paints whose gloss lobe rises
+ * above the noise floor at 4 configurations, LAMBERT+GGX's check was low
+ * there). At most NOTE_PAIRS pairs named. */
 #define NOTE_PAIRS 8
 static void bound_note(const bf_rep_study *st, char *buf, size_t len)
 {
@@ -180,7 +182,7 @@ static void bound_note(const bf_rep_study *st, char *buf, size_t len)
     size_t n = 0;
     size_t at = 0;
     buf[0] = '\0';
-    for (i = 0; i < st->cal.n; i++) {
+    for (i = 0; st->analysis.noise == BF_NOISE_AUTO && i < st->cal.n; i++) {
         const bf_study_row *r = &st->rows[st->cal.pair[i]];
         const bf_fit_stats *f = &st->stats[st->cal.pair[i]];
         if (!(f->noise_power >= BF_NOISE_PMAX)) {
@@ -203,10 +205,13 @@ static void bound_note(const bf_rep_study *st, char *buf, size_t len)
     if (at < len) {
         snprintf(buf + at, len - at,
                  ": the fitted noise power is at the bound %.0f of its "
-                 "range, which the data do not determine; the intervals "
-                 "hold it at that estimate and the simulations start from "
-                 "it, and such checks were low on the glossy Cornell "
-                 "paints (doc/methods.md \xc2\xa7" "3).",
+                 "range (relative noise): these data would take a variance "
+                 "growing faster than the squared mean, which measurement "
+                 "noise does not (a lack of fit where the signal is high); "
+                 "the intervals hold p at the bound, and such checks were "
+                 "low on the Cornell paints whose gloss lobe rises above "
+                 "the noise floor at a few configurations (doc/methods.md "
+                 "\xc2\xa7" "3).",
                  BF_NOISE_PMAX);
     }
 }
