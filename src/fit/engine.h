@@ -378,8 +378,11 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
  * a joint fit); BF_ENOMEM. */
 int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
                           size_t folds, double **vals, size_t *points);
-/* bf__varpro_fit of fc->pb with its grid's values vals (one fold's of
- * bf__varpro_fold_grids) instead of computing them: the same result. */
+/* bf__varpro_fit of a fold's problem fc->pb with its grid's values vals
+ * (one fold's of bf__varpro_fold_grids) instead of computing them, its
+ * descents from the grid's minima stopping where they join a minimum an
+ * earlier one reached, at no lower value (varpro.c): the lowest of the
+ * same minima. */
 int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
                         bf_fit_result *result);
 /* The free scales of pb (bf_param.linear): the mask the separable fit

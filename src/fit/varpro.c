@@ -31,7 +31,9 @@
  * best local minima in the same coordinates (ln x where the grid is
  * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
  * the scales re-solved at every trial point; every trial point clamped
- * into the domain. Dense data: the grid and those descents on a regular
+ * into the domain; a cross-validation fold's descents stop where they
+ * join, within half a grid step, a minimum an earlier one reached. Dense
+ * data: the grid and those descents on a regular
  * subsample, one descent on all (doc/methods.md). cuberoot, log1p: the
  * ngan solution starts Nelder-Mead over every free parameter, scales
  * included.
@@ -48,6 +50,10 @@
 
 #define MAX_LIN 2
 #define STARTS 6
+/* A fold's descent merges into a known minimum within MERGE_NEAR of a
+ * grid step of it on every axis (space_t.known_u): in the grid cell
+ * around it, where the grid tells no two minima apart. */
+#define MERGE_NEAR 0.5
 #define NM_ITER 300
 /* Nelder-Mead stops on a plateau: NM_FLAT (m + 1) trial values in a row
  * exactly equal (a lobe whose scale solves to 0 there: its other
@@ -240,6 +246,16 @@ typedef struct {
     const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
     double flat_f;  /* Nelder-Mead's last trial value */
     size_t flat_n;  /* trial values in a row equal to it */
+    /* A fold's fit (bf__varpro_fit_grid): the minima its descents have
+     * reached (search coordinates, values), n_known of them; a descent
+     * that comes within near (per axis) of one at no lower value stops
+     * there, merged (its basin's minimum is known). */
+    int merge;
+    size_t n_known;
+    double known_u[STARTS][BF_MAX_PARAMS];
+    double known_f[STARTS];
+    double near[BF_MAX_PARAMS];
+    int merged;
 } space_t;
 
 /* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
@@ -427,12 +443,38 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     return GSL_SUCCESS;
 }
 
+/* 1 when LM's iterate (cost c) lies within sp->near of a known minimum
+ * whose value is no higher than c (space_t.known_u). */
+static int joins_known(const space_t *sp, gsl_multifit_nlinear_workspace *w)
+{
+    const gsl_vector *u = gsl_multifit_nlinear_position(w);
+    double c;
+    size_t e;
+    gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
+                  gsl_multifit_nlinear_residual(w), &c);
+    for (e = 0; e < sp->n_known; e++) {
+        size_t a;
+        int in = c >= sp->known_f[e];
+        for (a = 0; in && a < sp->m; a++) {
+            /* the iterate's coordinate clamped into the domain */
+            double ua = to_u(sp, a, from_u(sp, a, gsl_vector_get(u, a)));
+            in = fabs(ua - sp->known_u[e][a]) <= sp->near[a];
+        }
+        if (in) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The loop of GSL's gsl_multifit_nlinear_driver (LM_ITER iterations,
  * tolerances LM_TOL; the same iterates and status), and with stall > 0 a
  * stop at the first iteration that lowers the cost by less than stall of
- * it (fitctx.stall). */
-static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
+ * it (fitctx.stall); with sp->merge a stop, sp->merged, at the first
+ * iterate that joins a known minimum (joins_known). */
+static int drive(space_t *sp, gsl_multifit_nlinear_workspace *w, int *info)
 {
+    double stall = sp->fc->stall;
     double c0 = 0.0;
     size_t iter = 0;
     int st;
@@ -456,6 +498,10 @@ static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
                 return GSL_SUCCESS;
             }
             c0 = c;
+        }
+        if (st == GSL_CONTINUE && sp->merge && joins_known(sp, w)) {
+            sp->merged = 1;
+            return GSL_SUCCESS;
         }
     } while (st == GSL_CONTINUE && iter < LM_ITER);
     if (st == GSL_ETOLF || st == GSL_ETOLX || st == GSL_ETOLG) {
@@ -546,7 +592,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        int st = drive(sp->fc->stall, w, &info);
+        int st = drive(sp, w, &info);
         if (done != NULL) {
             *done = st == GSL_SUCCESS;
         }
@@ -765,8 +811,13 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
 {
     double fl;
     int done;
-    int rc = levenberg(sp, x, f, &done);
+    int rc;
+    sp->merged = 0;
+    rc = levenberg(sp, x, f, &done);
     fl = *f;
+    if (sp->merged) {
+        return rc; /* a known minimum's basin */
+    }
     if (rc == BF_OK && on_bound(sp, x) && !(done && bound_kkt(sp, x, *f))) {
         rc = polish(sp, x, step, f);
     }
@@ -776,8 +827,23 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
     return rc;
 }
 
+/* Adds x (value f; not merged) to the minima a fold's descents join. */
+static void add_known(space_t *sp, const double *x, double f)
+{
+    size_t a;
+    if (!sp->merge || sp->merged || sp->n_known == STARTS) {
+        return;
+    }
+    for (a = 0; a < sp->m; a++) {
+        sp->known_u[sp->n_known][a] = to_u(sp, a, x[sp->idx[a]]);
+    }
+    sp->known_f[sp->n_known++] = f;
+}
+
 /* The separable ngan fit on fc (fc->pb's objective ngan); pre (NULL:
- * computed here) the grid's values, as bf__varpro_fold_grids gives them. */
+ * computed here) the grid's values, as bf__varpro_fold_grids gives them:
+ * a fold's fit, whose descents merge into the minima the earlier ones
+ * reached (space_t.known_u). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
                        bf_fit_result *grid, bf_fit_result *result)
 {
@@ -827,6 +893,10 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         grid->n_eval = points;
     }
     grid_steps(&sp, step);
+    sp.merge = pre != NULL;
+    for (a = 0; a < sp.m; a++) {
+        sp.near[a] = MERGE_NEAR * step[a];
+    }
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
@@ -836,6 +906,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);
+        }
+        if (rc == BF_OK) {
+            add_known(&sp, x, f);
         }
     }
     fill_scales(fc, xbest);
