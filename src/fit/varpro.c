@@ -96,55 +96,71 @@ static double sse(const bf_problem *pb, const double *c0, const double *c1,
     return sum;
 }
 
+/* The normal equations of the scales: g11 = <c1, c1>, g12, g22, b1 =
+ * <c1, R - c0>, b2 (weighted). */
+typedef struct {
+    double g11, g12, g22, b1, b2;
+} normal_t;
+
+/* NNLS from the normal equations ne (two columns when two): 1 with t the
+ * unconstrained optimum when it is inside [0, hi]; else 0 with t the two
+ * one-column optima clamped into [0, hi] (one column: always 1). */
+static int nnls_solve(const normal_t *ne, int two, const double *hi,
+                      double *t)
+{
+    t[0] = ne->g11 > 0.0 && ne->b1 > 0.0 ? fmin(ne->b1 / ne->g11, hi[0])
+                                         : 0.0;
+    if (!two) {
+        return 1;
+    }
+    t[1] = ne->g22 > 0.0 && ne->b2 > 0.0 ? fmin(ne->b2 / ne->g22, hi[1])
+                                         : 0.0;
+    {
+        double det = ne->g11 * ne->g22 - ne->g12 * ne->g12;
+        if (det > 1e-14 * ne->g11 * ne->g22 && det > 0.0) {
+            double u1 = (ne->b1 * ne->g22 - ne->b2 * ne->g12) / det;
+            double u2 = (ne->b2 * ne->g11 - ne->b1 * ne->g12) / det;
+            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
+                t[0] = u1; /* both active: the unconstrained optimum */
+                t[1] = u2;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* The NNLS scales of one or two columns c1, c2 for the target R - c0,
  * each clamped into [0, hi]. */
 static void nnls(const bf_problem *pb, const double *c0, const double *c1,
                  const double *c2, const double *hi, double *t)
 {
-    double g11 = 0.0;
-    double g12 = 0.0;
-    double g22 = 0.0;
-    double b1 = 0.0;
-    double b2 = 0.0;
-    double a1;
-    double a2;
+    normal_t ne = {0.0, 0.0, 0.0, 0.0, 0.0};
+    double a[MAX_LIN];
     size_t k;
     for (k = 0; k < pb->n; k++) {
         double w = weight_of(pb, k);
         double r = pb->data[k] - c0[k];
-        g11 += w * c1[k] * c1[k];
-        b1 += w * c1[k] * r;
+        ne.g11 += w * c1[k] * c1[k];
+        ne.b1 += w * c1[k] * r;
         if (c2 != NULL) {
-            g12 += w * c1[k] * c2[k];
-            g22 += w * c2[k] * c2[k];
-            b2 += w * c2[k] * r;
+            ne.g12 += w * c1[k] * c2[k];
+            ne.g22 += w * c2[k] * c2[k];
+            ne.b2 += w * c2[k] * r;
         }
     }
-    a1 = g11 > 0.0 && b1 > 0.0 ? fmin(b1 / g11, hi[0]) : 0.0;
-    if (c2 == NULL) {
-        t[0] = a1;
+    if (nnls_solve(&ne, c2 != NULL, hi, t)) {
         return;
     }
-    a2 = g22 > 0.0 && b2 > 0.0 ? fmin(b2 / g22, hi[1]) : 0.0;
-    {
-        double det = g11 * g22 - g12 * g12;
-        if (det > 1e-14 * g11 * g22 && det > 0.0) {
-            double u1 = (b1 * g22 - b2 * g12) / det;
-            double u2 = (b2 * g11 - b1 * g12) / det;
-            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
-                t[0] = u1; /* both active: the unconstrained optimum */
-                t[1] = u2;
-                return;
-            }
-        }
-    }
+    a[0] = t[0];
+    a[1] = t[1];
     /* one scale at 0: the better of the two one-column optima */
-    if (sse(pb, c0, c1, c2, a1, 0.0) <= sse(pb, c0, c1, c2, 0.0, a2)) {
-        t[0] = a1;
+    if (sse(pb, c0, c1, c2, a[0], 0.0) <= sse(pb, c0, c1, c2, 0.0, a[1])) {
+        t[0] = a[0];
         t[1] = 0.0;
     } else {
         t[0] = 0.0;
-        t[1] = a2;
+        t[1] = a[1];
     }
 }
 
@@ -1126,16 +1142,91 @@ static size_t grid_points(bf__fitctx *fc, unsigned lin)
     return points;
 }
 
-int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
-                          size_t folds, double **vals, size_t *n_points)
+/* S = <R', R'> - 2 t.b + t'G t of the scales t (R' = R - c0) from the
+ * normal equations ne and rr = <R', R'>. */
+static double sse_normal(const normal_t *ne, double rr, const double *t)
+{
+    return rr - 2.0 * (t[0] * ne->b1 + t[1] * ne->b2) +
+           t[0] * t[0] * ne->g11 + 2.0 * t[0] * t[1] * ne->g12 +
+           t[1] * t[1] * ne->g22;
+}
+
+/* Every fold's ngan value at the point whose curve parts fc holds (the
+ * columns c0, c1, c2 of n_l scales, or with none the curve as c0): the
+ * fold's training configurations (weight 1 off the fold, 0 on it) in the
+ * normal equations and S, from one pass's sums per held-out fold (the
+ * training sums: the whole's minus the fold's; mom: 6 (folds + 1)
+ * doubles); into out[f * stride]. */
+static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
+                        const size_t *fold, size_t folds, double *mom,
+                        double *out, size_t stride)
+{
+    const size_t n = fc->pm->n;
+    const double *data = fc->pb->data;
+    const double *c0 = n_l > 0 ? fc->cols : fc->curve;
+    const double *c1 = fc->cols + n;
+    const double *c2 = fc->cols + 2 * n;
+    double *all = mom + 6 * folds;
+    size_t f;
+    size_t k;
+    size_t q;
+    memset(mom, 0, 6 * (folds + 1) * sizeof *mom);
+    for (k = 0; k < n; k++) { /* g11 g12 g22 b1 b2 rr of each fold */
+        double *m = mom + 6 * fold[k];
+        double r = data[k] - c0[k];
+        if (n_l > 0) {
+            m[0] += c1[k] * c1[k];
+            m[3] += c1[k] * r;
+        }
+        if (n_l > 1) {
+            m[1] += c1[k] * c2[k];
+            m[2] += c2[k] * c2[k];
+            m[4] += c2[k] * r;
+        }
+        m[5] += r * r;
+    }
+    for (f = 0; f < folds; f++) {
+        for (q = 0; q < 6; q++) {
+            all[q] += mom[6 * f + q];
+        }
+    }
+    for (f = 0; f < folds; f++) {
+        const double *m = mom + 6 * f;
+        normal_t ne;
+        double t[MAX_LIN] = {0.0, 0.0};
+        double v;
+        ne.g11 = all[0] - m[0];
+        ne.g12 = all[1] - m[1];
+        ne.g22 = all[2] - m[2];
+        ne.b1 = all[3] - m[3];
+        ne.b2 = all[4] - m[4];
+        if (n_l > 0 && !nnls_solve(&ne, n_l > 1, hi, t)) {
+            /* one scale at 0: the better of the two one-column optima */
+            double t1[MAX_LIN] = {t[0], 0.0};
+            double t2[MAX_LIN] = {0.0, t[1]};
+            int first = sse_normal(&ne, all[5] - m[5], t1) <=
+                        sse_normal(&ne, all[5] - m[5], t2);
+            memcpy(t, first ? t1 : t2, sizeof t);
+        }
+        v = fmax(sse_normal(&ne, all[5] - m[5], t), 0.0);
+        out[f * stride] = isfinite(v) ? v : UNDEFINED;
+    }
+}
+
+int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
+                          double **vals, size_t *n_points)
 {
     const bf_problem *pb = fc->pb;
+    bf_problem whole = *pb;
     size_t n_lin;
     unsigned lin = lin_of(pb, &n_lin);
     size_t points = grid_points(fc, lin);
+    double hi[MAX_LIN] = {0.0, 0.0};
+    double *mom;
     space_t sp;
     size_t g;
     size_t f;
+    size_t j;
     *vals = NULL;
     *n_points = points;
     if (points == 0 || n_lin > MAX_LIN ||
@@ -1143,23 +1234,37 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
         return BF_EINVAL;
     }
     *vals = malloc(folds * points * sizeof **vals);
-    if (*vals == NULL) {
+    mom = malloc(6 * (folds + 1) * sizeof *mom);
+    if (*vals == NULL || mom == NULL) {
+        free(*vals);
+        free(mom);
+        *vals = NULL;
         return BF_ENOMEM;
     }
+    for (j = 0, f = 0; j < pb->type->p; j++) { /* the scales' bounds */
+        if ((lin >> j) & 1u) {
+            hi[f++] = pb->hi[j];
+        }
+    }
+    whole.objective = BF_OBJ_NGAN;
+    whole.weight = NULL;
+    bf__fitctx_use(fc, &whole);
     fc->lin_mask = lin;
     space_init(&sp, fc, pb->free_mask & ~lin);
-    /* point by point, every fold's value: the columns evaluated once per
-     * point (bf__varpro_value keeps them), the scales and S per fold */
+    /* point by point: the model once (its columns), every fold's scales
+     * and S from sums over the configurations (fold_values) */
     for (g = 0; g < points; g++) {
         double x[BF_MAX_PARAMS];
         point_of(&sp, g, x);
-        for (f = 0; f < folds; f++) {
-            bf_problem ngan = train[f];
-            ngan.objective = BF_OBJ_NGAN;
-            bf__fitctx_use(fc, &ngan);
-            (*vals)[f * points + g] = value_at(fc, x);
+        if (value_at(fc, x) < UNDEFINED) {
+            fold_values(fc, n_lin, hi, fold, folds, mom, *vals + g, points);
+        } else {
+            for (f = 0; f < folds; f++) {
+                (*vals)[f * points + g] = UNDEFINED;
+            }
         }
     }
+    free(mom);
     bf__fitctx_use(fc, pb);
     fc->lin_mask = 0;
     return BF_OK;

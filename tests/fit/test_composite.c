@@ -352,7 +352,8 @@ Test(composite, cornell_every_fit_at_most_the_peers_e, .timeout = 600)
 
 /* krylon_blue under LAMBERT+LAFORTUNE with compare's 10 folds (seed 1):
  * every fold fitted as bf__cv fits it (bf__varpro_fold_grids' shared grid,
- * bf__varpro_fit_grid's descents that merge into minima reached before)
+ * its values from sums over the configurations; bf__varpro_fit_grid's
+ * descents that merge into minima reached before)
  * ends at least as low as a fresh separable fit of that fold (its own
  * grid, every descent to its end). Its folds' grid minima lead to
  * several basins: in one fold the lowest grid minimum's descent ends at
@@ -408,7 +409,7 @@ Test(composite, cv_folds_fit_at_least_as_well_as_fresh_fits, .timeout = 300)
     }
     cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
     cr_assert_eq(bf__solo_init(&fresh, &pb), BF_OK);
-    cr_assert_eq(bf__varpro_fold_grids(&so.fc, train, FOLDS, &vals, &points),
+    cr_assert_eq(bf__varpro_fold_grids(&so.fc, fold, FOLDS, &vals, &points),
                  BF_OK);
     cr_assert(points > 0);
     for (f = 0; f < FOLDS; f++) {
