@@ -1208,8 +1208,9 @@ static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
                         sse_normal(&ne, all[5] - m[5], t2);
             memcpy(t, first ? t1 : t2, sizeof t);
         }
-        v = fmax(sse_normal(&ne, all[5] - m[5], t), 0.0);
-        out[f * stride] = isfinite(v) ? v : UNDEFINED;
+        v = sse_normal(&ne, all[5] - m[5], t);
+        /* S >= 0; below it only by rounding */
+        out[f * stride] = isfinite(v) ? fmax(v, 0.0) : UNDEFINED;
     }
 }
 
