@@ -1142,13 +1142,32 @@ static size_t grid_points(bf__fitctx *fc, unsigned lin)
     return points;
 }
 
+/* A fold's S from the whole's sums minus the fold's, in the normal
+ * equations' form S = <R', R'> - 2 t.b + t'G t, has the rounding of its
+ * terms taken at the whole's size (Cauchy-Schwarz bounds of the mixed
+ * sums: |<c1, R'>| <= sqrt(<c1, c1> <R', R'>)); below FOLD_DIGITS of that
+ * size the fold's S is summed directly instead (a lobe whose values run
+ * to 1e139 at a grid point: one held-out configuration's term is nearly
+ * the whole's, and the training sums cancel to nothing). */
+#define FOLD_DIGITS 1e-4
+
 /* S = <R', R'> - 2 t.b + t'G t of the scales t (R' = R - c0) from the
- * normal equations ne and rr = <R', R'>. */
-static double sse_normal(const normal_t *ne, double rr, const double *t)
+ * training normal equations ne and rr = <R', R'>; NAN when it is below
+ * FOLD_DIGITS of its terms' size in the whole's sums all (g11 g12 g22 b1
+ * b2 rr). */
+static double sse_normal(const normal_t *ne, double rr, const double *t,
+                         const double *all)
 {
-    return rr - 2.0 * (t[0] * ne->b1 + t[1] * ne->b2) +
-           t[0] * t[0] * ne->g11 + 2.0 * t[0] * t[1] * ne->g12 +
-           t[1] * t[1] * ne->g22;
+    double s1 = sqrt(all[0] * all[5]);
+    double s2 = sqrt(all[2] * all[5]);
+    double size = all[5] + 2.0 * (fabs(t[0]) * s1 + fabs(t[1]) * s2) +
+                  t[0] * t[0] * all[0] +
+                  2.0 * fabs(t[0] * t[1]) * sqrt(all[0] * all[2]) +
+                  t[1] * t[1] * all[2];
+    double v = rr - 2.0 * (t[0] * ne->b1 + t[1] * ne->b2) +
+               t[0] * t[0] * ne->g11 + 2.0 * t[0] * t[1] * ne->g12 +
+               t[1] * t[1] * ne->g22;
+    return v >= FOLD_DIGITS * size && isfinite(size) ? v : NAN;
 }
 
 /* Every fold's ngan value at the point whose curve parts fc holds (the
@@ -1156,7 +1175,7 @@ static double sse_normal(const normal_t *ne, double rr, const double *t)
  * fold's training configurations (weight 1 off the fold, 0 on it) in the
  * normal equations and S, from one pass's sums per held-out fold (the
  * training sums: the whole's minus the fold's; mom: 6 (folds + 1)
- * doubles); into out[f * stride]. */
+ * doubles); into out[f * stride], NAN where S cancels (sse_normal). */
 static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
                         const size_t *fold, size_t folds, double *mom,
                         double *out, size_t stride)
@@ -1200,17 +1219,18 @@ static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
         ne.g22 = all[2] - m[2];
         ne.b1 = all[3] - m[3];
         ne.b2 = all[4] - m[4];
+        v = 0.0;
         if (n_l > 0 && !nnls_solve(&ne, n_l > 1, hi, t)) {
             /* one scale at 0: the better of the two one-column optima */
             double t1[MAX_LIN] = {t[0], 0.0};
             double t2[MAX_LIN] = {0.0, t[1]};
-            int first = sse_normal(&ne, all[5] - m[5], t1) <=
-                        sse_normal(&ne, all[5] - m[5], t2);
-            memcpy(t, first ? t1 : t2, sizeof t);
+            double v1 = sse_normal(&ne, all[5] - m[5], t1, all);
+            double v2 = sse_normal(&ne, all[5] - m[5], t2, all);
+            memcpy(t, v1 <= v2 ? t1 : t2, sizeof t);
+            v = isnan(v1) || isnan(v2) ? NAN : 0.0;
         }
-        v = sse_normal(&ne, all[5] - m[5], t);
-        /* S >= 0; below it only by rounding */
-        out[f * stride] = isfinite(v) ? fmax(v, 0.0) : UNDEFINED;
+        v = isnan(v) ? v : sse_normal(&ne, all[5] - m[5], t, all);
+        out[f * stride] = v;
     }
 }
 
@@ -1224,6 +1244,7 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
     size_t points = grid_points(fc, lin);
     double hi[MAX_LIN] = {0.0, 0.0};
     double *mom;
+    double *w;
     space_t sp;
     size_t g;
     size_t f;
@@ -1235,13 +1256,14 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
         return BF_EINVAL;
     }
     *vals = malloc(folds * points * sizeof **vals);
-    mom = malloc(6 * (folds + 1) * sizeof *mom);
+    mom = malloc((6 * (folds + 1) + pb->n) * sizeof *mom);
     if (*vals == NULL || mom == NULL) {
         free(*vals);
         free(mom);
         *vals = NULL;
         return BF_ENOMEM;
     }
+    w = mom + 6 * (folds + 1);
     for (j = 0, f = 0; j < pb->type->p; j++) { /* the scales' bounds */
         if ((lin >> j) & 1u) {
             hi[f++] = pb->hi[j];
@@ -1253,12 +1275,27 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
     fc->lin_mask = lin;
     space_init(&sp, fc, pb->free_mask & ~lin);
     /* point by point: the model once (its columns), every fold's scales
-     * and S from sums over the configurations (fold_values) */
+     * and S from sums over the configurations (fold_values), summed
+     * directly where they cancel (bf__varpro_value keeps the columns) */
     for (g = 0; g < points; g++) {
         double x[BF_MAX_PARAMS];
         point_of(&sp, g, x);
         if (value_at(fc, x) < UNDEFINED) {
             fold_values(fc, n_lin, hi, fold, folds, mom, *vals + g, points);
+            for (f = 0; f < folds; f++) {
+                bf_problem train = whole;
+                size_t k;
+                if (!isnan((*vals)[f * points + g])) {
+                    continue;
+                }
+                for (k = 0; k < pb->n; k++) {
+                    w[k] = fold[k] == f ? 0.0 : 1.0;
+                }
+                train.weight = w;
+                bf__fitctx_use(fc, &train);
+                (*vals)[f * points + g] = value_at(fc, x);
+                bf__fitctx_use(fc, &whole);
+            }
         } else {
             for (f = 0; f < folds; f++) {
                 (*vals)[f * points + g] = UNDEFINED;
