@@ -76,10 +76,6 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
                            ? malloc((folds + 1) * sizeof *g)
                            : NULL;
     double *resid = malloc(n * sizeof *resid);
-    /* a specular model: every fold's weights and problem, for the grid
-     * the folds share (bf__varpro_fold_grids) */
-    double *fw = spec ? malloc(folds * n * sizeof *fw) : NULL;
-    bf_problem *trains = spec ? malloc(folds * sizeof *trains) : NULL;
     double *vals = NULL;
     size_t points = 0;
     double sum = 0.0;
@@ -88,20 +84,12 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
     int rc = BF_OK;
 
     if (w == NULL || resid == NULL ||
-        (fold_grid == NULL && g == NULL && !spec) ||
-        (spec && (fw == NULL || trains == NULL))) {
+        (fold_grid == NULL && g == NULL && !spec)) {
         rc = BF_ENOMEM;
         goto done;
     }
-    for (f = 0; spec && f < folds; f++) {
-        for (k = 0; k < n; k++) {
-            fw[f * n + k] = fold[k] == f ? 0.0 : 1.0;
-        }
-        trains[f] = *pb;
-        trains[f].weight = fw + f * n;
-    }
     if (spec) {
-        rc = bf__varpro_fold_grids(fc, trains, folds, &vals, &points);
+        rc = bf__varpro_fold_grids(fc, fold, folds, &vals, &points);
         if (rc == BF_EINVAL) {
             rc = BF_OK; /* no grid to share: each fold its own fit */
         }
@@ -143,8 +131,6 @@ done:
     free(w);
     free(g);
     free(resid);
-    free(fw);
-    free(trains);
     free(vals);
     return rc;
 }

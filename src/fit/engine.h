@@ -378,15 +378,20 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
                    bf_fit_result *result);
 /* Cross-validation's folds share the separable fit's grid: the ngan
- * values of its every point under each of the folds problems train (fc->
- * pb's with other weights), the model evaluated once per point, into
- * *vals (folds x *points, malloc; the caller frees it). BF_EINVAL (*vals
- * NULL) where bf__varpro_fit would not use a grid of fc->pb (dense data,
- * a joint fit); BF_ENOMEM. */
-int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
-                          size_t folds, double **vals, size_t *points);
-/* bf__varpro_fit of fc->pb with its grid's values vals (one fold's of
- * bf__varpro_fold_grids) instead of computing them: the same result. */
+ * values of its every point under each fold's training problem (fc->pb's
+ * data, weight 1 off fold f -- fold[k] != f -- and 0 on it), the model
+ * evaluated once per point and every fold's scales and S from sums over
+ * the configurations (to rounding: the normal equations' form of S),
+ * into *vals (folds x *points, malloc; the caller frees it). BF_EINVAL
+ * (*vals NULL) where bf__varpro_fit would not use a grid of fc->pb (dense
+ * data, a joint fit); BF_ENOMEM. */
+int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
+                          double **vals, size_t *points);
+/* bf__varpro_fit of a fold's problem fc->pb with its grid's values vals
+ * (one fold's of bf__varpro_fold_grids) instead of computing them, its
+ * descents from the grid's minima stopping where they join a minimum an
+ * earlier one reached, at no lower value (varpro.c): the lowest of the
+ * same minima. */
 int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
                         bf_fit_result *result);
 /* The free scales of pb (bf_param.linear): the mask the separable fit

@@ -31,7 +31,9 @@
  * best local minima in the same coordinates (ln x where the grid is
  * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
  * the scales re-solved at every trial point; every trial point clamped
- * into the domain. Dense data: the grid and those descents on a regular
+ * into the domain; a cross-validation fold's descents stop where they
+ * join, within half a grid step, a minimum an earlier one reached. Dense
+ * data: the grid and those descents on a regular
  * subsample, one descent on all (doc/methods.md). cuberoot, log1p: the
  * ngan solution starts Nelder-Mead over every free parameter, scales
  * included.
@@ -48,6 +50,10 @@
 
 #define MAX_LIN 2
 #define STARTS 6
+/* A fold's descent merges into a known minimum within MERGE_NEAR of a
+ * grid step of it on every axis (space_t.known_u): in the grid cell
+ * around it, where the grid tells no two minima apart. */
+#define MERGE_NEAR 0.5
 #define NM_ITER 300
 /* Nelder-Mead stops on a plateau: NM_FLAT (m + 1) trial values in a row
  * exactly equal (a lobe whose scale solves to 0 there: its other
@@ -90,55 +96,71 @@ static double sse(const bf_problem *pb, const double *c0, const double *c1,
     return sum;
 }
 
+/* The normal equations of the scales: g11 = <c1, c1>, g12, g22, b1 =
+ * <c1, R - c0>, b2 (weighted). */
+typedef struct {
+    double g11, g12, g22, b1, b2;
+} normal_t;
+
+/* NNLS from the normal equations ne (two columns when two): 1 with t the
+ * unconstrained optimum when it is inside [0, hi]; else 0 with t the two
+ * one-column optima clamped into [0, hi] (one column: always 1). */
+static int nnls_solve(const normal_t *ne, int two, const double *hi,
+                      double *t)
+{
+    t[0] = ne->g11 > 0.0 && ne->b1 > 0.0 ? fmin(ne->b1 / ne->g11, hi[0])
+                                         : 0.0;
+    if (!two) {
+        return 1;
+    }
+    t[1] = ne->g22 > 0.0 && ne->b2 > 0.0 ? fmin(ne->b2 / ne->g22, hi[1])
+                                         : 0.0;
+    {
+        double det = ne->g11 * ne->g22 - ne->g12 * ne->g12;
+        if (det > 1e-14 * ne->g11 * ne->g22 && det > 0.0) {
+            double u1 = (ne->b1 * ne->g22 - ne->b2 * ne->g12) / det;
+            double u2 = (ne->b2 * ne->g11 - ne->b1 * ne->g12) / det;
+            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
+                t[0] = u1; /* both active: the unconstrained optimum */
+                t[1] = u2;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* The NNLS scales of one or two columns c1, c2 for the target R - c0,
  * each clamped into [0, hi]. */
 static void nnls(const bf_problem *pb, const double *c0, const double *c1,
                  const double *c2, const double *hi, double *t)
 {
-    double g11 = 0.0;
-    double g12 = 0.0;
-    double g22 = 0.0;
-    double b1 = 0.0;
-    double b2 = 0.0;
-    double a1;
-    double a2;
+    normal_t ne = {0.0, 0.0, 0.0, 0.0, 0.0};
+    double a[MAX_LIN];
     size_t k;
     for (k = 0; k < pb->n; k++) {
         double w = weight_of(pb, k);
         double r = pb->data[k] - c0[k];
-        g11 += w * c1[k] * c1[k];
-        b1 += w * c1[k] * r;
+        ne.g11 += w * c1[k] * c1[k];
+        ne.b1 += w * c1[k] * r;
         if (c2 != NULL) {
-            g12 += w * c1[k] * c2[k];
-            g22 += w * c2[k] * c2[k];
-            b2 += w * c2[k] * r;
+            ne.g12 += w * c1[k] * c2[k];
+            ne.g22 += w * c2[k] * c2[k];
+            ne.b2 += w * c2[k] * r;
         }
     }
-    a1 = g11 > 0.0 && b1 > 0.0 ? fmin(b1 / g11, hi[0]) : 0.0;
-    if (c2 == NULL) {
-        t[0] = a1;
+    if (nnls_solve(&ne, c2 != NULL, hi, t)) {
         return;
     }
-    a2 = g22 > 0.0 && b2 > 0.0 ? fmin(b2 / g22, hi[1]) : 0.0;
-    {
-        double det = g11 * g22 - g12 * g12;
-        if (det > 1e-14 * g11 * g22 && det > 0.0) {
-            double u1 = (b1 * g22 - b2 * g12) / det;
-            double u2 = (b2 * g11 - b1 * g12) / det;
-            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
-                t[0] = u1; /* both active: the unconstrained optimum */
-                t[1] = u2;
-                return;
-            }
-        }
-    }
+    a[0] = t[0];
+    a[1] = t[1];
     /* one scale at 0: the better of the two one-column optima */
-    if (sse(pb, c0, c1, c2, a1, 0.0) <= sse(pb, c0, c1, c2, 0.0, a2)) {
-        t[0] = a1;
+    if (sse(pb, c0, c1, c2, a[0], 0.0) <= sse(pb, c0, c1, c2, 0.0, a[1])) {
+        t[0] = a[0];
         t[1] = 0.0;
     } else {
         t[0] = 0.0;
-        t[1] = a2;
+        t[1] = a[1];
     }
 }
 
@@ -240,6 +262,16 @@ typedef struct {
     const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
     double flat_f;  /* Nelder-Mead's last trial value */
     size_t flat_n;  /* trial values in a row equal to it */
+    /* A fold's fit (bf__varpro_fit_grid): the minima its descents have
+     * reached (search coordinates, values), n_known of them; a descent
+     * that comes within near (per axis) of one at no lower value stops
+     * there, merged (its basin's minimum is known). */
+    int merge;
+    size_t n_known;
+    double known_u[STARTS][BF_MAX_PARAMS];
+    double known_f[STARTS];
+    double near[BF_MAX_PARAMS];
+    int merged;
 } space_t;
 
 /* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
@@ -427,12 +459,38 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     return GSL_SUCCESS;
 }
 
+/* 1 when LM's iterate (cost c) lies within sp->near of a known minimum
+ * whose value is no higher than c (space_t.known_u). */
+static int joins_known(const space_t *sp, gsl_multifit_nlinear_workspace *w)
+{
+    const gsl_vector *u = gsl_multifit_nlinear_position(w);
+    double c;
+    size_t e;
+    gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
+                  gsl_multifit_nlinear_residual(w), &c);
+    for (e = 0; e < sp->n_known; e++) {
+        size_t a;
+        int in = c >= sp->known_f[e];
+        for (a = 0; in && a < sp->m; a++) {
+            /* the iterate's coordinate clamped into the domain */
+            double ua = to_u(sp, a, from_u(sp, a, gsl_vector_get(u, a)));
+            in = fabs(ua - sp->known_u[e][a]) <= sp->near[a];
+        }
+        if (in) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The loop of GSL's gsl_multifit_nlinear_driver (LM_ITER iterations,
  * tolerances LM_TOL; the same iterates and status), and with stall > 0 a
  * stop at the first iteration that lowers the cost by less than stall of
- * it (fitctx.stall). */
-static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
+ * it (fitctx.stall); with sp->merge a stop, sp->merged, at the first
+ * iterate that joins a known minimum (joins_known). */
+static int drive(space_t *sp, gsl_multifit_nlinear_workspace *w, int *info)
 {
+    double stall = sp->fc->stall;
     double c0 = 0.0;
     size_t iter = 0;
     int st;
@@ -456,6 +514,10 @@ static int drive(double stall, gsl_multifit_nlinear_workspace *w, int *info)
                 return GSL_SUCCESS;
             }
             c0 = c;
+        }
+        if (st == GSL_CONTINUE && sp->merge && joins_known(sp, w)) {
+            sp->merged = 1;
+            return GSL_SUCCESS;
         }
     } while (st == GSL_CONTINUE && iter < LM_ITER);
     if (st == GSL_ETOLF || st == GSL_ETOLX || st == GSL_ETOLG) {
@@ -546,7 +608,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
     fdf.p = sp->m;
     fdf.params = sp;
     if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        int st = drive(sp->fc->stall, w, &info);
+        int st = drive(sp, w, &info);
         if (done != NULL) {
             *done = st == GSL_SUCCESS;
         }
@@ -765,8 +827,13 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
 {
     double fl;
     int done;
-    int rc = levenberg(sp, x, f, &done);
+    int rc;
+    sp->merged = 0;
+    rc = levenberg(sp, x, f, &done);
     fl = *f;
+    if (sp->merged) {
+        return rc; /* a known minimum's basin */
+    }
     if (rc == BF_OK && on_bound(sp, x) && !(done && bound_kkt(sp, x, *f))) {
         rc = polish(sp, x, step, f);
     }
@@ -776,8 +843,23 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
     return rc;
 }
 
+/* Adds x (value f; not merged) to the minima a fold's descents join. */
+static void add_known(space_t *sp, const double *x, double f)
+{
+    size_t a;
+    if (!sp->merge || sp->merged || sp->n_known == STARTS) {
+        return;
+    }
+    for (a = 0; a < sp->m; a++) {
+        sp->known_u[sp->n_known][a] = to_u(sp, a, x[sp->idx[a]]);
+    }
+    sp->known_f[sp->n_known++] = f;
+}
+
 /* The separable ngan fit on fc (fc->pb's objective ngan); pre (NULL:
- * computed here) the grid's values, as bf__varpro_fold_grids gives them. */
+ * computed here) the grid's values, as bf__varpro_fold_grids gives them:
+ * a fold's fit, whose descents merge into the minima the earlier ones
+ * reached (space_t.known_u). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
                        bf_fit_result *grid, bf_fit_result *result)
 {
@@ -827,6 +909,10 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         grid->n_eval = points;
     }
     grid_steps(&sp, step);
+    sp.merge = pre != NULL;
+    for (a = 0; a < sp.m; a++) {
+        sp.near[a] = MERGE_NEAR * step[a];
+    }
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
@@ -836,6 +922,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);
+        }
+        if (rc == BF_OK) {
+            add_known(&sp, x, f);
         }
     }
     fill_scales(fc, xbest);
@@ -1053,16 +1142,113 @@ static size_t grid_points(bf__fitctx *fc, unsigned lin)
     return points;
 }
 
-int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
-                          size_t folds, double **vals, size_t *n_points)
+/* A fold's S from the whole's sums minus the fold's, in the normal
+ * equations' form S = <R', R'> - 2 t.b + t'G t, has the rounding of its
+ * terms taken at the whole's size (Cauchy-Schwarz bounds of the mixed
+ * sums: |<c1, R'>| <= sqrt(<c1, c1> <R', R'>)); below FOLD_DIGITS of that
+ * size the fold's S is summed directly instead (a lobe whose values run
+ * to 1e139 at a grid point: one held-out configuration's term is nearly
+ * the whole's, and the training sums cancel to nothing). */
+#define FOLD_DIGITS 1e-4
+
+/* S = <R', R'> - 2 t.b + t'G t of the scales t (R' = R - c0) from the
+ * training normal equations ne and rr = <R', R'>; NAN when it is below
+ * FOLD_DIGITS of its terms' size in the whole's sums all (g11 g12 g22 b1
+ * b2 rr). */
+static double sse_normal(const normal_t *ne, double rr, const double *t,
+                         const double *all)
+{
+    double s1 = sqrt(all[0] * all[5]);
+    double s2 = sqrt(all[2] * all[5]);
+    double size = all[5] + 2.0 * (fabs(t[0]) * s1 + fabs(t[1]) * s2) +
+                  t[0] * t[0] * all[0] +
+                  2.0 * fabs(t[0] * t[1]) * sqrt(all[0] * all[2]) +
+                  t[1] * t[1] * all[2];
+    double v = rr - 2.0 * (t[0] * ne->b1 + t[1] * ne->b2) +
+               t[0] * t[0] * ne->g11 + 2.0 * t[0] * t[1] * ne->g12 +
+               t[1] * t[1] * ne->g22;
+    return v >= FOLD_DIGITS * size && isfinite(size) ? v : NAN;
+}
+
+/* Every fold's ngan value at the point whose curve parts fc holds (the
+ * columns c0, c1, c2 of n_l scales, or with none the curve as c0): the
+ * fold's training configurations (weight 1 off the fold, 0 on it) in the
+ * normal equations and S, from one pass's sums per held-out fold (the
+ * training sums: the whole's minus the fold's; mom: 6 (folds + 1)
+ * doubles); into out[f * stride], NAN where S cancels (sse_normal). */
+static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
+                        const size_t *fold, size_t folds, double *mom,
+                        double *out, size_t stride)
+{
+    const size_t n = fc->pm->n;
+    const double *data = fc->pb->data;
+    const double *c0 = n_l > 0 ? fc->cols : fc->curve;
+    const double *c1 = fc->cols + n;
+    const double *c2 = fc->cols + 2 * n;
+    double *all = mom + 6 * folds;
+    size_t f;
+    size_t k;
+    size_t q;
+    memset(mom, 0, 6 * (folds + 1) * sizeof *mom);
+    for (k = 0; k < n; k++) { /* g11 g12 g22 b1 b2 rr of each fold */
+        double *m = mom + 6 * fold[k];
+        double r = data[k] - c0[k];
+        if (n_l > 0) {
+            m[0] += c1[k] * c1[k];
+            m[3] += c1[k] * r;
+        }
+        if (n_l > 1) {
+            m[1] += c1[k] * c2[k];
+            m[2] += c2[k] * c2[k];
+            m[4] += c2[k] * r;
+        }
+        m[5] += r * r;
+    }
+    for (f = 0; f < folds; f++) {
+        for (q = 0; q < 6; q++) {
+            all[q] += mom[6 * f + q];
+        }
+    }
+    for (f = 0; f < folds; f++) {
+        const double *m = mom + 6 * f;
+        normal_t ne;
+        double t[MAX_LIN] = {0.0, 0.0};
+        double v;
+        ne.g11 = all[0] - m[0];
+        ne.g12 = all[1] - m[1];
+        ne.g22 = all[2] - m[2];
+        ne.b1 = all[3] - m[3];
+        ne.b2 = all[4] - m[4];
+        v = 0.0;
+        if (n_l > 0 && !nnls_solve(&ne, n_l > 1, hi, t)) {
+            /* one scale at 0: the better of the two one-column optima */
+            double t1[MAX_LIN] = {t[0], 0.0};
+            double t2[MAX_LIN] = {0.0, t[1]};
+            double v1 = sse_normal(&ne, all[5] - m[5], t1, all);
+            double v2 = sse_normal(&ne, all[5] - m[5], t2, all);
+            memcpy(t, v1 <= v2 ? t1 : t2, sizeof t);
+            v = isnan(v1) || isnan(v2) ? NAN : 0.0;
+        }
+        v = isnan(v) ? v : sse_normal(&ne, all[5] - m[5], t, all);
+        out[f * stride] = v;
+    }
+}
+
+int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
+                          double **vals, size_t *n_points)
 {
     const bf_problem *pb = fc->pb;
+    bf_problem whole = *pb;
     size_t n_lin;
     unsigned lin = lin_of(pb, &n_lin);
     size_t points = grid_points(fc, lin);
+    double hi[MAX_LIN] = {0.0, 0.0};
+    double *mom;
+    double *w;
     space_t sp;
     size_t g;
     size_t f;
+    size_t j;
     *vals = NULL;
     *n_points = points;
     if (points == 0 || n_lin > MAX_LIN ||
@@ -1070,23 +1256,53 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const bf_problem *train,
         return BF_EINVAL;
     }
     *vals = malloc(folds * points * sizeof **vals);
-    if (*vals == NULL) {
+    mom = malloc((6 * (folds + 1) + pb->n) * sizeof *mom);
+    if (*vals == NULL || mom == NULL) {
+        free(*vals);
+        free(mom);
+        *vals = NULL;
         return BF_ENOMEM;
     }
+    w = mom + 6 * (folds + 1);
+    for (j = 0, f = 0; j < pb->type->p; j++) { /* the scales' bounds */
+        if ((lin >> j) & 1u) {
+            hi[f++] = pb->hi[j];
+        }
+    }
+    whole.objective = BF_OBJ_NGAN;
+    whole.weight = NULL;
+    bf__fitctx_use(fc, &whole);
     fc->lin_mask = lin;
     space_init(&sp, fc, pb->free_mask & ~lin);
-    /* point by point, every fold's value: the columns evaluated once per
-     * point (bf__varpro_value keeps them), the scales and S per fold */
+    /* point by point: the model once (its columns), every fold's scales
+     * and S from sums over the configurations (fold_values), summed
+     * directly where they cancel (bf__varpro_value keeps the columns) */
     for (g = 0; g < points; g++) {
         double x[BF_MAX_PARAMS];
         point_of(&sp, g, x);
-        for (f = 0; f < folds; f++) {
-            bf_problem ngan = train[f];
-            ngan.objective = BF_OBJ_NGAN;
-            bf__fitctx_use(fc, &ngan);
-            (*vals)[f * points + g] = value_at(fc, x);
+        if (value_at(fc, x) < UNDEFINED) {
+            fold_values(fc, n_lin, hi, fold, folds, mom, *vals + g, points);
+            for (f = 0; f < folds; f++) {
+                bf_problem train = whole;
+                size_t k;
+                if (!isnan((*vals)[f * points + g])) {
+                    continue;
+                }
+                for (k = 0; k < pb->n; k++) {
+                    w[k] = fold[k] == f ? 0.0 : 1.0;
+                }
+                train.weight = w;
+                bf__fitctx_use(fc, &train);
+                (*vals)[f * points + g] = value_at(fc, x);
+                bf__fitctx_use(fc, &whole);
+            }
+        } else {
+            for (f = 0; f < folds; f++) {
+                (*vals)[f * points + g] = UNDEFINED;
+            }
         }
     }
+    free(mom);
     bf__fitctx_use(fc, pb);
     fc->lin_mask = 0;
     return BF_OK;
