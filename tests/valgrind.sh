@@ -71,7 +71,11 @@
 # (the Cornell one 20 fits on 1439 configurations, about 25 s of CPU
 # plain); the composites' values and the CLI's checks of their names run
 # under valgrind in composite's other tests; its dense recovery (72,000
-# configurations through the CLI) likewise.
+# configurations through the CLI) likewise, and its check of the folds'
+# fits (cv_folds_fit_at_least...: 15 folds of LAMBERT+LAFORTUNE on 1439
+# configurations, each fitted twice, about 4 s of CPU plain) -- the folds'
+# grid and fits run under valgrind in every compare of a composite with
+# its default ten folds in composite's other tests.
 # specular_options' recovery and separable-height tests fit six composites
 # and lobes through the CLI (about 1.1 s of CPU plain); the same paths run
 # under valgrind in its fits.csv, description and bad-option tests.
@@ -182,6 +186,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     specular_options/recovery_ngan_through_csv_and_cli
     specular_options/separable_and_height_fits_differ
     composite/dense_recovery_through_the_subsample
+    composite/cv_folds_fit_at_least_as_well_as_fresh_fits
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     grid/round_trip_recovers_every_model_exactly_at_grid_values
