@@ -92,17 +92,20 @@ static int adjusted_power(bf__fitctx *fc, const double *param, double *buf,
     size_t pass;
     int rc = BF_OK;
     *p = bf__noise_power(fc->pb, fc->curve, NULL, fc->scratch);
-    for (pass = 0; rc == BF_OK && pass < LEV_PASSES; pass++) {
+    for (pass = 0; pass < LEV_PASSES; pass++) {
         double q;
         /* the columns' scale leaves the leverages as they are: 1 */
         rc = bf__leverages(fc, param, 1.0, *p, fc->curve, 1.0, z, t0,
                            t0 + n, h);
+        if (rc != BF_OK) {
+            break;
+        }
         q = bf__noise_power(fc->pb, fc->curve, h, fc->scratch);
-        if (rc == BF_OK && fabs(q - *p) < NOISE_TOL) {
+        if (fabs(q - *p) < NOISE_TOL) {
             *p = q;
             break;
         }
-        *p = rc == BF_OK ? q : *p;
+        *p = q;
     }
     return rc;
 }

@@ -1219,17 +1219,16 @@ static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
         ne.g22 = all[2] - m[2];
         ne.b1 = all[3] - m[3];
         ne.b2 = all[4] - m[4];
-        v = 0.0;
         if (n_l > 0 && !nnls_solve(&ne, n_l > 1, hi, t)) {
             /* one scale at 0: the better of the two one-column optima */
             double t1[MAX_LIN] = {t[0], 0.0};
             double t2[MAX_LIN] = {0.0, t[1]};
             double v1 = sse_normal(&ne, all[5] - m[5], t1, all);
             double v2 = sse_normal(&ne, all[5] - m[5], t2, all);
-            memcpy(t, v1 <= v2 ? t1 : t2, sizeof t);
-            v = isnan(v1) || isnan(v2) ? NAN : 0.0;
+            v = isnan(v1) || isnan(v2) ? NAN : fmin(v1, v2);
+        } else {
+            v = sse_normal(&ne, all[5] - m[5], t, all);
         }
-        v = isnan(v) ? v : sse_normal(&ne, all[5] - m[5], t, all);
         out[f * stride] = v;
     }
 }
