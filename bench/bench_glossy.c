@@ -1,9 +1,11 @@
 /* bench_glossy.c: issue 17 item 11 -- the ten specular models (SPEC §9.3)
  * as LAMBERT+X (AS alone) on the five Cornell paints under --fit exact
  * --objective ngan, the whole `brdffit compare` (fits, profile intervals,
- * cross-validation), CPU and wall seconds, measured in one run beside the
- * scipy peer (../shared/peers/glossy_peer.py, 24-start least_squares of
- * LAMBERT+GGX, +BECKMANN, +WARD, +WARD-DUER) on the same files.
+ * cross-validation) and the fits alone (--folds 0 --intervals none), CPU
+ * and wall seconds, measured in one run beside the scipy peer
+ * (../shared/peers/glossy_peer.py, 24-start least_squares of LAMBERT+GGX,
+ * +BECKMANN, +WARD, +WARD-DUER) on the same files, and per file the
+ * peer's CPU over brdffit's fits of the same models (issue 17: >= 10x).
  *
  *   bench_glossy [--cli BRDFFIT] [--data DIR] [--peer SCRIPT]
  *                [--python PY] [--threads N]
@@ -123,10 +125,11 @@ static size_t brdf_files(const char *dir, char **files)
 }
 
 /* `brdffit compare --models MODELS --fit exact --objective ngan` on the
- * files, with folds and threads, its output in out. */
-static run_t compare(const char *cli, const char *models, char **files,
-                     size_t n, const char *folds, const char *threads,
-                     const char *out)
+ * files, with folds and threads, without intervals when bare (--intervals
+ * none: the fits alone, what the peer computes), its output in out. */
+static run_t compare_as(const char *cli, const char *models, char **files,
+                        size_t n, const char *folds, const char *threads,
+                        int bare, const char *out)
 {
     args_t c;
     size_t i;
@@ -146,6 +149,10 @@ static run_t compare(const char *cli, const char *models, char **files,
         arg(&c, "--folds");
         arg(&c, folds);
     }
+    if (bare) {
+        arg(&c, "--intervals");
+        arg(&c, "none");
+    }
     arg(&c, "--quiet");
     arg(&c, "--out");
     arg(&c, out);
@@ -153,6 +160,13 @@ static run_t compare(const char *cli, const char *models, char **files,
         arg(&c, files[i]);
     }
     return run(&c);
+}
+
+static run_t compare(const char *cli, const char *models, char **files,
+                     size_t n, const char *folds, const char *threads,
+                     const char *out)
+{
+    return compare_as(cli, models, files, n, folds, threads, 0, out);
 }
 
 /* Runs `py a1 a2`. */
@@ -182,6 +196,8 @@ int main(int argc, char **argv)
     run_t whole;
     run_t nocv;
     run_t ours;
+    run_t bare;
+    run_t ours_bare;
     double peer_cpu = 0.0;
     double peer_wall = 0.0;
     int peer_ok;
@@ -214,7 +230,9 @@ int main(int argc, char **argv)
     whole = compare(cli, TEN, files, n, NULL, threads, out);
     nocv = compare(cli, TEN, files, n, "0", threads, out);
     ours = compare(cli, PEER_MODELS, files, n, "0", threads, out);
-    if (!whole.ok || !nocv.ok || !ours.ok) {
+    bare = compare_as(cli, TEN, files, n, "0", threads, 1, out);
+    ours_bare = compare_as(cli, PEER_MODELS, files, n, "0", threads, 1, out);
+    if (!whole.ok || !nocv.ok || !ours.ok || !bare.ok || !ours_bare.ok) {
         fprintf(stderr, "bench_glossy: %s compare failed\n", cli);
         return 1;
     }
@@ -226,22 +244,41 @@ int main(int argc, char **argv)
            whole.cpu, whole.wall);
     printf("| ten models, --folds 0 (fits + intervals) | %.2f | %.2f |\n",
            nocv.cpu, nocv.wall);
-    printf("| the peer's five models, --folds 0 | %.2f | %.2f |\n\n",
+    printf("| the peer's five models, --folds 0 | %.2f | %.2f |\n",
            ours.cpu, ours.wall);
+    printf("| ten models, --folds 0 --intervals none (the fits) | %.2f | "
+           "%.2f |\n", bare.cpu, bare.wall);
+    printf("| the peer's five models, --folds 0 --intervals none | %.2f | "
+           "%.2f |\n\n", ours_bare.cpu, ours_bare.wall);
     peer_ok = access(py, X_OK) == 0 &&
               python(py, "-c", "import scipy.optimize").ok;
+    if (peer_ok) {
+        printf("Per file, the peer's five models, one thread (brdffit: "
+               "--folds 0 --intervals none, the fits the peer computes):"
+               "\n\n| file | peer CPU s | brdffit CPU s | peer / brdffit "
+               "|\n|---|---:|---:|---:|\n");
+    }
     for (i = 0; peer_ok && i < n; i++) {
         run_t p = python(py, peer, files[i]);
-        peer_ok = p.ok;
+        run_t b = compare_as(cli, PEER_MODELS, &files[i], 1, "0", "1", 1,
+                             out);
+        const char *base = strrchr(files[i], '/');
+        peer_ok = p.ok && b.ok;
         peer_cpu += p.cpu;
         peer_wall += p.wall;
+        printf("| %s | %.2f | %.2f | %.1fx |\n",
+               base != NULL ? base + 1 : files[i], p.cpu, b.cpu,
+               p.cpu / b.cpu);
     }
     if (peer_ok) {
+        printf("\n");
         printf("The peer (%s, its five models on every file, one process "
                "per file): %.2f s CPU, %.2f s wall; its CPU over "
                "brdffit's on the same five models: %.1fx (with the "
-               "intervals brdffit computes and the peer does not).\n",
-               peer, peer_cpu, peer_wall, peer_cpu / ours.cpu);
+               "intervals brdffit computes and the peer does not), "
+               "%.1fx over its fits alone (--intervals none).\n",
+               peer, peer_cpu, peer_wall, peer_cpu / ours.cpu,
+               peer_cpu / ours_bare.cpu);
     } else {
         printf("The peer was not run (%s without scipy, or it failed).\n",
                py);

@@ -116,7 +116,11 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --noise MODEL     the intervals' noise model: auto (power law var ~\n"
 "                    mu^p, p from the residuals; default), absolute,\n"
 "                    relative, or objective (the objective's own profile,\n"
-"                    the intervals before issue 18); doc/methods.md §3\n",
+"                    the intervals before issue 18); doc/methods.md §3\n"
+"  --intervals I     profile (the default: 95%% profile intervals under the\n"
+"                    noise model) or none (no interval and no noise model:\n"
+"                    the fits, AIC, BIC and CV only, in a fraction of the\n"
+"                    time; compare and rank, not with --bootstrap)\n",
             BF_DEFAULT_N, d->exact ? "exact" : "paper");
     if (d->stats) {
         fputs(
@@ -168,7 +172,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
            O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
            O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE, O_NOISE, O_FRESNEL,
-           O_SMITH };
+           O_SMITH, O_INTERVALS };
     static const struct option common[] = {
         {"data", required_argument, NULL, O_DATA},
         {"brdf", required_argument, NULL, O_BRDF},
@@ -191,6 +195,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         {"smith", required_argument, NULL, O_SMITH},
         {"range", required_argument, NULL, O_RANGE},
         {"noise", required_argument, NULL, O_NOISE},
+        {"intervals", required_argument, NULL, O_INTERVALS},
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
         {"folds", required_argument, NULL, O_FOLDS},
         {"seed", required_argument, NULL, O_SEED},
@@ -332,6 +337,15 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
                                           "auto, absolute, relative or objective",
                                           optarg);
             }
+            break;
+        case O_INTERVALS:
+            if (strcmp(optarg, "profile") != 0 &&
+                strcmp(optarg, "none") != 0) {
+                return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                         "--intervals: '%s' is not profile "
+                                         "or none", optarg);
+            }
+            o->no_intervals = strcmp(optarg, "none") == 0;
             break;
         case O_RANGE: {
             char name[32];

@@ -1474,11 +1474,17 @@ typedef struct {
     bf_progress_fn progress; /* NULL: none */
     void *progress_ctx;
     bf_noise noise;         /* the intervals' noise model (BF_NOISE_AUTO) */
+    int no_intervals;       /* 1: no interval -- neither the profile
+                               intervals nor the noise model's fit they are
+                               about (ci_low, ci_high, ml_param,
+                               noise_power stay NaN, ci_method
+                               BF_CI_NONE); the fits, AIC, BIC and CV as
+                               always. n_boot must then be 0. */
 } bf_analysis_opts;
 
 /* Fills o with the defaults of the analysis (the CLI's): objective max
  * (the paper's), exact 0, level 0.95, no bootstrap, 10 folds, seed 1, no
- * progress callback. */
+ * progress callback, the intervals computed (no_intervals 0). */
 void bf_analysis_opts_init(bf_analysis_opts *o);
 
 /* What the analysis of one pair says about its fit (bf_fit_stats.flags). */
@@ -2081,6 +2087,11 @@ typedef struct {
     size_t folds;          /* cross-validation folds (0: none) */
     unsigned long seed;
     int stats;             /* the analysis with the paper's fit */
+    int no_intervals;      /* the analysis without intervals
+                              (bf_analysis_opts.no_intervals): compare and
+                              rank only -- not with n_boot, calibrate, nor
+                              a report's analysis, whose figures draw
+                              them */
     size_t calibrate;      /* simulations per (sample, model) pair that
                               check the intervals (bf_study_calibrate_all,
                               calibrate.csv; runs the analysis); 0: none,

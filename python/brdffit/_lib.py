@@ -265,6 +265,7 @@ typedef struct {
     bf_progress_fn progress;
     void *progress_ctx;
     bf_noise noise;
+    int no_intervals;
 } bf_analysis_opts;
 void bf_analysis_opts_init(bf_analysis_opts *o);
 enum { BF_STAT_NOCONV = 1, BF_STAT_REDUCED = 2, BF_STAT_CLAMPED = 4,
@@ -530,6 +531,7 @@ typedef struct {
     size_t folds;
     unsigned long seed;
     int stats;
+    int no_intervals;
     size_t calibrate;
     int threads;
     unsigned formats;

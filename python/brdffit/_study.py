@@ -358,14 +358,23 @@ class Spec:
         return rows
 
     def analysis_opts(self, objective, exact, level, bootstrap, folds,
-                      seed, noise="auto"):
+                      seed, noise="auto", intervals=True):
         """A bf_analysis_opts: the library's defaults
-        (bf_analysis_opts_init), with the arguments that are not None."""
+        (bf_analysis_opts_init), with the arguments that are not None;
+        intervals=False: none (no_intervals, the CLI's --intervals none)."""
         opts = ffi.new("bf_analysis_opts *")
         lib.bf_analysis_opts_init(opts)
         opts.objective = _objective(objective)
         opts.noise = _noise(noise)
         opts.exact = 1 if exact else 0
+        if intervals not in (True, False):
+            raise InvalidArgumentError("intervals must be True or False, "
+                                       "got %r" % (intervals,), 1)
+        opts.no_intervals = 0 if intervals else 1
+        if not intervals and bootstrap:
+            raise InvalidArgumentError("intervals=False: a bootstrap "
+                                       "interval is an interval too; drop "
+                                       "bootstrap", 1)
         if level is not None:
             opts.level = float(level)
         if bootstrap is not None:
@@ -489,7 +498,7 @@ class Study:
                  folds=None, seed=None, level=None, n=None, n_file=None,
                  on_params=None, exclude=(), max_theta=None, cone=None,
                  ranges=None, threads=1, progress=None, context="study",
-                 noise="auto", fresnel=None, smith=None):
+                 noise="auto", fresnel=None, smith=None, intervals=True):
         if fit not in FITS:
             raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
                                        "%r" % (fit,), 1)
@@ -516,7 +525,7 @@ class Study:
         if exact or stats or bootstrap:
             self.opts = self.spec.analysis_opts(objective, exact, level,
                                                 bootstrap, folds, seed,
-                                                noise)
+                                                noise, intervals)
             self.stats = self.spec.analyse(self.rows, self.opts, progress,
                                            context)
         self.missing = self.spec.check_rows(self.rows, context)

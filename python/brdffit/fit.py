@@ -146,7 +146,8 @@ class FitResult:
         self.scales = self.per_channel = None
         self._study = study  # what profiles() asks the library about
         if stats is not None:
-            self._stats(m, stats[t], mask, int(study.opts.n_boot) > 0)
+            self._stats(m, stats[t], mask, int(study.opts.n_boot) > 0,
+                        not int(study.opts.no_intervals))
         if whole and spec.spec.targets[t].joint:
             self._joint(study)
 
@@ -176,7 +177,7 @@ class FitResult:
         for a in (self.measured, self.predicted):
             a.flags.writeable = False
 
-    def _stats(self, m, st, mask, boot):
+    def _stats(self, m, st, mask, boot, shown):
         self.grid = _by_name(m, st.grid.param, mask)
         self.grid_objective = float(st.grid.lse)
         self.refined = _by_name(m, st.refined.param, mask)
@@ -187,13 +188,15 @@ class FitResult:
         for j, q in enumerate(m.parameters):
             if not mask & (1 << j):
                 continue
+            if boot:
+                self.bootstrap[q.name] = (float(st.boot_low[j]),
+                                          float(st.boot_high[j]))
+            if not shown:
+                continue
             self.intervals[q.name] = (float(st.ci_low[j]),
                                       float(st.ci_high[j]))
             bits = (int(st.ci_open) >> (2 * j)) & 3
             self.intervals_open[q.name] = (bool(bits & 1), bool(bits & 2))
-            if boot:
-                self.bootstrap[q.name] = (float(st.boot_low[j]),
-                                          float(st.boot_high[j]))
         if lib.bf_objective_keeps_scale(st.objective):
             self.rho_d = float(st.scale)  # SPEC §9.4: the free scale
         self.ci_method = ffi.string(lib.bf_ci_method_name(
@@ -201,7 +204,7 @@ class FitResult:
         self.bootstrap_method = ffi.string(lib.bf_ci_method_name(
             int(st.boot_method))).decode()
         self.noise_power = float(st.noise_power)
-        self.ml_estimate = _by_name(m, st.ml_param, mask)
+        self.ml_estimate = _by_name(m, st.ml_param, mask) if shown else {}
         self.n_params = int(st.k)
         self.aic = float(st.aic)
         self.bic = float(st.bic)
@@ -238,6 +241,9 @@ class FitResult:
         if self.intervals is None:
             raise InvalidArgumentError("profiles: the fit has no analysis "
                                        "(stats=False)", 1)
+        if int(self._study.opts.no_intervals):
+            raise InvalidArgumentError("profiles: the fit has no interval "
+                                       "(intervals=False)", 1)
         if self.per_channel is not None:
             raise InvalidArgumentError("profiles: a joint fit (SPEC 9.4) "
                                        "has no profile interval", 1)
@@ -280,7 +286,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective="max", stats=True, bootstrap=0, folds=None, seed=None,
         level=None, n=None, n_file=None, on_params=None, exclude=(),
         max_theta=None, cone=None, ranges=None, threads=1, progress=None,
-        noise="auto", fresnel=None, smith=None):
+        noise="auto", fresnel=None, smith=None, intervals=True):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -332,6 +338,11 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             (var ~ mu^p, p estimated; default), "absolute", "relative", or
             "objective" (the objective's own profile, the intervals before
             issue 18).
+        intervals: True (default) for the profile intervals under the
+            noise model; False for none (the CLI's --intervals none):
+            intervals, intervals_open and ml_estimate empty, noise_power
+            NaN -- the fit, AIC, BIC and CV in a fraction of the time (not
+            with bootstrap).
         fresnel, smith: the specular models' options (SPEC §9.2, the CLI's
             --fresnel, --smith; None: each model's own, Schlick's F0 and
             height-correlated Smith): fresnel "schlick", "dielectric" (a
@@ -354,7 +365,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         seed=seed, level=level, n=n, n_file=n_file, on_params=on_params,
         exclude=exclude, max_theta=max_theta, cone=cone, ranges=ranges,
         threads=threads, progress=progress, noise=noise, fresnel=fresnel,
-        smith=smith))
+        smith=smith, intervals=intervals))
 
 
 def fit_study(dataset, model, material, **kw):

@@ -219,3 +219,25 @@ def test_profiles_cross_their_threshold_at_the_interval_ends(curet):
                for _, _, t in o.profiles().values())
     with pytest.raises(brdffit.InvalidArgumentError):
         brdffit.fit(curet, "FC-E", material=44, stats=False).profiles()
+
+
+def test_without_intervals_the_fit_is_the_same_and_has_none():
+    """intervals=False (the CLI's --intervals none): the same fit, AIC,
+    BIC and CV as the default run, no interval, noise model or ML
+    estimate; with bootstrap, and asking for profiles, clear errors."""
+    ds = synthetic("FC-E", {"m": 0.5, "n": 1.7}, noise=0.01)
+    a = brdffit.fit(ds, "FC-E", fit="exact", folds=4)
+    b = brdffit.fit(ds, "FC-E", fit="exact", folds=4, intervals=False)
+    assert a.parameters == b.parameters and a.objective == b.objective
+    assert (a.aic, a.bic, a.cv) == (b.aic, b.bic, b.cv)
+    assert set(a.intervals) == {"m", "n"} and a.ci_method == "profile-lik"
+    assert b.intervals == {} and b.ml_estimate == {} and b.ci_method == ""
+    assert np.isnan(b.noise_power)
+    with pytest.raises(brdffit.InvalidArgumentError, match="bootstrap"):
+        brdffit.fit(ds, "FC-E", fit="exact", intervals=False, bootstrap=10)
+    with pytest.raises(brdffit.InvalidArgumentError, match="no interval"):
+        b.profiles()
+    with pytest.raises(brdffit.InvalidArgumentError, match="True or False"):
+        brdffit.fit(ds, "FC-E", fit="exact", intervals="none")
+    rec = brdffit.compare(ds, models="FC-E", fit="exact", intervals=False)
+    assert all(r["ci_low"] is None and r["ml_value"] is None for r in rec)

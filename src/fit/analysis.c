@@ -180,9 +180,10 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
 }
 
 /* What every fit gets after its optimum st->refined (fc->pb = pb): the
- * intervals under the noise model, the bootstrap, AIC and BIC, the
- * cross-validation (gr, fold_grid: the grid and the folds' grid optima;
- * NULL for a specular model, whose folds have their own fits). */
+ * intervals under the noise model (unless opts->no_intervals), the
+ * bootstrap, AIC and BIC, the cross-validation (gr, fold_grid: the grid
+ * and the folds' grid optima; NULL for a specular model, whose folds have
+ * their own fits). */
 static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                         const bf_analysis_opts *opts, const size_t *fold,
                         const bf__grid *gr, const bf_fit_result *fold_grid,
@@ -192,7 +193,7 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
     size_t j;
     int rc;
     memset(&iv, 0, sizeof iv);
-    if (pb->free_mask != 0) {
+    if (pb->free_mask != 0 && !opts->no_intervals) {
         rc = bf__intervals(fc, &st->refined, opts->noise, opts->level,
                            &iv);
         if (rc == BF_ENOMEM) {

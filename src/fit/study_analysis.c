@@ -49,6 +49,11 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
         STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
         return BF_EINVAL;
     }
+    if (opts->no_intervals && opts->n_boot > 0) {
+        STUDY_ERR(err, BF_EINVAL, "a bootstrap interval needs the "
+                                  "intervals (no_intervals is set)");
+        return BF_EINVAL;
+    }
     for (m = 0; m < spec->n_models; m++) {
         if (spec->models[m] != NULL &&
             spec->models[m]->kind == BF_MODEL_SPECULAR &&

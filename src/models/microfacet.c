@@ -203,35 +203,37 @@ static double clambda_beckmann(double c, double s, double alpha)
                             - (c * erfc(a))));
 }
 
-/* The last two (c, s, alpha) of this thread and their values, the one
- * used longer ago replaced: a lobe asks for Lambda(i) and Lambda(o) in
- * turn, and both recur -- the albedo's quadrature over phi_s at fixed
- * zeniths (albedo.c), measured data sorted by theta_i. The same bits as
- * computing them (a pure function, its arguments compared bit for bit). */
+/* c Lambda of the last LAMBDA_MEMO (c, s, alpha) of this thread, direct-
+ * mapped by a hash of c's and alpha's bits: a lobe asks for Lambda(i) and
+ * Lambda(o) at every configuration, and measured data have few zeniths
+ * (the Cornell files' 1439 configurations: 8 incident and 10 outgoing),
+ * which recur at every evaluation -- as do the albedo's quadrature nodes
+ * (albedo.c). The same bits as computing them (a pure function, its
+ * arguments compared bit for bit). */
+#define LAMBDA_MEMO 256u
 typedef struct {
-    double key[2][3];
-    double val[2];
-    int older;
+    double key[3]; /* c, s, alpha */
+    double val;
 } lambda_memo_t;
-static _Thread_local lambda_memo_t lambda_memo = {
-    {{NAN, NAN, NAN}, {NAN, NAN, NAN}}, {0.0, 0.0}, 0};
+/* All zero at first: the entry of (+0, +0, +0), whose value is 0 (s = 0),
+ * so an entry never read is never wrong. */
+static _Thread_local lambda_memo_t lambda_memo[LAMBDA_MEMO];
 
 double bf__mf_clambda_beckmann(double c, double s, double alpha)
 {
-    lambda_memo_t *z = &lambda_memo;
     const double key[3] = {c, s, alpha};
-    int e;
-    for (e = 0; e < 2; e++) {
-        if (memcmp(z->key[e], key, sizeof key) == 0) {
-            z->older = 1 - e;
-            return z->val[e];
-        }
+    uint64_t bc;
+    uint64_t ba;
+    lambda_memo_t *e;
+    memcpy(&bc, &c, sizeof bc);
+    memcpy(&ba, &alpha, sizeof ba);
+    e = &lambda_memo[((bc ^ (ba * UINT64_C(0xC2B2AE3D27D4EB4F))) *
+                      UINT64_C(0x9E3779B97F4A7C15)) >> 56];
+    if (memcmp(e->key, key, sizeof key) != 0) {
+        memcpy(e->key, key, sizeof key);
+        e->val = clambda_beckmann(c, s, alpha);
     }
-    e = z->older;
-    memcpy(z->key[e], key, sizeof key);
-    z->val[e] = clambda_beckmann(c, s, alpha);
-    z->older = 1 - e;
-    return z->val[e];
+    return e->val;
 }
 
 double bf__mf_lambda_ggx(double theta, double alpha)

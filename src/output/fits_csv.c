@@ -56,7 +56,9 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->ci_high = has ? s->ci_high[j] : NAN;
         l->ml_value = has ? s->ml_param[j] : NAN;
         l->ci_method = has ? bf_ci_method_name(s->ci_method) : NULL;
-        l->ci_open = has ? (int)((s->ci_open >> (2 * j)) & 3u) : -1;
+        l->ci_open = has && s->ci_method != BF_CI_NONE
+                         ? (int)((s->ci_open >> (2 * j)) & 3u)
+                         : -1; /* no interval: --intervals none */
         l->boot_low = has ? s->boot_low[j] : NAN;
         l->boot_high = has ? s->boot_high[j] : NAN;
         l->n_params = (long)s->k;

@@ -267,6 +267,35 @@ static void no_null_paths(bf_report_inputs *in)
     }
 }
 
+/* --intervals none: a study without intervals has no bootstrap, no
+ * calibration (which checks the intervals) and no report's analysis
+ * (its forest plots and profiles draw them). */
+static int intervals_check(const char *hint, const bf_rep_study *st)
+{
+    const bf_report_options *o = &st->opts;
+    if (!o->no_intervals) {
+        return BF_REPORT_OK;
+    }
+    if (o->n_boot > 0) {
+        return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
+                                 "--intervals none: --bootstrap computes "
+                                 "an interval too; drop one of them");
+    }
+    if (o->calibrate > 0 || strcmp(st->cmd, "calibrate") == 0) {
+        return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
+                                 "--intervals none: calibration checks "
+                                 "the intervals");
+    }
+    if (strcmp(st->cmd, "report") == 0 && (o->exact || o->stats)) {
+        return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
+                                 "--intervals none: the report's analysis "
+                                 "draws the intervals (forest plots, "
+                                 "profiles); 'brdffit compare' writes the "
+                                 "fits without them");
+    }
+    return BF_REPORT_OK;
+}
+
 int bf_rep_study_prepare(bf_rep_study *st)
 {
     const bf_report_options *o = &st->opts;
@@ -282,6 +311,9 @@ int bf_rep_study_prepare(bf_rep_study *st)
 
     snprintf(hint, sizeof hint, "%s ", st->cmd);
     rc = bf_rep_calibrate_check(hint, o);
+    if (rc == BF_REPORT_OK) {
+        rc = intervals_check(hint, st);
+    }
     if (rc == BF_REPORT_OK) {
         rc = select_models(hint, o, &st->models, &st->n_models);
     }
@@ -460,6 +492,7 @@ static int run_analysis(bf_rep_study *st)
     st->analysis.noise = o->noise;
     st->analysis.exact = o->exact;
     st->analysis.n_boot = o->n_boot;
+    st->analysis.no_intervals = o->no_intervals;
     st->analysis.folds = o->folds;
     st->analysis.seed = o->seed;
     st->analysis.progress = o->progress != NULL ? analysis_tick : NULL;

@@ -314,7 +314,10 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
                     "intervals, AIC, BIC and CV)\n");
         return;
     }
-    if (st->analysis.noise == BF_NOISE_OBJECTIVE) {
+    if (st->analysis.no_intervals) {
+        fprintf(fp, "Intervals: none (--intervals none: fits.csv's ci_low, "
+                    "ci_high, ml_value and noise power left empty)");
+    } else if (st->analysis.noise == BF_NOISE_OBJECTIVE) {
         fprintf(fp, "Intervals: 95%% profile of the objective, "
                     "n ln(S_p/S_min) <= 3.841");
     } else {

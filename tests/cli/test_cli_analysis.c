@@ -344,3 +344,96 @@ Test(cli_analysis, rank_help_shows_rank_s_own_defaults)
                        "%s", out);
     cr_assert_null(strstr(out, "always on here"), "%s", out);
 }
+
+/* ==== --intervals none ==================================================== */
+
+/* Without intervals the fits, AIC, BIC and CV are those of the default
+ * run, to the digit, and no interval, noise model or ML estimate is
+ * written; on the paper's models (CURET) and a composite (Cornell). */
+Test(cli_analysis, intervals_none_keeps_the_fits_and_writes_no_interval,
+     .timeout = 300)
+{
+    static const char *const same[] = {"value", "lse", "aic", "bic", "cv",
+                                       "grid_value", "refined_value"};
+    static const char *const gone[] = {"ci_low", "ci_high", "ml_value",
+                                       "ci_method", "ci_open"};
+    static char kept[2][64][7][32];
+    size_t d;
+    for (d = 0; d < 2; d++) { /* CURET, then a Cornell file */
+        size_t n_rows[2];
+        size_t v;
+        for (v = 0; v < 2; v++) {
+            const char *dir = bf_test_tmpdir();
+            const char *cur[] = {"compare", "--data", "DATA", "--samples",
+                                 "1-2", "--models", "VH-E,FC-E,LFTG",
+                                 "--fit", "exact", "--folds", "3",
+                                 "--intervals", v ? "none" : "profile",
+                                 "--out", dir, "-q", NULL};
+            const char *cor[] = {"compare", "--models", "LAMBERT+GGX",
+                                 "--fit", "exact", "--objective", "ngan",
+                                 "--folds", "3", "--intervals",
+                                 v ? "none" : "profile", "--out", dir, "-q",
+                                 bf_test_cornell_path("krylon_blue.brdf"),
+                                 NULL};
+            size_t r;
+            size_t c;
+            cr_assert_eq(d == 0 ? run(cur) : bf_test_run_cli(cor, NULL,
+                                                             NULL),
+                         0);
+            n_rows[v] = bf_test_csv_load(dir, "fits.csv");
+            cr_assert(n_rows[v] > 1 && n_rows[v] <= 64);
+            for (r = 1; r < n_rows[v]; r++) { /* row 0: the header */
+                for (c = 0; c < 7; c++) {
+                    const char *cell = bf_test_csv_cell(r, same[c]);
+                    if (v == 0) {
+                        snprintf(kept[d][r][c], sizeof kept[d][r][c], "%s",
+                                 cell);
+                    } else {
+                        cr_assert_str_eq(cell, kept[d][r][c],
+                                         "row %zu %s", r, same[c]);
+                    }
+                }
+                for (c = 0; c < 5; c++) {
+                    const char *cell = bf_test_csv_cell(r, gone[c]);
+                    cr_assert(v == 1 ? cell[0] == '\0' : cell[0] != '\0',
+                              "row %zu %s '%s'", r, gone[c], cell);
+                }
+                cr_assert(v == 0 ||
+                          strstr(bf_test_csv_cell(r, "flags"), "noise=") ==
+                              NULL);
+            }
+        }
+        cr_assert_eq(n_rows[0], n_rows[1]);
+    }
+}
+
+/* --intervals none with what needs the intervals is refused, as is an
+ * unknown word; nothing is written. */
+Test(cli_analysis, intervals_none_refuses_what_needs_intervals)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *err = NULL;
+    const char *boot[] = {"compare", "--data", "DATA", "--samples", "1",
+                          "--fit", "exact", "--intervals", "none",
+                          "--bootstrap", "10", "--out", dir, NULL};
+    const char *rep[] = {"report", "--data", "DATA", "--samples", "1",
+                         "--fit", "exact", "--intervals", "none", "--out",
+                         dir, NULL};
+    const char *cal[] = {"calibrate", "--data", "DATA", "--samples", "1",
+                         "--models", "VH-E", "--sims", "10", "--intervals",
+                         "none", "--out", dir, NULL};
+    const char *bad[] = {"compare", "--data", "DATA", "--intervals", "wald",
+                         "--out", dir, NULL};
+    cr_assert_eq(run(boot), 62);
+    cr_assert_eq(run(rep), 62);
+    cr_assert_eq(run(cal), 62);
+    cr_assert_eq(run(bad), 63);
+    /* boot's DATA is the CURET folder now (run) */
+    cr_assert_eq(bf_test_run_cli(boot, NULL, &err), 62);
+    cr_assert_not_null(strstr(err, "--bootstrap"), "%s", err);
+    {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/fits.csv", dir);
+        cr_assert(!bf_test_exists(path), "%s written", path);
+    }
+}
