@@ -1487,6 +1487,13 @@ typedef struct {
  * progress callback, the intervals computed (no_intervals 0). */
 void bf_analysis_opts_init(bf_analysis_opts *o);
 
+/* BF_OK when o is an analysis bf_study_analyse can run (a known objective
+ * and noise model, level in (0, 1), no bootstrap with no_intervals), else
+ * BF_EINVAL with err (NULL allowed) saying which field is wrong. The
+ * check bf_study_analyse makes first; a caller can make it before the
+ * fits. */
+int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err);
+
 /* What the analysis of one pair says about its fit (bf_fit_stats.flags). */
 enum {
     BF_STAT_NOCONV = 1u << 0,  /* the refinement stopped at its iteration

@@ -268,6 +268,7 @@ typedef struct {
     int no_intervals;
 } bf_analysis_opts;
 void bf_analysis_opts_init(bf_analysis_opts *o);
+int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err);
 enum { BF_STAT_NOCONV = 1, BF_STAT_REDUCED = 2, BF_STAT_CLAMPED = 4,
        BF_STAT_CI_FAIL = 8, BF_STAT_BOOT_FAIL = 16, BF_STAT_BOOT_SPLIT = 32 };
 typedef struct {

@@ -371,10 +371,6 @@ class Spec:
             raise InvalidArgumentError("intervals must be True or False, "
                                        "got %r" % (intervals,), 1)
         opts.no_intervals = 0 if intervals else 1
-        if not intervals and bootstrap:
-            raise InvalidArgumentError("intervals=False: a bootstrap "
-                                       "interval is an interval too; drop "
-                                       "bootstrap", 1)
         if level is not None:
             opts.level = float(level)
         if bootstrap is not None:
@@ -387,6 +383,8 @@ class Spec:
             opts.folds = int(folds)
         if seed is not None:
             opts.seed = int(seed)
+        err = new_error()  # the library's check, before any fit
+        check(lib.bf_analysis_opts_check(opts, err), err, "analysis")
         return opts
 
     def analyse(self, rows, opts, progress, context):

@@ -645,6 +645,29 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
     return rc;
 }
 
+int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err)
+{
+    const char *why = NULL;
+    if (o == NULL) {
+        why = "no analysis options";
+    } else if (bf_objective_name(o->objective) == NULL) {
+        why = "unknown objective";
+    } else if ((int)o->noise < (int)BF_NOISE_AUTO ||
+               (int)o->noise > (int)BF_NOISE_OBJECTIVE) {
+        why = "unknown noise model";
+    } else if (!(o->level > 0.0 && o->level < 1.0)) {
+        why = "the interval level must be in (0, 1)";
+    } else if (o->no_intervals && o->n_boot > 0) {
+        why = "no_intervals is set: a bootstrap interval is an interval "
+              "too; drop the bootstrap or keep the intervals";
+    }
+    if (why == NULL) {
+        return BF_OK;
+    }
+    bf__error_clear(err, "analysis");
+    return bf__error_set(err, BF_EINVAL, 0, "%s", why);
+}
+
 void bf_analysis_opts_init(bf_analysis_opts *o)
 {
     memset(o, 0, sizeof *o);

@@ -43,15 +43,11 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
     if (spec == NULL || opts == NULL || rows == NULL || stats == NULL ||
         spec->data == NULL ||
         (spec->n_targets > 0 && spec->targets == NULL) ||
-        (spec->n_models > 0 && spec->models == NULL) ||
-        bf_objective_name(opts->objective) == NULL ||
-        !(opts->level > 0.0 && opts->level < 1.0)) {
+        (spec->n_models > 0 && spec->models == NULL)) {
         STUDY_ERR(err, BF_EINVAL, "invalid analysis specification");
         return BF_EINVAL;
     }
-    if (opts->no_intervals && opts->n_boot > 0) {
-        STUDY_ERR(err, BF_EINVAL, "a bootstrap interval needs the "
-                                  "intervals (no_intervals is set)");
+    if (bf_analysis_opts_check(opts, err) != BF_OK) {
         return BF_EINVAL;
     }
     for (m = 0; m < spec->n_models; m++) {

@@ -1,7 +1,7 @@
 /* test_study_setup.c: the study setup every caller shares (bf_study_models,
  * bf_study_variants, bf_study_rows_check): the model list's defaults,
  * "all" and its errors; the variants' exact-fit freeing, ranges and their
- * errors; the first failed row. */
+ * errors; the first failed row; the analysis options' check. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -276,4 +276,33 @@ Test(study_rows_check, the_first_failed_row)
     cr_assert_eq(bf_study_rows_check(rows, 4, &bad), BF_EDOM);
     cr_assert_eq(bad, 2);
     cr_assert_eq(bf_study_rows_check(rows, 2, &bad), BF_OK);
+}
+
+/* bf_analysis_opts_check: the defaults pass; each wrong field is refused
+ * with BF_EINVAL and a message naming it. */
+Test(analysis_opts_check, the_defaults_pass_each_wrong_field_is_named)
+{
+    bf_analysis_opts o;
+    bf_error err;
+    bf_analysis_opts_init(&o);
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_OK);
+    o.no_intervals = 1;
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_OK);
+    o.n_boot = 10;
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_EINVAL);
+    cr_expect_not_null(strstr(err.msg, "bootstrap"), "%s", err.msg);
+    cr_assert_eq(bf_analysis_opts_check(&o, NULL), BF_EINVAL);
+    bf_analysis_opts_init(&o);
+    o.level = 1.0;
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_EINVAL);
+    cr_expect_not_null(strstr(err.msg, "level"), "%s", err.msg);
+    bf_analysis_opts_init(&o);
+    o.objective = (bf_objective)99;
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_EINVAL);
+    cr_expect_not_null(strstr(err.msg, "objective"), "%s", err.msg);
+    bf_analysis_opts_init(&o);
+    o.noise = (bf_noise)99;
+    cr_assert_eq(bf_analysis_opts_check(&o, &err), BF_EINVAL);
+    cr_expect_not_null(strstr(err.msg, "noise"), "%s", err.msg);
+    cr_assert_eq(bf_analysis_opts_check(NULL, &err), BF_EINVAL);
 }
