@@ -237,16 +237,18 @@ run_one() {
     # the log ("==PID== ...", printed only for errors and leaks under -q)
     # fails the run too.
     rc=0
+    start=$(date +%s)
     valgrind -q --trace-children=yes --error-exitcode=99 \
         --trace-children-skip='/bin/*,/usr/bin/*' \
         --suppressions="$here/valgrind.supp" \
         --leak-check=full --show-leak-kinds=definite,indirect,possible \
         --errors-for-leak-kinds=definite,indirect,possible \
         "$@" > "$log" 2>&1 || rc=$?
+    secs=$(($(date +%s) - start))
     if [ $rc -eq 0 ] && ! grep -q '^==[0-9]*==' "$log"; then
-        echo "valgrind: $name ok ($(tail -n 1 "$log" | sed 's/.*Tested: \([0-9]*\).*/\1 tests/'))" > "$verdict"
+        echo "valgrind: $name ok ($(tail -n 1 "$log" | sed 's/.*Tested: \([0-9]*\).*/\1 tests/'), $secs s)" > "$verdict"
     else
-        echo "valgrind: $name FAILED (log: $log)" > "$verdict"
+        echo "valgrind: $name FAILED after $secs s (log: $log)" > "$verdict"
     fi
 }
 
