@@ -129,9 +129,11 @@ static void clear(bf_interval *out, bf_noise noise)
     out->noise_power = NAN;
     out->sigma = NAN;
     out->scale = NAN;
+    out->ml.lse = NAN; /* no estimate until the noise model has one */
     for (j = 0; j < BF_MAX_PARAMS; j++) {
         out->low[j] = NAN;
         out->high[j] = NAN;
+        out->ml.param[j] = NAN;
     }
 }
 

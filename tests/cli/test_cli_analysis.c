@@ -437,3 +437,32 @@ Test(cli_analysis, intervals_none_refuses_what_needs_intervals)
         cr_assert(!bf_test_exists(path), "%s written", path);
     }
 }
+
+/* A fit whose noise cannot be estimated (--max-theta 25: K = 3
+ * configurations of sample 12 for FC-E's m, n, the scale and the noise
+ * power) keeps its fit and says interval_failed; it has no interval, no
+ * maximum-likelihood estimate, no method and no open ends -- empty cells,
+ * not zeros. */
+Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
+{
+    static const char *const gone[] = {"ci_low", "ci_high", "ml_value",
+                                       "ci_method", "ci_open"};
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
+                          "--models", "FC-E", "--max-theta", "25", "--fit",
+                          "exact", "--out", dir, "-q", NULL};
+    size_t r;
+    size_t c;
+    cr_assert_eq(run(argv), 0);
+    cr_assert_eq(bf_test_csv_load(dir, "fits.csv"), 3); /* header, m, n */
+    for (r = 1; r < 3; r++) {
+        cr_assert_str_eq(bf_test_csv_cell(r, "k"), "3");
+        cr_assert(isfinite(bf_test_csv_num(r, "value")));
+        cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"),
+                                  "interval_failed"));
+        for (c = 0; c < 5; c++) {
+            cr_assert_str_empty(bf_test_csv_cell(r, gone[c]), "row %zu %s",
+                                r, gone[c]);
+        }
+    }
+}
