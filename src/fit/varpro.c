@@ -1,7 +1,9 @@
 /* varpro.c: the fit of the specular models (SPEC §9.3) and the composites
  * D+S (SPEC §9.4) under the objectives that keep the scale (SPEC §10), as
  * separable least squares: the scales enter linearly, so for every value
- * of the other parameters they are solved exactly (variable projection).
+ * of the other parameters they are solved exactly (variable projection;
+ * varpro_scales.c), and this file searches the other parameters (the
+ * cross-validation folds' grid values: varpro_folds.c).
  *
  * [1] G. H. Golub, V. Pereyra, "The differentiation of pseudo-inverses and
  *     nonlinear least squares problems whose variables separate", SIAM J.
@@ -46,12 +48,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fit/engine.h"
+#include "fit/varpro.h"
 
-#define MAX_LIN 2
-#define STARTS 6
 /* A fold's descent merges into a known minimum within MERGE_NEAR of a
- * grid step of it on every axis (space_t.known_u): in the grid cell
+ * grid step of it on every axis (bf__vp_space.known_u): in the grid cell
  * around it, where the grid tells no two minima apart. */
 #define MERGE_NEAR 0.5
 #define NM_ITER 300
@@ -63,7 +63,6 @@
 #define NM_SIZE 1e-7
 /* The one-sided step of the bound test, a fraction of the span. */
 #define KKT_STEP 1e-6
-#define UNDEFINED 1e300
 /* Levenberg-Marquardt's iterations and tolerances (xtol, gtol, ftol). */
 #define LM_ITER 200
 #define LM_TOL 1e-14
@@ -73,206 +72,7 @@
 static const size_t grid_log[] = {0, 200, 48, 24, 14, 8, 6, 5, 4};
 static const size_t grid_lin[] = {0, 101, 7, 7, 6, 5, 4, 4, 3};
 
-/* ==== the scales solved exactly ========================================== */
-
-static double weight_of(const bf_problem *pb, size_t k)
-{
-    return pb->weight != NULL ? pb->weight[k] : 1.0;
-}
-
-/* sum w (c0 + t1 c1 + t2 c2 - R)^2 (c2 NULL: one column). */
-static double sse(const bf_problem *pb, const double *c0, const double *c1,
-                  const double *c2, double t1, double t2)
-{
-    double sum = 0.0;
-    size_t k;
-    for (k = 0; k < pb->n; k++) {
-        double r = c0[k] + t1 * c1[k] - pb->data[k];
-        if (c2 != NULL) {
-            r += t2 * c2[k];
-        }
-        sum += weight_of(pb, k) * r * r;
-    }
-    return sum;
-}
-
-/* The normal equations of the scales: g11 = <c1, c1>, g12, g22, b1 =
- * <c1, R - c0>, b2 (weighted). */
-typedef struct {
-    double g11, g12, g22, b1, b2;
-} normal_t;
-
-/* NNLS from the normal equations ne (two columns when two): 1 with t the
- * unconstrained optimum when it is inside [0, hi]; else 0 with t the two
- * one-column optima clamped into [0, hi] (one column: always 1). */
-static int nnls_solve(const normal_t *ne, int two, const double *hi,
-                      double *t)
-{
-    t[0] = ne->g11 > 0.0 && ne->b1 > 0.0 ? fmin(ne->b1 / ne->g11, hi[0])
-                                         : 0.0;
-    if (!two) {
-        return 1;
-    }
-    t[1] = ne->g22 > 0.0 && ne->b2 > 0.0 ? fmin(ne->b2 / ne->g22, hi[1])
-                                         : 0.0;
-    {
-        double det = ne->g11 * ne->g22 - ne->g12 * ne->g12;
-        if (det > 1e-14 * ne->g11 * ne->g22 && det > 0.0) {
-            double u1 = (ne->b1 * ne->g22 - ne->b2 * ne->g12) / det;
-            double u2 = (ne->b2 * ne->g11 - ne->b1 * ne->g12) / det;
-            if (u1 >= 0.0 && u2 >= 0.0 && u1 <= hi[0] && u2 <= hi[1]) {
-                t[0] = u1; /* both active: the unconstrained optimum */
-                t[1] = u2;
-                return 1;
-            }
-        }
-    }
-    return 0;
-}
-
-/* The NNLS scales of one or two columns c1, c2 for the target R - c0,
- * each clamped into [0, hi]. */
-static void nnls(const bf_problem *pb, const double *c0, const double *c1,
-                 const double *c2, const double *hi, double *t)
-{
-    normal_t ne = {0.0, 0.0, 0.0, 0.0, 0.0};
-    double a[MAX_LIN];
-    size_t k;
-    for (k = 0; k < pb->n; k++) {
-        double w = weight_of(pb, k);
-        double r = pb->data[k] - c0[k];
-        ne.g11 += w * c1[k] * c1[k];
-        ne.b1 += w * c1[k] * r;
-        if (c2 != NULL) {
-            ne.g12 += w * c1[k] * c2[k];
-            ne.g22 += w * c2[k] * c2[k];
-            ne.b2 += w * c2[k] * r;
-        }
-    }
-    if (nnls_solve(&ne, c2 != NULL, hi, t)) {
-        return;
-    }
-    a[0] = t[0];
-    a[1] = t[1];
-    /* one scale at 0: the better of the two one-column optima */
-    if (sse(pb, c0, c1, c2, a[0], 0.0) <= sse(pb, c0, c1, c2, 0.0, a[1])) {
-        t[0] = a[0];
-        t[1] = 0.0;
-    } else {
-        t[0] = 0.0;
-        t[1] = a[1];
-    }
-}
-
-int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
-{
-    const bf_problem *pb = fc->pb;
-    const size_t n = fc->pm->n;
-    double *col[MAX_LIN + 1];
-    double hi[MAX_LIN];
-    size_t lj[MAX_LIN];
-    size_t n_l = 0;
-    size_t j;
-    size_t q;
-    size_t b;
-    double t[MAX_LIN] = {0.0, 0.0};
-    int rc;
-    for (j = 0; j < pb->type->p; j++) {
-        if ((fc->lin_mask >> j) & 1u) {
-            if (n_l == MAX_LIN || fc->cols == NULL) {
-                return BF_EINVAL;
-            }
-            hi[n_l] = pb->hi[j];
-            lj[n_l++] = j;
-        }
-    }
-    for (q = 0; q <= n_l; q++) {
-        col[q] = fc->cols + q * n;
-    }
-    /* c_0 and the c_j, each part of the model evaluated once (the
-     * kernel's columns), then as bf__curve: rho = values cos ti; kept
-     * from the last evaluation when it was at the same point */
-    fc->n_eval++;
-    if (!fc->cols_ok || fc->cols_lin != fc->lin_mask ||
-        memcmp(fc->cols_at, param, pb->type->p * sizeof *param) != 0) {
-        fc->cols_ok = 0;
-        rc = (fc->pm->kr->columns != NULL ? fc->pm->kr->columns
-                                          : bf__columns_values)(
-            fc->pm, param, fc->lin_mask, fc->work, col[0], col + 1);
-        if (rc != BF_OK) {
-            return BF_EDOM;
-        }
-        for (q = 0; q <= n_l; q++) {
-            const double *cti = fc->pm->cs->cti;
-            size_t k;
-            for (k = 0; k < n; k++) {
-                col[q][k] *= cti[k];
-                if (!isfinite(col[q][k])) {
-                    return BF_EDOM;
-                }
-            }
-        }
-        memcpy(fc->cols_at, param, pb->type->p * sizeof *param);
-        fc->cols_lin = fc->lin_mask;
-        fc->cols_ok = 1;
-    }
-    /* per block (a joint fit's channel, SPEC §9.4; one block otherwise):
-     * its scales by NNLS on the shared columns, its curve, its S; the
-     * blocks' S summed */
-    *value = 0.0;
-    for (b = 0; b < fc->blocks; b++) {
-        bf_problem sub = *pb;
-        double *curve = fc->curve + b * n;
-        size_t k;
-        sub.data = pb->data + b * n;
-        nnls(&sub, col[0], col[1], n_l > 1 ? col[2] : NULL, hi, t);
-        for (k = 0; k < n; k++) { /* the curve at the solved scales */
-            double v = col[0][k];
-            for (q = 0; q < n_l; q++) {
-                v += t[q] * col[q + 1][k];
-            }
-            curve[k] = v;
-        }
-        for (q = 0; q < n_l; q++) {
-            fc->block_lin[b * BF_MAX_PARAMS + lj[q]] = t[q];
-            if (b == 0) {
-                fc->lin[lj[q]] = t[q];
-            }
-        }
-        *value += bf__objective(&sub, fc->pm->cs->cti, NULL, curve,
-                                fc->scratch);
-    }
-    return isfinite(*value) ? BF_OK : BF_EDOM;
-}
-
 /* ==== coordinates, the grid ============================================== */
-
-/* What moves in a search: parameter idx[i] over [lo_i, hi_i], in ln x when
- * lg[i] (lo > 0). */
-typedef struct {
-    bf__fitctx *fc;
-    double base[BF_MAX_PARAMS];
-    size_t m;
-    size_t idx[BF_MAX_PARAMS];
-    int lg[BF_MAX_PARAMS];
-    double lo[BF_MAX_PARAMS];
-    double hi[BF_MAX_PARAMS];
-    size_t count[BF_MAX_PARAMS]; /* grid points */
-    double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
-    const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
-    double flat_f;  /* Nelder-Mead's last trial value */
-    size_t flat_n;  /* trial values in a row equal to it */
-    /* A fold's fit (bf__varpro_fit_grid): the minima its descents have
-     * reached (search coordinates, values), n_known of them; a descent
-     * that comes within near (per axis) of one at no lower value stops
-     * there, merged (its basin's minimum is known). */
-    int merge;
-    size_t n_known;
-    double known_u[STARTS][BF_MAX_PARAMS];
-    double known_f[STARTS];
-    double near[BF_MAX_PARAMS];
-    int merged;
-} space_t;
 
 /* A domain [lo, hi] searched on a log scale: positive lo, a factor 50. */
 static int log_scaled(double lo, double hi)
@@ -280,7 +80,7 @@ static int log_scaled(double lo, double hi)
     return (lo > 0.0 && hi / lo >= 50.0) || (lo == 0.0 && hi >= 50.0);
 }
 
-static void space_init(space_t *sp, bf__fitctx *fc, unsigned mask)
+void bf__vp_space_init(bf__vp_space *sp, bf__fitctx *fc, unsigned mask)
 {
     const bf_problem *pb = fc->pb;
     size_t j;
@@ -308,7 +108,7 @@ static void space_init(space_t *sp, bf__fitctx *fc, unsigned mask)
 }
 
 /* Grid coordinate i of axis a. */
-static double grid_x(const space_t *sp, size_t a, size_t i)
+static double grid_x(const bf__vp_space *sp, size_t a, size_t i)
 {
     size_t c = sp->count[a];
     double f;
@@ -327,7 +127,7 @@ static double grid_x(const space_t *sp, size_t a, size_t i)
 }
 
 /* x from the search coordinate u (clamped into the domain). */
-static double from_u(const space_t *sp, size_t a, double u)
+static double from_u(const bf__vp_space *sp, size_t a, double u)
 {
     double x = sp->lg[a] ? exp(u) : u;
     double lo = sp->zero_first[a] != 0.0 ? 0.0 : sp->lo[a];
@@ -337,7 +137,7 @@ static double from_u(const space_t *sp, size_t a, double u)
     return x < lo ? lo : (x > sp->hi[a] ? sp->hi[a] : x);
 }
 
-static double to_u(const space_t *sp, size_t a, double x)
+static double to_u(const bf__vp_space *sp, size_t a, double x)
 {
     if (!sp->lg[a]) {
         return x;
@@ -346,12 +146,12 @@ static double to_u(const space_t *sp, size_t a, double x)
 }
 
 /* The objective at x (full vector; the scales solved when the context
- * says so), UNDEFINED where not defined. */
-static double value_at(bf__fitctx *fc, const double *x)
+ * says so), BF__VP_UNDEFINED where not defined. */
+double bf__vp_value_at(bf__fitctx *fc, const double *x)
 {
     double v;
     if (bf__fit_value(fc, x, &v) != BF_OK || !isfinite(v)) {
-        return UNDEFINED;
+        return BF__VP_UNDEFINED;
     }
     return v;
 }
@@ -360,7 +160,7 @@ static double value_at(bf__fitctx *fc, const double *x)
 
 static double f_nm(const gsl_vector *u, void *arg)
 {
-    space_t *sp = arg;
+    bf__vp_space *sp = arg;
     double x[BF_MAX_PARAMS];
     double v;
     size_t a;
@@ -368,7 +168,7 @@ static double f_nm(const gsl_vector *u, void *arg)
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
     }
-    v = value_at(sp->fc, x);
+    v = bf__vp_value_at(sp->fc, x);
     if (v == sp->flat_f) {
         sp->flat_n++;
     } else {
@@ -380,7 +180,8 @@ static double f_nm(const gsl_vector *u, void *arg)
 
 /* Minimises from x (in place; *f its value on return) with initial steps
  * step (search coordinates). */
-static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
+static int nelder_mead(bf__vp_space *sp, double *x, const double *step,
+                       double *f)
 {
     gsl_multimin_fminimizer *mn;
     gsl_multimin_function fn;
@@ -390,7 +191,7 @@ static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
     size_t it;
     int status = GSL_CONTINUE;
     if (sp->m == 0) {
-        *f = value_at(sp->fc, x);
+        *f = bf__vp_value_at(sp->fc, x);
         return BF_OK;
     }
     mn = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2,
@@ -439,7 +240,7 @@ static int nelder_mead(space_t *sp, double *x, const double *step, double *f)
 /* r_k = sqrt(w_k) (rho_hat_k - rho_k) at u, the scales solved (ngan). */
 static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
 {
-    const space_t *sp = arg;
+    const bf__vp_space *sp = arg;
     const bf_problem *pb = sp->fc->pb;
     double x[BF_MAX_PARAMS];
     double v;
@@ -460,8 +261,9 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
 }
 
 /* 1 when LM's iterate (cost c) lies within sp->near of a known minimum
- * whose value is no higher than c (space_t.known_u). */
-static int joins_known(const space_t *sp, gsl_multifit_nlinear_workspace *w)
+ * whose value is no higher than c (bf__vp_space.known_u). */
+static int joins_known(const bf__vp_space *sp,
+                       gsl_multifit_nlinear_workspace *w)
 {
     const gsl_vector *u = gsl_multifit_nlinear_position(w);
     double c;
@@ -488,7 +290,8 @@ static int joins_known(const space_t *sp, gsl_multifit_nlinear_workspace *w)
  * stop at the first iteration that lowers the cost by less than stall of
  * it (fitctx.stall); with sp->merge a stop, sp->merged, at the first
  * iterate that joins a known minimum (joins_known). */
-static int drive(space_t *sp, gsl_multifit_nlinear_workspace *w, int *info)
+static int drive(bf__vp_space *sp, gsl_multifit_nlinear_workspace *w,
+                 int *info)
 {
     double stall = sp->fc->stall;
     double c0 = 0.0;
@@ -563,7 +366,7 @@ void bf__varpro_free(bf__fitctx *fc)
 /* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
  * from x in the search coordinates; x is replaced when it ends lower.
  * *done (when not NULL): 1 when the driver met its tolerances. */
-static int levenberg(space_t *sp, double *x, double *f, int *done)
+static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
 {
     gsl_multifit_nlinear_workspace *w;
     gsl_multifit_nlinear_fdf fdf;
@@ -618,7 +421,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
                 from_u(sp, a, gsl_vector_get(gsl_multifit_nlinear_position(w),
                                              a));
         }
-        fy = value_at(sp->fc, y);
+        fy = bf__vp_value_at(sp->fc, y);
         if (fy < *f) {
             memcpy(x, y, sizeof y);
             *f = fy;
@@ -631,7 +434,7 @@ static int levenberg(space_t *sp, double *x, double *f, int *done)
 
 /* Nelder-Mead twice (the second restarted at a tenth of the steps, so a
  * collapsed simplex does not stop it early), keeping x when no better. */
-static int polish(space_t *sp, double *x, const double *step, double *f)
+static int polish(bf__vp_space *sp, double *x, const double *step, double *f)
 {
     double s2[BF_MAX_PARAMS];
     double y[BF_MAX_PARAMS];
@@ -639,14 +442,14 @@ static int polish(space_t *sp, double *x, const double *step, double *f)
     size_t a;
     int pass;
     int rc = BF_OK;
-    *f = value_at(sp->fc, x);
+    *f = bf__vp_value_at(sp->fc, x);
     for (pass = 0; pass < 2 && rc == BF_OK; pass++) {
         for (a = 0; a < sp->m; a++) {
             s2[a] = pass == 0 ? step[a] : 0.1 * step[a];
         }
         memcpy(y, x, sizeof y);
         rc = nelder_mead(sp, y, s2, &fy);
-        fy = value_at(sp->fc, y); /* the clamped point's own value */
+        fy = bf__vp_value_at(sp->fc, y); /* the clamped point's own value */
         if (rc == BF_OK && fy < *f) {
             memcpy(x, y, sizeof y);
             *f = fy;
@@ -663,7 +466,7 @@ typedef struct {
 } cand_t;
 
 /* The grid point's multi-index digits (the first axis slowest). */
-static void digits(const space_t *sp, size_t idx, size_t *d)
+static void digits(const bf__vp_space *sp, size_t idx, size_t *d)
 {
     size_t a = sp->m;
     while (a-- > 0) {
@@ -672,7 +475,7 @@ static void digits(const space_t *sp, size_t idx, size_t *d)
     }
 }
 
-static size_t index_of(const space_t *sp, const size_t *d)
+static size_t index_of(const bf__vp_space *sp, const size_t *d)
 {
     size_t idx = 0;
     size_t a;
@@ -682,7 +485,7 @@ static size_t index_of(const space_t *sp, const size_t *d)
     return idx;
 }
 
-static void point_of(const space_t *sp, size_t idx, double *x)
+void bf__vp_point_of(const bf__vp_space *sp, size_t idx, double *x)
 {
     size_t d[BF_MAX_PARAMS];
     size_t a;
@@ -694,7 +497,7 @@ static void point_of(const space_t *sp, size_t idx, double *x)
 }
 
 /* 1 when no lattice neighbour of point idx has a lower value. */
-static int local_min(const space_t *sp, const double *vals, size_t idx)
+static int local_min(const bf__vp_space *sp, const double *vals, size_t idx)
 {
     size_t d[BF_MAX_PARAMS];
     size_t a;
@@ -716,21 +519,21 @@ static int local_min(const space_t *sp, const double *vals, size_t idx)
     return 1;
 }
 
-/* The STARTS lowest local minima of the grid into best (n of them). */
-static void pick_starts(const space_t *sp, const double *vals, size_t points,
-                        cand_t *best, size_t *n)
+/* The BF__VP_STARTS lowest local minima of the grid into best (n of them). */
+static void pick_starts(const bf__vp_space *sp, const double *vals,
+                        size_t points, cand_t *best, size_t *n)
 {
     size_t g;
     *n = 0;
     for (g = 0; g < points; g++) {
         size_t q;
-        if (!(vals[g] < UNDEFINED) || !local_min(sp, vals, g)) {
+        if (!(vals[g] < BF__VP_UNDEFINED) || !local_min(sp, vals, g)) {
             continue;
         }
-        if (*n == STARTS && !(vals[g] < best[STARTS - 1].f)) {
+        if (*n == BF__VP_STARTS && !(vals[g] < best[BF__VP_STARTS - 1].f)) {
             continue;
         }
-        q = *n < STARTS ? (*n)++ : STARTS - 1;
+        q = *n < BF__VP_STARTS ? (*n)++ : BF__VP_STARTS - 1;
         while (q > 0 && best[q - 1].f > vals[g]) {
             best[q] = best[q - 1];
             q--;
@@ -744,7 +547,7 @@ static void pick_starts(const space_t *sp, const double *vals, size_t points,
 static void fill_scales(bf__fitctx *fc, double *x)
 {
     size_t j;
-    (void)value_at(fc, x);
+    (void)bf__vp_value_at(fc, x);
     for (j = 0; j < fc->pb->type->p; j++) {
         if ((fc->lin_mask >> j) & 1u) {
             x[j] = fc->lin[j];
@@ -753,7 +556,7 @@ static void fill_scales(bf__fitctx *fc, double *x)
 }
 
 /* The steps of Nelder-Mead: one grid step (search coordinates). */
-static void grid_steps(const space_t *sp, double *step)
+static void grid_steps(const bf__vp_space *sp, double *step)
 {
     size_t a;
     for (a = 0; a < sp->m; a++) {
@@ -768,7 +571,7 @@ static void grid_steps(const space_t *sp, double *step)
 
 /* -1 (+1) when moving parameter a of x lies on the lower (upper) bound of
  * its domain (within 1e-6 of the search coordinate's span), else 0. */
-static int bound_side(const space_t *sp, const double *x, size_t a)
+static int bound_side(const bf__vp_space *sp, const double *x, size_t a)
 {
     double u = to_u(sp, a, x[sp->idx[a]]);
     double lo = to_u(sp, a, sp->lo[a]);
@@ -781,7 +584,7 @@ static int bound_side(const space_t *sp, const double *x, size_t a)
 }
 
 /* 1 when a moving parameter of x lies on a bound of its domain. */
-static int on_bound(const space_t *sp, const double *x)
+static int on_bound(const bf__vp_space *sp, const double *x)
 {
     size_t a;
     for (a = 0; a < sp->m; a++) {
@@ -797,7 +600,7 @@ static int on_bound(const space_t *sp, const double *x)
  * KKT_STEP of its span into the domain, gives a value >= f (a converged
  * LM has minimised over the others: the clamp leaves them free), so
  * Nelder-Mead has nothing to take off the bound. */
-static int bound_kkt(const space_t *sp, const double *x, double f)
+static int bound_kkt(const bf__vp_space *sp, const double *x, double f)
 {
     size_t a;
     for (a = 0; a < sp->m; a++) {
@@ -811,7 +614,7 @@ static int bound_kkt(const space_t *sp, const double *x, double f)
         memcpy(y, x, sizeof y);
         y[sp->idx[a]] = from_u(sp, a, side < 0 ? lo + KKT_STEP * (hi - lo)
                                                : hi - KKT_STEP * (hi - lo));
-        if (value_at(sp->fc, y) < f) {
+        if (bf__vp_value_at(sp->fc, y) < f) {
             return 0;
         }
     }
@@ -823,7 +626,7 @@ static int bound_kkt(const space_t *sp, const double *x, double f)
  * coordinates' Jacobian vanishes there) and is not plainly the minimum
  * there, Nelder-Mead, without derivatives, takes it off, and LM
  * finishes. */
-static int descend(space_t *sp, const double *step, double *x, double *f)
+static int descend(bf__vp_space *sp, const double *step, double *x, double *f)
 {
     double fl;
     int done;
@@ -844,10 +647,10 @@ static int descend(space_t *sp, const double *step, double *x, double *f)
 }
 
 /* Adds x (value f; not merged) to the minima a fold's descents join. */
-static void add_known(space_t *sp, const double *x, double f)
+static void add_known(bf__vp_space *sp, const double *x, double f)
 {
     size_t a;
-    if (!sp->merge || sp->merged || sp->n_known == STARTS) {
+    if (!sp->merge || sp->merged || sp->n_known == BF__VP_STARTS) {
         return;
     }
     for (a = 0; a < sp->m; a++) {
@@ -859,24 +662,24 @@ static void add_known(space_t *sp, const double *x, double f)
 /* The separable ngan fit on fc (fc->pb's objective ngan); pre (NULL:
  * computed here) the grid's values, as bf__varpro_fold_grids gives them:
  * a fold's fit, whose descents merge into the minima the earlier ones
- * reached (space_t.known_u). */
+ * reached (bf__vp_space.known_u). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
                        bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
-    space_t sp;
+    bf__vp_space sp;
     double *vals;
     size_t points = 1;
-    cand_t best[STARTS];
+    cand_t best[BF__VP_STARTS];
     size_t n_best;
     size_t g;
     size_t a;
     double step[BF_MAX_PARAMS];
     double xbest[BF_MAX_PARAMS];
-    double fbest = UNDEFINED;
+    double fbest = BF__VP_UNDEFINED;
     int rc = BF_OK;
     fc->lin_mask = lin;
-    space_init(&sp, fc, pb->free_mask & ~lin);
+    bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
     for (a = 0; a < sp.m; a++) {
         points *= sp.count[a];
     }
@@ -891,8 +694,8 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
             vals[g] = pre[g];
             continue;
         }
-        point_of(&sp, g, x);
-        vals[g] = value_at(fc, x);
+        bf__vp_point_of(&sp, g, x);
+        vals[g] = bf__vp_value_at(fc, x);
     }
     pick_starts(&sp, vals, points, best, &n_best);
     free(vals);
@@ -900,7 +703,7 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         fc->lin_mask = 0;
         return BF_EDOM;
     }
-    point_of(&sp, best[0].idx, xbest);
+    bf__vp_point_of(&sp, best[0].idx, xbest);
     fill_scales(fc, xbest);
     if (grid != NULL) {
         memset(grid, 0, sizeof *grid);
@@ -916,8 +719,8 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double f;
-        point_of(&sp, best[g].idx, x);
-        f = value_at(fc, x);
+        bf__vp_point_of(&sp, best[g].idx, x);
+        f = bf__vp_value_at(fc, x);
         rc = descend(&sp, step, x, &f);
         if (rc == BF_OK && f < fbest) {
             fbest = f;
@@ -935,7 +738,7 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
 }
 
 /* The free scales of pb (bf_param.linear) as a mask; *n_lin their number. */
-static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
+unsigned bf__vp_lin_of(const bf_problem *pb, size_t *n_lin)
 {
     unsigned lin = 0;
     size_t j;
@@ -952,7 +755,7 @@ static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
 unsigned bf__varpro_lin(const bf_problem *pb)
 {
     size_t n_lin;
-    return lin_of(pb, &n_lin);
+    return bf__vp_lin_of(pb, &n_lin);
 }
 
 int bf__varpro_refine(bf__fitctx *fc, const double *start,
@@ -962,7 +765,7 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
     unsigned lin = bf__varpro_lin(pb);
     unsigned saved = fc->lin_mask;
     size_t eval0 = fc->n_eval;
-    space_t sp;
+    bf__vp_space sp;
     double x[BF_MAX_PARAMS];
     double step[BF_MAX_PARAMS];
     double f;
@@ -974,14 +777,14 @@ int bf__varpro_refine(bf__fitctx *fc, const double *start,
         return BF_EINVAL; /* not a joint fit's channels (no intervals) */
     }
     fc->lin_mask = lin;
-    space_init(&sp, fc, pb->free_mask & ~lin);
+    bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
     memcpy(x, pb->fixed, sizeof x);
     for (j = 0; j < sp.m; j++) { /* the free values from start */
         x[sp.idx[j]] = start[sp.idx[j]];
     }
-    f = value_at(fc, x);
+    f = bf__vp_value_at(fc, x);
     grid_steps(&sp, step);
-    rc = f < UNDEFINED ? descend(&sp, step, x, &f) : BF_EDOM;
+    rc = f < BF__VP_UNDEFINED ? descend(&sp, step, x, &f) : BF_EDOM;
     if (rc == BF_OK) {
         fill_scales(fc, x);
         memcpy(result->param, x, sizeof x);
@@ -996,14 +799,14 @@ int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
 {
     const bf_problem *pb = fc->pb;
     size_t n_lin;
-    unsigned lin = lin_of(pb, &n_lin);
+    unsigned lin = bf__vp_lin_of(pb, &n_lin);
     unsigned keep = fc->lin_mask;
     size_t b;
     size_t j;
     double v;
     int rc;
     if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
-        n_lin > MAX_LIN || n_lin == 0) {
+        n_lin > BF__VP_MAX_LIN || n_lin == 0) {
         return BF_EINVAL;
     }
     fc->lin_mask = lin;
@@ -1082,7 +885,7 @@ static int ngan_subsample(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
 static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
                         bf_fit_result *result)
 {
-    space_t sp;
+    bf__vp_space sp;
     double step[BF_MAX_PARAMS];
     double x[BF_MAX_PARAMS];
     double f;
@@ -1091,14 +894,14 @@ static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
         return rc;
     }
     fc->lin_mask = lin;
-    space_init(&sp, fc, fc->pb->free_mask & ~lin);
+    bf__vp_space_init(&sp, fc, fc->pb->free_mask & ~lin);
     grid_steps(&sp, step);
     if (grid != NULL) {
         fill_scales(fc, grid->param);
-        grid->lse = value_at(fc, grid->param);
+        grid->lse = bf__vp_value_at(fc, grid->param);
     }
     memcpy(x, result->param, sizeof x);
-    f = value_at(fc, x);
+    f = bf__vp_value_at(fc, x);
     rc = descend(&sp, step, x, &f);
     fill_scales(fc, x);
     memcpy(result->param, x, sizeof x);
@@ -1123,197 +926,13 @@ int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
     return varpro_fit_pre(fc, vals, NULL, result);
 }
 
-/* The grid of the separable fit of fc->pb: its points (0 where it has
- * none: dense data, a joint fit, not such a model). */
-static size_t grid_points(bf__fitctx *fc, unsigned lin)
-{
-    const bf_problem *pb = fc->pb;
-    space_t sp;
-    size_t points = 1;
-    size_t a;
-    if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
-        pb->n > BF__DENSE_K || fc->blocks > 1) {
-        return 0;
-    }
-    space_init(&sp, fc, pb->free_mask & ~lin);
-    for (a = 0; a < sp.m; a++) {
-        points *= sp.count[a];
-    }
-    return points;
-}
-
-/* A fold's S from the whole's sums minus the fold's, in the normal
- * equations' form S = <R', R'> - 2 t.b + t'G t, has the rounding of its
- * terms taken at the whole's size (Cauchy-Schwarz bounds of the mixed
- * sums: |<c1, R'>| <= sqrt(<c1, c1> <R', R'>)); below FOLD_DIGITS of that
- * size the fold's S is summed directly instead (a lobe whose values run
- * to 1e139 at a grid point: one held-out configuration's term is nearly
- * the whole's, and the training sums cancel to nothing). */
-#define FOLD_DIGITS 1e-4
-
-/* S = <R', R'> - 2 t.b + t'G t of the scales t (R' = R - c0) from the
- * training normal equations ne and rr = <R', R'>; NAN when it is below
- * FOLD_DIGITS of its terms' size in the whole's sums all (g11 g12 g22 b1
- * b2 rr). */
-static double sse_normal(const normal_t *ne, double rr, const double *t,
-                         const double *all)
-{
-    double s1 = sqrt(all[0] * all[5]);
-    double s2 = sqrt(all[2] * all[5]);
-    double size = all[5] + 2.0 * (fabs(t[0]) * s1 + fabs(t[1]) * s2) +
-                  t[0] * t[0] * all[0] +
-                  2.0 * fabs(t[0] * t[1]) * sqrt(all[0] * all[2]) +
-                  t[1] * t[1] * all[2];
-    double v = rr - 2.0 * (t[0] * ne->b1 + t[1] * ne->b2) +
-               t[0] * t[0] * ne->g11 + 2.0 * t[0] * t[1] * ne->g12 +
-               t[1] * t[1] * ne->g22;
-    return v >= FOLD_DIGITS * size && isfinite(size) ? v : NAN;
-}
-
-/* Every fold's ngan value at the point whose curve parts fc holds (the
- * columns c0, c1, c2 of n_l scales, or with none the curve as c0): the
- * fold's training configurations (weight 1 off the fold, 0 on it) in the
- * normal equations and S, from one pass's sums per held-out fold (the
- * training sums: the whole's minus the fold's; mom: 6 (folds + 1)
- * doubles); into out[f * stride], NAN where S cancels (sse_normal). */
-static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
-                        const size_t *fold, size_t folds, double *mom,
-                        double *out, size_t stride)
-{
-    const size_t n = fc->pm->n;
-    const double *data = fc->pb->data;
-    const double *c0 = n_l > 0 ? fc->cols : fc->curve;
-    const double *c1 = fc->cols + n;
-    const double *c2 = fc->cols + 2 * n;
-    double *all = mom + 6 * folds;
-    size_t f;
-    size_t k;
-    size_t q;
-    memset(mom, 0, 6 * (folds + 1) * sizeof *mom);
-    for (k = 0; k < n; k++) { /* g11 g12 g22 b1 b2 rr of each fold */
-        double *m = mom + 6 * fold[k];
-        double r = data[k] - c0[k];
-        if (n_l > 0) {
-            m[0] += c1[k] * c1[k];
-            m[3] += c1[k] * r;
-        }
-        if (n_l > 1) {
-            m[1] += c1[k] * c2[k];
-            m[2] += c2[k] * c2[k];
-            m[4] += c2[k] * r;
-        }
-        m[5] += r * r;
-    }
-    for (f = 0; f < folds; f++) {
-        for (q = 0; q < 6; q++) {
-            all[q] += mom[6 * f + q];
-        }
-    }
-    for (f = 0; f < folds; f++) {
-        const double *m = mom + 6 * f;
-        normal_t ne;
-        double t[MAX_LIN] = {0.0, 0.0};
-        double v;
-        ne.g11 = all[0] - m[0];
-        ne.g12 = all[1] - m[1];
-        ne.g22 = all[2] - m[2];
-        ne.b1 = all[3] - m[3];
-        ne.b2 = all[4] - m[4];
-        if (n_l > 0 && !nnls_solve(&ne, n_l > 1, hi, t)) {
-            /* one scale at 0: the better of the two one-column optima */
-            double t1[MAX_LIN] = {t[0], 0.0};
-            double t2[MAX_LIN] = {0.0, t[1]};
-            double v1 = sse_normal(&ne, all[5] - m[5], t1, all);
-            double v2 = sse_normal(&ne, all[5] - m[5], t2, all);
-            v = isnan(v1) || isnan(v2) ? NAN : fmin(v1, v2);
-        } else {
-            v = sse_normal(&ne, all[5] - m[5], t, all);
-        }
-        out[f * stride] = v;
-    }
-}
-
-int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
-                          double **vals, size_t *n_points)
-{
-    const bf_problem *pb = fc->pb;
-    bf_problem whole = *pb;
-    size_t n_lin;
-    unsigned lin = lin_of(pb, &n_lin);
-    size_t points = grid_points(fc, lin);
-    double hi[MAX_LIN] = {0.0, 0.0};
-    double *mom;
-    double *w;
-    space_t sp;
-    size_t g;
-    size_t f;
-    size_t j;
-    *vals = NULL;
-    *n_points = points;
-    if (points == 0 || n_lin > MAX_LIN ||
-        !bf_objective_keeps_scale(pb->objective)) {
-        return BF_EINVAL;
-    }
-    *vals = malloc(folds * points * sizeof **vals);
-    mom = malloc((6 * (folds + 1) + pb->n) * sizeof *mom);
-    if (*vals == NULL || mom == NULL) {
-        free(*vals);
-        free(mom);
-        *vals = NULL;
-        return BF_ENOMEM;
-    }
-    w = mom + 6 * (folds + 1);
-    for (j = 0, f = 0; j < pb->type->p; j++) { /* the scales' bounds */
-        if ((lin >> j) & 1u) {
-            hi[f++] = pb->hi[j];
-        }
-    }
-    whole.objective = BF_OBJ_NGAN;
-    whole.weight = NULL;
-    bf__fitctx_use(fc, &whole);
-    fc->lin_mask = lin;
-    space_init(&sp, fc, pb->free_mask & ~lin);
-    /* point by point: the model once (its columns), every fold's scales
-     * and S from sums over the configurations (fold_values), summed
-     * directly where they cancel (bf__varpro_value keeps the columns) */
-    for (g = 0; g < points; g++) {
-        double x[BF_MAX_PARAMS];
-        point_of(&sp, g, x);
-        if (value_at(fc, x) < UNDEFINED) {
-            fold_values(fc, n_lin, hi, fold, folds, mom, *vals + g, points);
-            for (f = 0; f < folds; f++) {
-                bf_problem train = whole;
-                size_t k;
-                if (!isnan((*vals)[f * points + g])) {
-                    continue;
-                }
-                for (k = 0; k < pb->n; k++) {
-                    w[k] = fold[k] == f ? 0.0 : 1.0;
-                }
-                train.weight = w;
-                bf__fitctx_use(fc, &train);
-                (*vals)[f * points + g] = value_at(fc, x);
-                bf__fitctx_use(fc, &whole);
-            }
-        } else {
-            for (f = 0; f < folds; f++) {
-                (*vals)[f * points + g] = UNDEFINED;
-            }
-        }
-    }
-    free(mom);
-    bf__fitctx_use(fc, pb);
-    fc->lin_mask = 0;
-    return BF_OK;
-}
-
 static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
                           bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
     bf_problem ngan;
     size_t n_lin;
-    unsigned lin = lin_of(pb, &n_lin);
+    unsigned lin = bf__vp_lin_of(pb, &n_lin);
     size_t eval0 = fc->n_eval;
     size_t j;
     int rc;
@@ -1322,7 +941,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
         !bf_objective_keeps_scale(pb->objective)) {
         return BF_EINVAL;
     }
-    if (n_lin > MAX_LIN ||
+    if (n_lin > BF__VP_MAX_LIN ||
         (fc->blocks > 1 && (n_lin == 0 || pb->objective != BF_OBJ_NGAN))) {
         /* a joint fit solves each channel's scales by least squares */
         return BF_EINVAL;
@@ -1338,11 +957,11 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */
-        space_t sp;
+        bf__vp_space sp;
         double step[BF_MAX_PARAMS];
         double f;
         size_t a;
-        space_init(&sp, fc, pb->free_mask);
+        bf__vp_space_init(&sp, fc, pb->free_mask);
         for (a = 0; a < sp.m; a++) {
             double x = result->param[sp.idx[a]];
             sp.lg[a] = sp.lg[a] && !pb->type->param[sp.idx[a]].linear;
@@ -1356,7 +975,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
             }
         }
         if (grid != NULL) {
-            grid->lse = value_at(fc, grid->param);
+            grid->lse = bf__vp_value_at(fc, grid->param);
         }
         rc = polish(&sp, result->param, step, &f);
         result->lse = f;
@@ -1369,7 +988,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
         }
     }
     result->n_eval = fc->n_eval - eval0;
-    if (rc == BF_OK && !(result->lse < UNDEFINED)) {
+    if (rc == BF_OK && !(result->lse < BF__VP_UNDEFINED)) {
         rc = BF_EDOM;
     }
     return rc;

@@ -1,0 +1,71 @@
+/* varpro.h: what the files of the separable fit share (SPEC §9.3, §10;
+ * varpro.c: the search over the nonlinear parameters; varpro_scales.c:
+ * the scales solved exactly; varpro_folds.c: the cross-validation folds'
+ * grid values). Private to src/fit, never installed. */
+#ifndef BF_FIT_VARPRO_H
+#define BF_FIT_VARPRO_H
+
+#include "fit/engine.h"
+
+/* Scales solved exactly per point (columns besides c0), at most. */
+#define BF__VP_MAX_LIN 2
+/* Descents from the grid's lowest local minima. */
+#define BF__VP_STARTS 6
+/* The value of a point where the objective is not defined. */
+#define BF__VP_UNDEFINED 1e300
+
+/* The normal equations of the scales: g11 = <c1, c1>, g12, g22, b1 =
+ * <c1, R - c0>, b2 (weighted). */
+typedef struct {
+    double g11, g12, g22, b1, b2;
+} bf__vp_normal;
+
+/* NNLS from the normal equations ne (two columns when two): 1 with t the
+ * unconstrained optimum when it is inside [0, hi]; else 0 with t the two
+ * one-column optima clamped into [0, hi] (one column: always 1). */
+int bf__vp_nnls_solve(const bf__vp_normal *ne, int two, const double *hi,
+                      double *t);
+
+/* What moves in a search: parameter idx[i] over [lo_i, hi_i], in ln x when
+ * lg[i] (lo > 0). */
+typedef struct {
+    bf__fitctx *fc;
+    double base[BF_MAX_PARAMS];
+    size_t m;
+    size_t idx[BF_MAX_PARAMS];
+    int lg[BF_MAX_PARAMS];
+    double lo[BF_MAX_PARAMS];
+    double hi[BF_MAX_PARAMS];
+    size_t count[BF_MAX_PARAMS]; /* grid points */
+    double zero_first[BF_MAX_PARAMS]; /* 1: grid point 0 is x = 0 */
+    const double *sw; /* sqrt of the weights (levenberg), NULL: 1 */
+    double flat_f;  /* Nelder-Mead's last trial value */
+    size_t flat_n;  /* trial values in a row equal to it */
+    /* A fold's fit (bf__varpro_fit_grid): the minima its descents have
+     * reached (search coordinates, values), n_known of them; a descent
+     * that comes within near (per axis) of one at no lower value stops
+     * there, merged (its basin's minimum is known). */
+    int merge;
+    size_t n_known;
+    double known_u[BF__VP_STARTS][BF_MAX_PARAMS];
+    double known_f[BF__VP_STARTS];
+    double near[BF_MAX_PARAMS];
+    int merged;
+} bf__vp_space;
+
+/* The search of fc's problem over the free parameters of mask (its
+ * domains, grid sizes and coordinates). */
+void bf__vp_space_init(bf__vp_space *sp, bf__fitctx *fc, unsigned mask);
+
+/* Grid point idx of sp (the first axis slowest) as a full vector. */
+void bf__vp_point_of(const bf__vp_space *sp, size_t idx, double *x);
+
+/* The objective at x (full vector; the scales solved when the context
+ * says so), BF__VP_UNDEFINED where not defined. */
+double bf__vp_value_at(bf__fitctx *fc, const double *x);
+
+/* The free scales of pb (bf_param.linear) as a mask; *n_lin their
+ * number. */
+unsigned bf__vp_lin_of(const bf_problem *pb, size_t *n_lin);
+
+#endif
