@@ -738,7 +738,7 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
 }
 
 /* The free scales of pb (bf_param.linear) as a mask; *n_lin their number. */
-unsigned bf__vp_lin_of(const bf_problem *pb, size_t *n_lin)
+static unsigned lin_of(const bf_problem *pb, size_t *n_lin)
 {
     unsigned lin = 0;
     size_t j;
@@ -755,7 +755,7 @@ unsigned bf__vp_lin_of(const bf_problem *pb, size_t *n_lin)
 unsigned bf__varpro_lin(const bf_problem *pb)
 {
     size_t n_lin;
-    return bf__vp_lin_of(pb, &n_lin);
+    return lin_of(pb, &n_lin);
 }
 
 int bf__varpro_refine(bf__fitctx *fc, const double *start,
@@ -799,7 +799,7 @@ int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out)
 {
     const bf_problem *pb = fc->pb;
     size_t n_lin;
-    unsigned lin = bf__vp_lin_of(pb, &n_lin);
+    unsigned lin = lin_of(pb, &n_lin);
     unsigned keep = fc->lin_mask;
     size_t b;
     size_t j;
@@ -932,7 +932,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
     const bf_problem *pb = fc->pb;
     bf_problem ngan;
     size_t n_lin;
-    unsigned lin = bf__vp_lin_of(pb, &n_lin);
+    unsigned lin = lin_of(pb, &n_lin);
     size_t eval0 = fc->n_eval;
     size_t j;
     int rc;

@@ -64,8 +64,4 @@ void bf__vp_point_of(const bf__vp_space *sp, size_t idx, double *x);
  * says so), BF__VP_UNDEFINED where not defined. */
 double bf__vp_value_at(bf__fitctx *fc, const double *x);
 
-/* The free scales of pb (bf_param.linear) as a mask; *n_lin their
- * number. */
-unsigned bf__vp_lin_of(const bf_problem *pb, size_t *n_lin);
-
 #endif

@@ -126,10 +126,10 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
 {
     const bf_problem *pb = fc->pb;
     bf_problem whole = *pb;
-    size_t n_lin;
-    unsigned lin = bf__vp_lin_of(pb, &n_lin);
+    unsigned lin = bf__varpro_lin(pb);
     size_t points = grid_points(fc, lin);
     double hi[BF__VP_MAX_LIN] = {0.0, 0.0};
+    size_t n_lin = 0;
     double *mom;
     double *w;
     bf__vp_space sp;
@@ -138,6 +138,14 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
     size_t j;
     *vals = NULL;
     *n_points = points;
+    for (j = 0; j < pb->type->p; j++) { /* the scales and their bounds */
+        if ((lin >> j) & 1u) {
+            if (n_lin < BF__VP_MAX_LIN) {
+                hi[n_lin] = pb->hi[j];
+            }
+            n_lin++;
+        }
+    }
     if (points == 0 || n_lin > BF__VP_MAX_LIN ||
         !bf_objective_keeps_scale(pb->objective)) {
         return BF_EINVAL;
@@ -151,11 +159,6 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
         return BF_ENOMEM;
     }
     w = mom + 6 * (folds + 1);
-    for (j = 0, f = 0; j < pb->type->p; j++) { /* the scales' bounds */
-        if ((lin >> j) & 1u) {
-            hi[f++] = pb->hi[j];
-        }
-    }
     whole.objective = BF_OBJ_NGAN;
     whole.weight = NULL;
     bf__fitctx_use(fc, &whole);
