@@ -652,8 +652,7 @@ int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err)
         why = "no analysis options";
     } else if (bf_objective_name(o->objective) == NULL) {
         why = "unknown objective";
-    } else if ((int)o->noise < (int)BF_NOISE_AUTO ||
-               (int)o->noise > (int)BF_NOISE_OBJECTIVE) {
+    } else if (bf_noise_name(o->noise) == NULL) {
         why = "unknown noise model";
     } else if (!(o->level > 0.0 && o->level < 1.0)) {
         why = "the interval level must be in (0, 1)";
