@@ -1325,6 +1325,11 @@ typedef struct {
                                  threshold to a bound of the search range
                                  on a side where the estimate is not on
                                  that bound (the end is the bound) */
+    double robust[BF_MAX_PARAMS]; /* BF_CI_PROFILE_LIK: the factor >= 1
+                                 parameter j's threshold was multiplied by,
+                                 its variance from the residuals (sandwich)
+                                 over the noise model's where larger
+                                 (doc/methods.md §3); NaN otherwise */
 } bf_interval;
 
 /* The intervals at level (e.g. 0.95) of pb's free parameters around the
@@ -1551,6 +1556,8 @@ typedef struct {
     unsigned not_identified;        /* bit j (bf_interval.not_identified) */
     bf_ci_method boot_method;       /* of boot_low, boot_high
                                        (BF_CI_RESIDUAL_BOOTSTRAP; NONE if none) */
+    double ci_robust[BF_MAX_PARAMS]; /* the robust factor of ci_low, ci_high
+                                        (bf_interval.robust; NaN if none) */
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1701,9 +1708,10 @@ int bf_fit_profile_curve(const bf_problem *pb, const bf_fit_result *best,
  * maximum-likelihood estimate; under BF_NOISE_OBJECTIVE the objective's,
  * as bf_fit_profile_curve around best. *thr gets the interval's
  * threshold: the interval is where dev <= *thr (n ln(1 + F_{1,nu}(level)
- * / nu) under a noise model, chi2_1(level) under the objective). iv, when
- * not NULL, gets the noise model's fit (method, noise power, sigma, ml;
- * its low, high NaN: the ends are bf_fit_intervals'). theta as
+ * / nu) times the parameter's robust factor, bf_interval.robust, under a
+ * noise model; chi2_1(level) under the objective). iv, when not NULL,
+ * gets the noise model's fit (method, noise power, sigma, robust factors,
+ * ml; its low, high NaN: the ends are bf_fit_intervals'). theta as
  * bf_fit_profile_curve's. BF_EINVAL on bad arguments, BF_EDOM when the
  * noise cannot be estimated, BF_ENOMEM. (src/fit/profile_curve.c) */
 int bf_fit_interval_curve(const bf_problem *pb, const bf_fit_result *best,
@@ -1840,6 +1848,8 @@ typedef struct {
                                 optimum); NaN: none */
     const char *ci_method;   /* NULL: none */
     int ci_open;             /* -1: none */
+    double ci_robust;        /* the threshold's robust factor
+                                (bf_fit_stats.ci_robust); NaN: none */
     double boot_low, boot_high;
     long n_params;           /* -1: none */
     double aic, bic, cv;
@@ -1864,7 +1874,7 @@ size_t bf_fits_lines(const bf_study_spec *spec, const bf_study_row *rows,
  * model, parameter, unit, value, lse, bound_hit, k (configurations used),
  * objective, fit (paper|exact), grid_value, grid_lse, refined_value,
  * refined_lse, ci_low, ci_high, ml_value (the estimate the interval is
- * about), ci_method, ci_open, boot_low, boot_high,
+ * about), ci_method, ci_open, ci_robust, boot_low, boot_high,
  * n_params, aic, bic, cv, flags (bf_fit_flags_format), ndf, masking,
  * fresnel, albedo_0, albedo_30, albedo_60, albedo_80, albedo_over_1: the
  * lines of bf_fits_lines. A joint fit (bf_target.joint, SPEC §9.4) writes

@@ -198,6 +198,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     plane_abs/description_under_ngan
     spec_intervals/lambert_ggx_covers_at_the_cornell_geometry
     spec_intervals/lambert_ggx_and_ward_cover_at_random_geometry
+    spec_intervals/the_robust_factor_mends_a_wrong_noise_model
     spec_intervals/as_covers_at_the_cornell_geometry
     spec_intervals/cornell_intervals_are_finite_and_hold_the_estimate
     spec_intervals/calibrate_runs_on_a_composite

@@ -297,6 +297,7 @@ typedef struct {
     double ml_param[8];
     unsigned not_identified;
     bf_ci_method boot_method;
+    double ci_robust[8];
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
@@ -417,6 +418,7 @@ typedef struct {
     double ml_value;
     const char *ci_method;
     int ci_open;
+    double ci_robust;
     double boot_low, boot_high;
     long n_params;
     double aic, bic, cv;

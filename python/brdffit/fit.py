@@ -96,6 +96,10 @@ class FitResult:
         ml_estimate: {name: value}, the maximum-likelihood estimate the
             intervals are about (the scale free; under the max objective
             it differs from refined, doc/methods.md §3).
+        ci_robust: {name: factor}, fits.csv's ci_robust: the factor >= 1
+            a specular model's interval threshold was widened by where
+            the residuals show more variance than the noise model
+            (doc/methods.md §3); NaN for the diffuse models.
       Without the analysis these are None.
       With channel="joint" (SPEC §9.4; fit="exact", objective="ngan", a
       model with scales): parameters, free, bound, grid, refined,
@@ -141,6 +145,7 @@ class FitResult:
         self.cv = self.flags = self.reduces_to = self.not_identified = None
         self.clamped = self.not_converged = self.interval_failed = None
         self.ci_method = self.noise_power = self.ml_estimate = None
+        self.ci_robust = None
         self.bootstrap_failed = self.bootstrap_split = None
         self.bootstrap_method = None
         self.scales = self.per_channel = None
@@ -205,6 +210,7 @@ class FitResult:
             int(st.boot_method))).decode()
         self.noise_power = float(st.noise_power)
         self.ml_estimate = _by_name(m, st.ml_param, mask) if shown else {}
+        self.ci_robust = _by_name(m, st.ci_robust, mask) if shown else {}
         self.n_params = int(st.k)
         self.aic = float(st.aic)
         self.bic = float(st.bic)

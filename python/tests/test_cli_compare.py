@@ -5,6 +5,7 @@ equals the corresponding fit() result printed as fits.csv prints it
 (%.10g)."""
 
 import csv
+import math
 import os
 import subprocess
 
@@ -33,6 +34,11 @@ def g(x):
     return "%.10g" % x
 
 
+def g_or_empty(x):
+    """A number as fits.csv prints it, empty where it is not finite."""
+    return g(x) if math.isfinite(x) else ""
+
+
 def expected_row(r, param):
     """The fits.csv row of FitResult r for parameter param (None for a
     model without a fitted parameter), from r alone."""
@@ -53,7 +59,7 @@ def expected_row(r, param):
         row.update(parameter="", unit="", value="", bound_hit="0",
                    grid_value="", refined_value="", ci_low="", ci_high="",
                    ml_value="",
-                   ci_method="", ci_open="")
+                   ci_method="", ci_open="", ci_robust="")
         return row
     (p,) = [q for q in r.model.parameters if q.name == param]
     lo, hi = r.intervals[param]
@@ -64,7 +70,8 @@ def expected_row(r, param):
                refined_value=g(r.refined[param]), ci_low=g(lo),
                ci_high=g(hi), ml_value=g(r.ml_estimate[param]),
                ci_method=r.ci_method,
-               ci_open=str(int(lo_open) + 2 * int(hi_open)))
+               ci_open=str(int(lo_open) + 2 * int(hi_open)),
+               ci_robust=g_or_empty(r.ci_robust[param]))
     return row
 
 

@@ -189,6 +189,19 @@ def test_a_composite_has_intervals_bootstrap_and_cv():
     assert r.n_params == 4  # no scale beside rho_d and rho_s
     assert np.isfinite(r.cv) and r.cv > 0 and r.not_identified == ()
     assert not r.interval_failed and not r.bootstrap_failed
+    # each interval's threshold widened by its robust factor (>= 1,
+    # doc/methods.md §3): the profile figure's curve crosses that threshold
+    # at the interval's ends
+    assert set(r.ci_robust) == set(true)
+    prof = r.profiles(n=81)
+    for name, (theta, dev, thr) in prof.items():
+        assert r.ci_robust[name] >= 1.0
+        # K ln(1 + F(1, K - 5)/(K - 5)) is at least chi2_1's 3.84
+        assert thr >= 3.84 * r.ci_robust[name]
+        for end, is_open in zip(r.intervals[name], r.intervals_open[name]):
+            if not is_open:
+                assert abs(np.interp(end, theta, dev) - thr) < 0.05 * thr, (
+                    name, end, np.interp(end, theta, dev), thr)
 
 
 def test_profiles_cross_their_threshold_at_the_interval_ends(curet):

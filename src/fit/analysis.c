@@ -59,6 +59,7 @@ static void stats_clear(bf_fit_stats *st)
         st->boot_low[j] = NAN;
         st->boot_high[j] = NAN;
         st->ml_param[j] = NAN;
+        st->ci_robust[j] = NAN;
     }
     st->noise_power = NAN;
     st->noise_sigma = NAN;
@@ -207,6 +208,7 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                 st->ci_low[j] = iv.low[j];
                 st->ci_high[j] = iv.high[j];
                 st->ml_param[j] = iv.ml.param[j];
+                st->ci_robust[j] = iv.robust[j];
             }
         }
         st->ci_open = iv.open;

@@ -331,6 +331,15 @@ double bf__noise_power(const bf_problem *pb, const double *curve,
 int bf__leverages(bf__fitctx *fc, const double *param, double scale,
                   double p, const double *fit, double top, double *z,
                   double *t0, double *t1, double *h);
+/* Each free parameter j's robust factor c[j] >= 1 (sandwich.c): its
+ * variance from the residuals (the HC2 sandwich) over the noise model's,
+ * at least 1, for the fit at param of bf__leverages' arguments and nu
+ * degrees of freedom of sigma^2; NaN for the others; 1 for every free one
+ * where the leverages' derivatives fail (that code returned). buf:
+ * (BF_MAX_PARAMS + 4) n doubles. */
+int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
+                       double p, const double *fit, double top, double nu,
+                       double *buf, double *c);
 /* The likelihood's scale s* and sigma^2 = RSS_v / dof at the curve
  * (scratch: n doubles). */
 void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,

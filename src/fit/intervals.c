@@ -17,7 +17,9 @@
  * S_p minimised over the other free parameters and the scale, nu = n - k,
  * k = free parameters + the scale + the noise power when estimated. As
  * nu grows the threshold tends to Wilks' chi2_1(level) [1] §9.2; at small
- * n it is the exact interval of a linear model with unknown variance.
+ * n it is the exact interval of a linear model with unknown variance. A
+ * specular model's threshold of theta_j is multiplied by its robust
+ * factor c_j >= 1 (src/fit/sandwich.c, Stafford's adjustment).
  */
 #include <gsl/gsl_cdf.h>
 #include <math.h>
@@ -133,12 +135,14 @@ static void clear(bf_interval *out, bf_noise noise)
     for (j = 0; j < BF_MAX_PARAMS; j++) {
         out->low[j] = NAN;
         out->high[j] = NAN;
+        out->robust[j] = NAN;
         out->ml.param[j] = NAN;
     }
 }
 
-/* Each free parameter's interval around out->ml under fc->pb with the
- * criterion n ln(S_p / S_min) <= thr. */
+/* Each free parameter j's interval around out->ml under fc->pb with the
+ * criterion n ln(S_p / S_min) <= thr times its robust factor (1 without
+ * one). */
 static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
 {
     const bf_problem *pb = fc->pb;
@@ -153,7 +157,8 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
-        rc = bf__profile_ci_thr(fc, &out->ml, j, thr, d0[j], &out->low[j],
+        double c = isfinite(out->robust[j]) ? out->robust[j] : 1.0;
+        rc = bf__profile_ci_thr(fc, &out->ml, j, c * thr, d0[j], &out->low[j],
                                 &out->high[j], &open);
         if (rc != BF_OK) {
             out->low[j] = NAN;
@@ -199,7 +204,10 @@ static int spec_power(bf__fitctx *fc, const double *param, double *buf,
  * from the objective's fit, p there, the maximum-likelihood fit under the
  * weights of p, p again (NOISE_PASSES); the profiles are then taken under
  * the last weights, k = free parameters + [p estimated] (no scale beside
- * the model's own). w: n doubles, the weights, borrowed by *lik. */
+ * the model's own), each parameter's threshold times its robust factor
+ * (sandwich.c: the peak's variance is extrapolated from p over the lobe's
+ * decades, and a p a little off, or a wrong fixed noise model, makes the
+ * intervals narrow). w: n doubles, the weights, borrowed by *lik. */
 static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
                         bf_noise noise, double level, double *w,
                         double *buf, bf_interval *out, bf_problem *lik,
@@ -267,12 +275,16 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
         out->sigma = sqrt(rss / nu) / top;
         out->method = BF_CI_PROFILE_LIK;
         *thr = bf__lik_threshold(n_w, nu, level);
+        /* 1 where the derivatives cannot be taken (sandwich.c) */
+        (void)bf__robust_factors(fc, out->ml.param, 1.0, p, fc->curve, top,
+                                 nu, buf, out->robust);
     }
     return rc;
 }
 
 /* bf__interval_problem with buf: (BF_MAX_PARAMS + 4) n doubles of
- * scratch for the noise power's leverages (adjusted_power). */
+ * scratch for the noise power's leverages (adjusted_power) and the
+ * robust factors (bf__robust_factors). */
 static int interval_problem(bf__fitctx *fc, const bf_fit_result *best,
                             bf_noise noise, double level, double *w,
                             double *buf, bf_interval *out, bf_problem *lik,
@@ -344,10 +356,10 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
                          bf_noise noise, double level, double *w,
                          bf_interval *out, bf_problem *lik, double *thr)
 {
-    double *buf = noise == BF_NOISE_AUTO
+    double *buf = noise != BF_NOISE_OBJECTIVE
                       ? malloc((BF_MAX_PARAMS + 4) * fc->pb->n * sizeof *buf)
                       : NULL;
-    int rc = noise == BF_NOISE_AUTO && buf == NULL
+    int rc = noise != BF_NOISE_OBJECTIVE && buf == NULL
                  ? BF_ENOMEM
                  : interval_problem(fc, best, noise, level, w, buf, out, lik,
                                     thr);

@@ -189,7 +189,9 @@ int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
         if (!((mask >> j) & 1u)) {
             continue;
         }
-        thr[q] = t;
+        /* the threshold parameter j's interval takes (intervals.c) */
+        thr[q] = rc == BF_OK && isfinite(iv->robust[j]) ? t * iv->robust[j]
+                                                         : t;
         if (rc == BF_OK) { /* around the estimate the intervals are about */
             rc = curve(&lik, &iv->ml, j, n, theta + q * n, dev + q * n);
         }

@@ -43,6 +43,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
     l->grid_value = l->grid_lse = l->refined_value = l->refined_lse = NAN;
     l->ci_low = l->ci_high = l->boot_low = l->boot_high = NAN;
     l->ml_value = NAN;
+    l->ci_robust = NAN;
     l->aic = l->bic = l->cv = NAN;
     l->ci_open = -1;
     l->n_params = -1;
@@ -59,6 +60,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->ci_open = has && s->ci_method != BF_CI_NONE
                          ? (int)((s->ci_open >> (2 * j)) & 3u)
                          : -1; /* no interval: --intervals none */
+        l->ci_robust = has ? s->ci_robust[j] : NAN;
         l->boot_low = has ? s->boot_low[j] : NAN;
         l->boot_high = has ? s->boot_high[j] : NAN;
         l->n_params = (long)s->k;
@@ -173,7 +175,7 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
     fprintf(fp, ",%.10g,%d,%zu,%s,%s", l->lse, l->bound_hit, l->k,
             l->objective, l->fit);
     if (!l->analysed) {
-        fputs(",,,,,,,,,,,,,,,,", fp);
+        fputs(",,,,,,,,,,,,,,,,,", fp);
     } else {
         bf__csv_num(fp, l->grid_value);
         bf__csv_num(fp, l->grid_lse);
@@ -184,6 +186,7 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
         bf__csv_num(fp, l->ml_value);
         fprintf(fp, ",%s", l->ci_method != NULL ? l->ci_method : "");
         csv_int(fp, l->ci_open);
+        bf__csv_num(fp, l->ci_robust);
         bf__csv_num(fp, l->boot_low);
         bf__csv_num(fp, l->boot_high);
         csv_int(fp, l->n_params);
@@ -225,9 +228,9 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
     (void)bf_fits_lines(spec, rows, stats, opts, lines);
     fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
           "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
-          "ci_low,ci_high,ml_value,ci_method,ci_open,boot_low,boot_high,n_params,aic,"
-          "bic,cv,flags,ndf,masking,fresnel,albedo_0,albedo_30,albedo_60,"
-          "albedo_80,albedo_over_1\n",
+          "ci_low,ci_high,ml_value,ci_method,ci_open,ci_robust,boot_low,"
+          "boot_high,n_params,aic,bic,cv,flags,ndf,masking,fresnel,"
+          "albedo_0,albedo_30,albedo_60,albedo_80,albedo_over_1\n",
           fp);
     for (i = 0; i < n; i++) {
         write_line(fp, spec, rows, &lines[i]);

@@ -654,8 +654,11 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "configurations, around the maximum-likelihood estimate "
                  "(point). The dashed line is the 95%% threshold "
                  "n ln(1 + F_{1,nu}(0.95)/nu), nu = n minus the estimated "
-                 "parameters (about 3.84); the thick segment, where the "
-                 "curve lies below it, is the parameter's reported 95%% "
+                 "parameters (about 3.84), for a specular model's "
+                 "parameter times its robust factor (fits.csv ci_robust, "
+                 "at least 1: widened where the residuals show more "
+                 "variance than the noise model); the thick segment, where "
+                 "the curve lies below it, is the parameter's reported 95%% "
                  "interval (fits.csv ci_low, ci_high).",
                  bf_noise_name(st->analysis.noise),
                  bf_noise_variance(st->analysis.noise),

@@ -398,6 +398,12 @@ Test(cli_analysis, intervals_none_keeps_the_fits_and_writes_no_interval,
                     cr_assert(v == 1 ? cell[0] == '\0' : cell[0] != '\0',
                               "row %zu %s '%s'", r, gone[c], cell);
                 }
+                /* a specular model's robust factor goes with its
+                 * interval; the diffuse models have none */
+                cr_assert((d == 1 && v == 0) ==
+                              (bf_test_csv_cell(r, "ci_robust")[0] != '\0'),
+                          "row %zu ci_robust '%s'", r,
+                          bf_test_csv_cell(r, "ci_robust"));
                 cr_assert(v == 0 ||
                           strstr(bf_test_csv_cell(r, "flags"), "noise=") ==
                               NULL);
@@ -446,7 +452,7 @@ Test(cli_analysis, intervals_none_refuses_what_needs_intervals)
 Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
 {
     static const char *const gone[] = {"ci_low", "ci_high", "ml_value",
-                                       "ci_method", "ci_open"};
+                                       "ci_method", "ci_open", "ci_robust"};
     const char *dir = bf_test_tmpdir();
     const char *argv[] = {"compare", "--data", "DATA", "--samples", "12",
                           "--models", "FC-E", "--max-theta", "25", "--fit",
@@ -460,7 +466,7 @@ Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
         cr_assert(isfinite(bf_test_csv_num(r, "value")));
         cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"),
                                   "interval_failed"));
-        for (c = 0; c < 5; c++) {
+        for (c = 0; c < 6; c++) {
             cr_assert_str_empty(bf_test_csv_cell(r, gone[c]), "row %zu %s",
                                 r, gone[c]);
         }

@@ -252,6 +252,7 @@ Test(writers, fits_lines_are_the_lines_of_fits_csv)
                       "%s %s: ml_value %g outside [%g, %g]", l->model,
                       l->parameter, l->ml_value, l->ci_low, l->ci_high);
             cr_assert_not_null(l->ci_method);
+            cr_assert(isnan(l->ci_robust)); /* diffuse: no robust factor */
         } else {
             cr_assert_eq(l->kind, BF_FITS_NONE);
             cr_assert_str_eq(r->type->name, "LAMBERT");
