@@ -547,6 +547,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             double *thr_x = ci + 4;            /* x0, x1; the optimum's y */
             double *thr_y = thr_x + 3;         /* the threshold's y */
             double thr = CHI2_95;
+            /* a specular model's robust factor: the curve and its
+             * threshold divided by it (Stafford's adjusted profile), so
+             * every panel's threshold is the same line */
+            double c = isfinite(f->ci_robust[j]) ? f->ci_robust[j] : 1.0;
             size_t k;
             bf_plot_series *sq = &ser[4 * q];
             if (!((f->free_mask >> j) & 1u)) {
@@ -560,10 +564,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             for (k = 0; k < PROFILE_POINTS; k++) {
                 double x = tm[(qq - 1) * PROFILE_POINTS + k];
                 theta[k] = isfinite(x) ? x : (double)k / (PROFILE_POINTS - 1);
-                dev[k] = dm[(qq - 1) * PROFILE_POINTS + k];
+                dev[k] = dm[(qq - 1) * PROFILE_POINTS + k] / c;
             }
             if (isfinite(thm[qq - 1])) {
-                thr = thm[qq - 1]; /* else no noise fit, no curve */
+                thr = thm[qq - 1] / c; /* else no noise fit, no curve */
             }
             ci[0] = f->ci_low[j];
             ci[1] = f->ci_high[j];
@@ -652,14 +656,14 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "doc/methods.md §3), S_p minimised "
                  "over the model's other free parameters%s, n = K = %zu "
                  "configurations, around the maximum-likelihood estimate "
-                 "(point). The dashed line is the 95%% threshold "
-                 "n ln(1 + F_{1,nu}(0.95)/nu), nu = n minus the estimated "
-                 "parameters (about 3.84), for a specular model's "
-                 "parameter times its robust factor (fits.csv ci_robust, "
-                 "at least 1: widened where the residuals show more "
-                 "variance than the noise model); the thick segment, where "
-                 "the curve lies below it, is the parameter's reported 95%% "
-                 "interval (fits.csv ci_low, ci_high).",
+                 "(point); a specular model's curve is divided by the "
+                 "parameter's robust factor (fits.csv ci_robust, at least "
+                 "1: its threshold widened where the residuals show more "
+                 "variance than the noise model). The dashed line is the "
+                 "95%% threshold n ln(1 + F_{1,nu}(0.95)/nu), nu = n minus "
+                 "the estimated parameters (about 3.84); the thick segment, "
+                 "where the curve lies below it, is the parameter's "
+                 "reported 95%% interval (fits.csv ci_low, ci_high).",
                  bf_noise_name(st->analysis.noise),
                  bf_noise_variance(st->analysis.noise),
                  bf_objective_keeps_scale(st->opts.objective)
