@@ -325,21 +325,27 @@ void bf__lik_residuals(const bf_problem *pb, const double *curve,
  * residuals standardised by the fit's leverages lev (n; NULL: none). */
 double bf__noise_power(const bf_problem *pb, const double *curve,
                        const double *lev, double *scratch);
+/* The largest leverage a residual is standardised by (noise.c's noise
+ * power, sandwich.c's HC2 terms): a configuration the fit interpolates
+ * (h = 1) tells nothing of its variance, and its residual (zero to
+ * rounding) is not blown up by 1 / (1 - h). */
+#define BF__LEV_MAX 0.99
 /* The leverages h (n) of the fit at param (mean scale times the model's
  * curve fit, n, of maximum top) under fc->pb's weights and noise power p
  * (leverage.c); z: n (BF_MAX_PARAMS + 1), t0, t1: n doubles of scratch. */
 int bf__leverages(bf__fitctx *fc, const double *param, double scale,
                   double p, const double *fit, double top, double *z,
                   double *t0, double *t1, double *h);
-/* Each free parameter j's robust factor c[j] >= 1 (sandwich.c): its
- * variance from the residuals (the HC2 sandwich) over the noise model's,
- * at least 1, for the fit at param of bf__leverages' arguments and nu
- * degrees of freedom of sigma^2; NaN for the others; 1 for every free one
- * where the leverages' derivatives fail (that code returned). buf:
- * (BF_MAX_PARAMS + 4) n doubles. */
-int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
-                       double p, const double *fit, double top, double nu,
-                       double *buf, double *c);
+/* Each free parameter j's robust factor c[j] >= 1 of a specular model's
+ * fit at param (sandwich.c): its variance from the residuals (the HC2
+ * sandwich) over the noise model's, at least 1, with fit = rho_hat there
+ * (n, maximum top), noise power p and nu degrees of freedom of sigma^2;
+ * NaN for the others; 1 for every free one where the leverages'
+ * derivatives fail (that code returned). buf: (BF_MAX_PARAMS + 4) n
+ * doubles. */
+int bf__robust_factors(bf__fitctx *fc, const double *param, double p,
+                       const double *fit, double top, double nu, double *buf,
+                       double *c);
 /* The likelihood's scale s* and sigma^2 = RSS_v / dof at the curve
  * (scratch: n doubles). */
 void bf__lik_scale(const bf_problem *pb, const double *curve, double dof,

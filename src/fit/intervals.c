@@ -154,10 +154,11 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
     }
     for (j = 0; j < pb->type->p; j++) {
         unsigned open = 0;
+        double c; /* the robust factor */
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
-        double c = isfinite(out->robust[j]) ? out->robust[j] : 1.0;
+        c = isfinite(out->robust[j]) ? out->robust[j] : 1.0;
         rc = bf__profile_ci_thr(fc, &out->ml, j, c * thr, d0[j], &out->low[j],
                                 &out->high[j], &open);
         if (rc != BF_OK) {
@@ -276,8 +277,8 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
         out->method = BF_CI_PROFILE_LIK;
         *thr = bf__lik_threshold(n_w, nu, level);
         /* 1 where the derivatives cannot be taken (sandwich.c) */
-        (void)bf__robust_factors(fc, out->ml.param, 1.0, p, fc->curve, top,
-                                 nu, buf, out->robust);
+        (void)bf__robust_factors(fc, out->ml.param, p, fc->curve, top, nu,
+                                 buf, out->robust);
     }
     return rc;
 }
@@ -356,10 +357,13 @@ int bf__interval_problem(bf__fitctx *fc, const bf_fit_result *best,
                          bf_noise noise, double level, double *w,
                          bf_interval *out, bf_problem *lik, double *thr)
 {
-    double *buf = noise != BF_NOISE_OBJECTIVE
-                      ? malloc((BF_MAX_PARAMS + 4) * fc->pb->n * sizeof *buf)
+    /* the noise power's leverages; a specular model's robust factors */
+    int use = noise == BF_NOISE_AUTO ||
+              (noise != BF_NOISE_OBJECTIVE &&
+               fc->pb->type->kind == BF_MODEL_SPECULAR);
+    double *buf = use ? malloc((BF_MAX_PARAMS + 4) * fc->pb->n * sizeof *buf)
                       : NULL;
-    int rc = noise != BF_NOISE_OBJECTIVE && buf == NULL
+    int rc = use && buf == NULL
                  ? BF_ENOMEM
                  : interval_problem(fc, best, noise, level, w, buf, out, lik,
                                     thr);

@@ -32,10 +32,6 @@
 #define P_STEPS 30
 /* Golden-section tolerance of p. */
 #define P_TOL 1e-4
-/* The largest leverage a residual is standardised by: a configuration the
- * fit interpolates (h = 1) tells nothing of its variance, and its residual
- * (zero to rounding) is not blown up by 1 / (1 - h). */
-#define LEV_MAX 0.99
 
 static double weight_of(const bf_problem *pb, size_t k)
 {
@@ -84,7 +80,7 @@ static double value_at(const bf_problem *pb, const double *curve, double p,
         double e = s * curve[k] - pb->data[k];
         double q = weight_of(pb, k) * e * e / v[k];
         if (lev != NULL) {
-            q /= 1.0 - (lev[k] < LEV_MAX ? lev[k] : LEV_MAX);
+            q /= 1.0 - (lev[k] < BF__LEV_MAX ? lev[k] : BF__LEV_MAX);
         }
         if (want_resid) {
             v[k] = sqrt(g / v[k]) * e;

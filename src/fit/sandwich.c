@@ -18,9 +18,10 @@
  * [4] src/fit/noise.c: D_k = mu_k + e_k, var e_k = sigma^2 v_k,
  *     v_k = max(L_k / top, f)^p.
  *
- * Equations, at the estimate: z_k the derivatives of the mean mu_k over
- * its columns (bf__leverages: the scale s and the free parameters, or a
- * specular model's free parameters) times sqrt(w_k / v_k), u_k =
+ * Equations, at a specular model's estimate (its scales are parameters,
+ * so the mean mu_k = rho_hat_k has no scale beside them): z_k the
+ * derivatives of mu_k over the free parameters (bf__leverages) times
+ * sqrt(w_k / v_k), u_k =
  * sqrt(w_k / v_k) (mu_k - D_k), h_k the leverages,
  *   A = sum z_k z_k',  g_k = A^-1 z_k,  sigma^2 = sum u_k^2 / nu
  *   V_model,jj  = sigma^2 (A^-1)_jj = sigma^2 sum g_kj^2
@@ -38,19 +39,14 @@
 
 #include "fit/engine.h"
 
-/* The largest leverage a squared residual is divided by 1 - h for (as
- * noise.c's LEV_MAX). */
-#define LEV_MAX 0.99
-
 #define NCOL (BF_MAX_PARAMS + 1)
 
-int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
-                       double p, const double *fit, double top, double nu,
-                       double *buf, double *c)
+int bf__robust_factors(bf__fitctx *fc, const double *param, double p,
+                       const double *fit, double top, double nu, double *buf,
+                       double *c)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
-    int spec = pb->type->kind == BF_MODEL_SPECULAR;
     double *z = buf;
     double *t0 = buf + NCOL * n;
     double *h = t0 + 2 * n;
@@ -59,7 +55,7 @@ int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
     double g2[NCOL] = {0};
     double uu = 0.0;
     gsl_matrix_view av;
-    size_t q = spec ? 0 : 1; /* the columns: [s,] the free parameters */
+    size_t q = 0; /* the columns: the free parameters */
     size_t col;
     size_t i;
     size_t j;
@@ -70,7 +66,7 @@ int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
         c[j] = fr ? 1.0 : NAN;
         q += fr ? 1u : 0u;
     }
-    rc = bf__leverages(fc, param, scale, p, fit, top, z, t0, t0 + n, h);
+    rc = bf__leverages(fc, param, 1.0, p, fit, top, z, t0, t0 + n, h);
     if (rc != BF_OK) {
         return rc;
     }
@@ -90,11 +86,11 @@ int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
     for (k = 0; k < n; k++) {
         double l = fit[k] / top;
         double w = pb->weight != NULL ? pb->weight[k] : 1.0;
-        double hk = h[k] < LEV_MAX ? h[k] : LEV_MAX;
+        double hk = h[k] < BF__LEV_MAX ? h[k] : BF__LEV_MAX;
         const double *zk = z + k * NCOL;
         double u;
         l = l > BF_LOG_FLOOR ? l : BF_LOG_FLOOR;
-        u = sqrt(w) * pow(l, -0.5 * p) * (scale * fit[k] - pb->data[k]);
+        u = sqrt(w) * pow(l, -0.5 * p) * (fit[k] - pb->data[k]);
         uu += u * u;
         for (i = 0; i < q; i++) { /* g = A^-1 z_k */
             double gi = 0.0;
@@ -110,7 +106,7 @@ int bf__robust_factors(bf__fitctx *fc, const double *param, double scale,
     if (!(uu > 0.0) || !(nu > 0.0)) {
         return BF_OK; /* an exact fit: 1 */
     }
-    col = spec ? 0 : 1;
+    col = 0;
     for (j = 0; j < pb->type->p; j++) {
         double vm; /* V_model,jj = sigma^2 (A^-1)_jj = sigma^2 sum g_k^2 */
         if (!((pb->free_mask >> j) & 1u)) {
