@@ -174,6 +174,18 @@ typedef enum {
                              (SPEC §5: rho 0, sigma 1) */
 } bf_input;
 
+/* Lafortune et al.'s lobe (SPEC §9.3) at (t Cxy, t Cz, n) is t^n times its
+ * value at (Cxy, Cz, n): homogeneous of degree n in Cxy and Cz. A search
+ * can hold the BF_HOMOG_UNIT parameter (Cz) at 1 and solve the lobe's size
+ * t^n exactly, as a scale, then multiply it and the BF_HOMOG_SCALED ones
+ * (Cxy) by t; BF_HOMOG_DEGREE marks the degree (n). */
+typedef enum {
+    BF_HOMOG_NONE = 0,
+    BF_HOMOG_UNIT,
+    BF_HOMOG_SCALED,
+    BF_HOMOG_DEGREE
+} bf_homog;
+
 /* One parameter of a model. */
 typedef struct {
     const char *name;   /* short name: "m", "n", "n_d", "rho", "sigma" */
@@ -196,6 +208,7 @@ typedef struct {
      * exactly; 0 otherwise (every parameter of the diffuse models, whose
      * values are compared after max-normalisation, SPEC §2). */
     int linear;
+    bf_homog homog; /* its part in a homogeneous lobe (bf_homog) */
 } bf_param;
 
 /* Evaluates a model at n configurations. param holds type->p values, already

@@ -76,6 +76,9 @@
 # configurations, each fitted twice, about 4 s of CPU plain) -- the folds'
 # grid and fits run under valgrind in every compare of a composite with
 # its default ten folds in composite's other tests.
+# composite/lafortune_fits_reach_the_truths_basin fits 100 simulated data
+# sets twice (about 5 s of CPU plain); composite/a_lafortune_fit... runs
+# the first of them under valgrind.
 # specular_options' recovery and separable-height tests fit six composites
 # and lobes through the CLI (about 1.1 s of CPU plain); the same paths run
 # under valgrind in its fits.csv, description and bad-option tests.
@@ -187,6 +190,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     specular_options/separable_and_height_fits_differ
     composite/dense_recovery_through_the_subsample
     composite/cv_folds_fit_at_least_as_well_as_fresh_fits
+    composite/lafortune_fits_reach_the_truths_basin
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     grid/round_trip_recovers_every_model_exactly_at_grid_values

@@ -53,6 +53,9 @@ typedef struct {
 /* --- models --- */
 #define BF_MAX_PARAMS 8
 typedef enum { BF_INPUT_DEFAULT = 0, BF_INPUT_INDEX, BF_INPUT_ON } bf_input;
+typedef enum {
+    BF_HOMOG_NONE = 0, BF_HOMOG_UNIT, BF_HOMOG_SCALED, BF_HOMOG_DEGREE
+} bf_homog;
 typedef struct {
     const char *name;
     const char *label;
@@ -69,6 +72,7 @@ typedef struct {
     double free_hi;
     double free_step;
     int linear;
+    bf_homog homog;
 } bf_param;
 typedef int (*bf_eval_fn)(const double *param, size_t n, const bf_geom *geom,
                           double *out, void *work);

@@ -34,7 +34,10 @@
  * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
  * the scales re-solved at every trial point; every trial point clamped
  * into the domain; a cross-validation fold's descents stop where they
- * join, within half a grid step, a minimum an earlier one reached. Dense
+ * join, within half a grid step, a minimum an earlier one reached. A
+ * homogeneous lobe (LAFORTUNE, bf_param.homog; varpro_homog.c): the grid
+ * and the descents from its minima with the lobe's size solved exactly,
+ * then a descent over every parameter from where each ends. Dense
  * data: the grid and those descents on a regular
  * subsample, one descent on all (doc/methods.md). cuberoot, log1p: the
  * ngan solution starts Nelder-Mead over every free parameter, scales
@@ -168,7 +171,7 @@ static double f_nm(const gsl_vector *u, void *arg)
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
     }
-    v = bf__vp_value_at(sp->fc, x);
+    v = bf__vp_grid_value(sp, x, NULL);
     if (v == sp->flat_f) {
         sp->flat_n++;
     } else {
@@ -191,7 +194,7 @@ static int nelder_mead(bf__vp_space *sp, double *x, const double *step,
     size_t it;
     int status = GSL_CONTINUE;
     if (sp->m == 0) {
-        *f = bf__vp_value_at(sp->fc, x);
+        *f = bf__vp_grid_value(sp, x, NULL);
         return BF_OK;
     }
     mn = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2,
@@ -250,7 +253,8 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
     }
-    if (bf__fit_value(sp->fc, x, &v) != BF_OK || !isfinite(v)) {
+    v = bf__vp_grid_value(sp, x, NULL); /* fc->curve at x */
+    if (!(v < BF__VP_UNDEFINED)) {
         return GSL_EDOM;
     }
     for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
@@ -421,7 +425,7 @@ static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
                 from_u(sp, a, gsl_vector_get(gsl_multifit_nlinear_position(w),
                                              a));
         }
-        fy = bf__vp_value_at(sp->fc, y);
+        fy = bf__vp_grid_value(sp, y, NULL);
         if (fy < *f) {
             memcpy(x, y, sizeof y);
             *f = fy;
@@ -442,14 +446,14 @@ static int polish(bf__vp_space *sp, double *x, const double *step, double *f)
     size_t a;
     int pass;
     int rc = BF_OK;
-    *f = bf__vp_value_at(sp->fc, x);
+    *f = bf__vp_grid_value(sp, x, NULL);
     for (pass = 0; pass < 2 && rc == BF_OK; pass++) {
         for (a = 0; a < sp->m; a++) {
             s2[a] = pass == 0 ? step[a] : 0.1 * step[a];
         }
         memcpy(y, x, sizeof y);
         rc = nelder_mead(sp, y, s2, &fy);
-        fy = bf__vp_value_at(sp->fc, y); /* the clamped point's own value */
+        fy = bf__vp_grid_value(sp, y, NULL); /* the clamped point's */
         if (rc == BF_OK && fy < *f) {
             memcpy(x, y, sizeof y);
             *f = fy;
@@ -614,7 +618,7 @@ static int bound_kkt(const bf__vp_space *sp, const double *x, double f)
         memcpy(y, x, sizeof y);
         y[sp->idx[a]] = from_u(sp, a, side < 0 ? lo + KKT_STEP * (hi - lo)
                                                : hi - KKT_STEP * (hi - lo));
-        if (bf__vp_value_at(sp->fc, y) < f) {
+        if (bf__vp_grid_value(sp, y, NULL) < f) {
             return 0;
         }
     }
@@ -646,6 +650,17 @@ static int descend(bf__vp_space *sp, const double *step, double *x, double *f)
     return rc;
 }
 
+/* The start of grid point idx of gs in x: the point, or where it stands
+ * for (bf__vp_grid_value). */
+static void start_of(const bf__vp_space *gs, size_t idx, double *x)
+{
+    double g[BF_MAX_PARAMS];
+    bf__vp_point_of(gs, idx, g);
+    if (!gs->hg || !(bf__vp_grid_value(gs, g, x) < BF__VP_UNDEFINED)) {
+        memcpy(x, g, sizeof g);
+    }
+}
+
 /* Adds x (value f; not merged) to the minima a fold's descents join. */
 static void add_known(bf__vp_space *sp, const double *x, double f)
 {
@@ -668,6 +683,7 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
 {
     const bf_problem *pb = fc->pb;
     bf__vp_space sp;
+    bf__vp_space gs;
     double *vals;
     size_t points = 1;
     cand_t best[BF__VP_STARTS];
@@ -675,13 +691,15 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     size_t g;
     size_t a;
     double step[BF_MAX_PARAMS];
+    double gstep[BF_MAX_PARAMS];
     double xbest[BF_MAX_PARAMS];
     double fbest = BF__VP_UNDEFINED;
     int rc = BF_OK;
     fc->lin_mask = lin;
     bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
-    for (a = 0; a < sp.m; a++) {
-        points *= sp.count[a];
+    bf__vp_grid_init(&gs, fc, pb->free_mask & ~lin);
+    for (a = 0; a < gs.m; a++) {
+        points *= gs.count[a];
     }
     vals = malloc(points * sizeof *vals);
     if (vals == NULL) {
@@ -694,40 +712,63 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
             vals[g] = pre[g];
             continue;
         }
-        bf__vp_point_of(&sp, g, x);
-        vals[g] = bf__vp_value_at(fc, x);
+        bf__vp_point_of(&gs, g, x);
+        vals[g] = bf__vp_grid_value(&gs, x, NULL);
     }
-    pick_starts(&sp, vals, points, best, &n_best);
+    pick_starts(&gs, vals, points, best, &n_best);
     free(vals);
     if (n_best == 0) {
         fc->lin_mask = 0;
         return BF_EDOM;
     }
-    bf__vp_point_of(&sp, best[0].idx, xbest);
+    start_of(&gs, best[0].idx, xbest);
     fill_scales(fc, xbest);
     if (grid != NULL) {
         memset(grid, 0, sizeof *grid);
         memcpy(grid->param, xbest, sizeof xbest);
-        grid->lse = best[0].f;
+        /* a homogeneous lobe's point clamped into its domain: its value */
+        grid->lse = gs.hg ? bf__vp_value_at(fc, xbest) : best[0].f;
         grid->n_eval = points;
     }
     grid_steps(&sp, step);
-    sp.merge = pre != NULL;
-    for (a = 0; a < sp.m; a++) {
-        sp.near[a] = MERGE_NEAR * step[a];
+    grid_steps(&gs, gstep);
+    /* a fold's descents merge in the grid's coordinates (gs: sp's own
+     * without a homogeneous lobe) */
+    gs.merge = pre != NULL;
+    for (a = 0; a < gs.m; a++) {
+        gs.near[a] = MERGE_NEAR * gstep[a];
     }
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
+        double y[BF_MAX_PARAMS];
         double f;
-        bf__vp_point_of(&sp, best[g].idx, x);
-        f = bf__vp_value_at(fc, x);
-        rc = descend(&sp, step, x, &f);
+        bf__vp_point_of(&gs, best[g].idx, x);
+        if (gs.hg) {
+            /* a homogeneous lobe: descends with its size solved exactly
+             * (the stiff direction of Cxy, Cz taken out), then, from
+             * where that stands for, over every parameter */
+            f = bf__vp_grid_value(&gs, x, NULL);
+            rc = descend(&gs, gstep, x, &f);
+            if (rc == BF_OK && !gs.merged) {
+                add_known(&gs, x, f);
+            }
+            if (rc != BF_OK || gs.merged ||
+                !(bf__vp_grid_value(&gs, x, y) < BF__VP_UNDEFINED)) {
+                continue;
+            }
+            memcpy(x, y, sizeof x);
+            f = bf__vp_value_at(fc, x);
+            rc = descend(&sp, step, x, &f);
+        } else {
+            f = bf__vp_value_at(fc, x);
+            rc = descend(&gs, gstep, x, &f);
+            if (rc == BF_OK) {
+                add_known(&gs, x, f);
+            }
+        }
         if (rc == BF_OK && f < fbest) {
             fbest = f;
             memcpy(xbest, x, sizeof x);
-        }
-        if (rc == BF_OK) {
-            add_known(&sp, x, f);
         }
     }
     fill_scales(fc, xbest);

@@ -1,7 +1,8 @@
 /* varpro.h: what the files of the separable fit share (SPEC §9.3, §10;
  * varpro.c: the search over the nonlinear parameters; varpro_scales.c:
  * the scales solved exactly; varpro_folds.c: the cross-validation folds'
- * grid values). Private to src/fit, never installed. */
+ * grid values; varpro_homog.c: the grid of a homogeneous lobe). Private
+ * to src/fit, never installed. */
 #ifndef BF_FIT_VARPRO_H
 #define BF_FIT_VARPRO_H
 
@@ -51,11 +52,39 @@ typedef struct {
     double known_f[BF__VP_STARTS];
     double near[BF_MAX_PARAMS];
     int merged;
+    /* A grid over a homogeneous lobe (bf_homog; bf__vp_grid_init): its
+     * unit parameter (not an axis, held at 1 on the grid), its degree and
+     * its scaled parameters (a mask). */
+    int hg;
+    size_t hg_unit;
+    size_t hg_degree;
+    unsigned hg_scaled;
 } bf__vp_space;
 
 /* The search of fc's problem over the free parameters of mask (its
  * domains, grid sizes and coordinates). */
 void bf__vp_space_init(bf__vp_space *sp, bf__fitctx *fc, unsigned mask);
+
+/* The grid of the search over mask: bf__vp_space_init's, except where
+ * the model's lobe is homogeneous (bf_homog) and its unit and scaled
+ * parameters are in mask (one block, at most one other scale): then the
+ * unit parameter is no axis but 1 at every grid point, and the lobe's
+ * size solved there (bf__vp_grid_value). */
+void bf__vp_grid_init(bf__vp_space *gs, bf__fitctx *fc, unsigned mask);
+
+/* The value of grid point x of gs (a full vector, bf__vp_point_of;
+ * BF__VP_UNDEFINED where not defined) and in y (not NULL) the point it
+ * stands for: x itself, or with gs->hg the unit parameter t (the lobe's
+ * solved size t^n) and the scaled ones times t, each clamped into its
+ * domain. */
+double bf__vp_grid_value(const bf__vp_space *gs, const double *x, double *y);
+
+/* The lobe's size at param, solved exactly: the NNLS scales of fc's
+ * columns with c_0 (the lobe at param) one more scaled column (one block,
+ * at most one scale in fc->lin_mask); *mag the lobe's scale, *value the
+ * objective there; fc->lin and fc->curve as bf__varpro_value leaves them. */
+int bf__varpro_magnitude(bf__fitctx *fc, const double *param, double *mag,
+                         double *value);
 
 /* Grid point idx of sp (the first axis slowest) as a full vector. */
 void bf__vp_point_of(const bf__vp_space *sp, size_t idx, double *x);

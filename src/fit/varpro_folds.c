@@ -23,7 +23,7 @@ static size_t grid_points(bf__fitctx *fc, unsigned lin)
         pb->n > BF__DENSE_K || fc->blocks > 1) {
         return 0;
     }
-    bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
+    bf__vp_grid_init(&sp, fc, pb->free_mask & ~lin);
     for (a = 0; a < sp.m; a++) {
         points *= sp.count[a];
     }
@@ -59,14 +59,15 @@ static double sse_normal(const bf__vp_normal *ne, double rr, const double *t,
 }
 
 /* Every fold's ngan value at the point whose curve parts fc holds (the
- * columns c0, c1, c2 of n_l scales, or with none the curve as c0): the
+ * columns c0, c1, c2 of n_l scales, or with none the curve as c0; with hg
+ * a homogeneous lobe's, c0 one more scaled column: bf__vp_grid_value): the
  * fold's training configurations (weight 1 off the fold, 0 on it) in the
  * normal equations and S, from one pass's sums per held-out fold (the
  * training sums: the whole's minus the fold's; mom: 6 (folds + 1)
  * doubles); into out[f * stride], NAN where S cancels (sse_normal). */
 static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
-                        const size_t *fold, size_t folds, double *mom,
-                        double *out, size_t stride)
+                        int hg, const size_t *fold, size_t folds,
+                        double *mom, double *out, size_t stride)
 {
     const size_t n = fc->pm->n;
     const double *data = fc->pb->data;
@@ -77,10 +78,16 @@ static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
     size_t f;
     size_t k;
     size_t q;
+    if (hg) { /* the lobe c0 scaled too: columns (c1, c0) or (c0) */
+        c2 = n_l > 0 ? fc->cols : NULL;
+        c1 = n_l > 0 ? c1 : fc->cols;
+        c0 = NULL;
+        n_l++;
+    }
     memset(mom, 0, 6 * (folds + 1) * sizeof *mom);
     for (k = 0; k < n; k++) { /* g11 g12 g22 b1 b2 rr of each fold */
         double *m = mom + 6 * fold[k];
-        double r = data[k] - c0[k];
+        double r = data[k] - (c0 != NULL ? c0[k] : 0.0);
         if (n_l > 0) {
             m[0] += c1[k] * c1[k];
             m[3] += c1[k] * r;
@@ -163,15 +170,19 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
     whole.weight = NULL;
     bf__fitctx_use(fc, &whole);
     fc->lin_mask = lin;
-    bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
+    bf__vp_grid_init(&sp, fc, pb->free_mask & ~lin);
+    if (sp.hg) {
+        hi[n_lin] = HUGE_VAL; /* the lobe's size (varpro_scales.c) */
+    }
     /* point by point: the model once (its columns), every fold's scales
      * and S from sums over the configurations (fold_values), summed
      * directly where they cancel (bf__varpro_value keeps the columns) */
     for (g = 0; g < points; g++) {
         double x[BF_MAX_PARAMS];
         bf__vp_point_of(&sp, g, x);
-        if (bf__vp_value_at(fc, x) < BF__VP_UNDEFINED) {
-            fold_values(fc, n_lin, hi, fold, folds, mom, *vals + g, points);
+        if (bf__vp_grid_value(&sp, x, NULL) < BF__VP_UNDEFINED) {
+            fold_values(fc, n_lin, hi, sp.hg, fold, folds, mom, *vals + g,
+                        points);
             for (f = 0; f < folds; f++) {
                 bf_problem train = whole;
                 size_t k;
@@ -183,7 +194,7 @@ int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
                 }
                 train.weight = w;
                 bf__fitctx_use(fc, &train);
-                (*vals)[f * points + g] = bf__vp_value_at(fc, x);
+                (*vals)[f * points + g] = bf__vp_grid_value(&sp, x, NULL);
                 bf__fitctx_use(fc, &whole);
             }
         } else {

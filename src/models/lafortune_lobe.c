@@ -11,6 +11,8 @@
  * = -sin ti sin to cos phi_s):
  *   LAFORTUNE = max(0, Cxy (ix ox + iy oy) + Cz iz oz)^n   [1], SPEC §9.3
  * Cxy < 0 puts the lobe at the mirror direction, Cxy > 0 at backscatter.
+ * Homogeneous of degree n in (Cxy, Cz) (bf_homog): the separable fit
+ * (src/fit/varpro.c) solves the lobe's size exactly on its grid.
  * Limits: continuous on the closed hemisphere (no division). Where base
  * > 1 (the domain allows up to 2) and base^n exceeds the largest double
  * the value is NaN (BF_EDOM), not infinity.
@@ -31,11 +33,11 @@ BF__MF_ENTRY(lafortune, lafortune_value);
 
 static const bf_param param_lafortune[3] = {
     {.name = "Cxy", .label = "lobe Cxy", .unit = "1", .min = -2.0,
-     .max = 2.0, .value = -1.0, .fitted = 1},
+     .max = 2.0, .value = -1.0, .fitted = 1, .homog = BF_HOMOG_SCALED},
     {.name = "Cz", .label = "lobe Cz", .unit = "1", .min = 0.0, .max = 2.0,
-     .value = 1.0, .fitted = 1},
+     .value = 1.0, .fitted = 1, .homog = BF_HOMOG_UNIT},
     {.name = "n", .label = "exponent n", .unit = "1", .min = 1.0,
-     .max = 1e4, .value = 20.0, .fitted = 1},
+     .max = 1e4, .value = 20.0, .fitted = 1, .homog = BF_HOMOG_DEGREE},
 };
 
 static const bf_model_type lafortune_type = {
