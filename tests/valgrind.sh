@@ -79,6 +79,9 @@
 # composite/lafortune_fits_reach_the_truths_basin fits 100 simulated data
 # sets twice (about 5 s of CPU plain); composite/a_lafortune_fit... runs
 # the first of them under valgrind.
+# spec_intervals/a_profile_stays_inside_where_the_model_overflows fits and
+# profiles mystique's 1439 configurations with thresholds some 3000 times
+# the usual (about 1.4 s plain, many inner fits); ASan runs it.
 # specular_options' recovery and separable-height tests fit six composites
 # and lobes through the CLI (about 1.1 s of CPU plain); the same paths run
 # under valgrind in its fits.csv, description and bad-option tests.
@@ -191,6 +194,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     composite/dense_recovery_through_the_subsample
     composite/cv_folds_fit_at_least_as_well_as_fresh_fits
     composite/lafortune_fits_reach_the_truths_basin
+    spec_intervals/a_profile_stays_inside_where_the_model_overflows
     specular_models/ggx_without_fresnel_conserves_energy
     specular_models/ward_gmd_is_bounded_and_ward_duer_is_not
     grid/round_trip_recovers_every_model_exactly_at_grid_values

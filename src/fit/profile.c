@@ -356,6 +356,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     double nuisance[BF_MAX_PARAMS];
     double inside[BF_MAX_PARAMS]; /* the nuisance optimum at x */
     double out = limit;
+    double edge = limit; /* the walk's bound: limit, or where not defined */
     size_t iter;
     size_t verify;
     int improved;
@@ -371,11 +372,31 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     for (iter = 0; iter < CI_MAXITER; iter++) {
         double next = limit > theta_hat ? x + d : x - d;
         double c;
-        if ((limit > theta_hat && next >= limit) ||
-            (limit < theta_hat && next <= limit)) {
-            next = limit;
+        if (edge != limit && fabs(edge - x) <= CI_TOL) {
+            /* within CI_TOL of where the model is not defined (below),
+             * the profile below the threshold: an open end (not
+             * identified) */
+            *end = x;
+            *at_limit = 1;
+            memcpy(p->start, nuisance, sizeof nuisance);
+            return BF_OK;
+        }
+        if ((limit > theta_hat && next >= edge) ||
+            (limit < theta_hat && next <= edge)) {
+            next = edge == limit ? limit : 0.5 * (x + edge);
         }
         c = crit_at(p, next, 1, &improved);
+        if (p->status == BF_EDOM) {
+            /* not defined at next (with theta there the model overflows
+             * from every start the inner fits take: a lobe's power beyond
+             * the largest double): the walk stays inside next, halving
+             * the way to it; where it comes within CI_TOL (above) the
+             * profile is below the threshold as far as it is defined */
+            p->status = BF_OK;
+            edge = next;
+            d = 0.5 * fabs(next - x);
+            continue;
+        }
         if (p->status != BF_OK) {
             return p->status;
         }
