@@ -40,10 +40,15 @@ class Parameter:
             the exact fit never frees it.
         linear: True for a scale the value is proportional to (SPEC §9.3's
             rho_s, A, AS's Rd), which a separable fit solves exactly.
+        homog: its part in a lobe homogeneous in some parameters
+            (bf_param.homog: LAFORTUNE's value at (t Cxy, t Cz, n) is t^n
+            times that at (Cxy, Cz, n)): "unit" (Cz, held at 1 while the
+            separable fit's grid solves the lobe's size), "scaled" (Cxy),
+            "degree" (n), or None.
     """
 
     __slots__ = ("name", "label", "unit", "min", "max", "default", "fitted",
-                 "grid", "exact_range", "linear")
+                 "grid", "exact_range", "linear", "homog")
 
     def __init__(self, p):
         self.name = text(p.name)
@@ -59,6 +64,7 @@ class Parameter:
                              float(p.free_step))
                             if p.free_lo < p.free_hi else None)
         self.linear = bool(p.linear)
+        self.homog = {1: "unit", 2: "scaled", 3: "degree"}.get(int(p.homog))
 
     def __repr__(self):
         return ("Parameter(%r, unit=%r, range=[%g, %g], default=%g%s)"

@@ -200,8 +200,14 @@ def test_the_specular_family_is_listed_with_its_kind_and_scales():
         assert tuple(p.name for p in m.parameters) == params
         assert [p.name for p in m.parameters if p.linear] == (
             [] if name == "LAFORTUNE" else [params[0]])
+        assert [p.homog for p in m.parameters] == (
+            ["scaled", "unit", "degree"] if name == "LAFORTUNE"
+            else [None] * len(params))
         assert m.ndf and m.masking and m.fresnel
     assert models["GGX"].masking.startswith("Smith height-correlated")
+    # a composite carries its lobe's parameters as they are
+    assert [p.homog for p in brdffit.model("LAMBERT+LAFORTUNE").parameters
+            ] == [None, "scaled", "unit", "degree"]
     for name in ("VH-G", "ON", "LAMBERT", "WNO-R"):
         m = models[name]
         assert m.kind == "diffuse" and m.ndf is None

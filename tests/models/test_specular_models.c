@@ -304,6 +304,77 @@ Test(specular_models, every_lobe_peaks_at_the_mirror_direction)
     }
 }
 
+/* What bf_param.homog declares (the separable fit relies on it,
+ * src/fit/varpro_homog.c): with the BF_HOMOG_UNIT and BF_HOMOG_SCALED
+ * parameters multiplied by t, the value is t^n times the value, n the
+ * BF_HOMOG_DEGREE parameter, to rounding, at directions across the
+ * hemisphere and the mirror direction; every model with a unit parameter
+ * has a degree, and LAFORTUNE (Lafortune et al. 1997 eq. 5) and its
+ * composites are the ones that declare it. */
+Test(specular_models, a_homogeneous_lobe_is_what_its_parameters_declare)
+{
+    static const double t_of[] = {0.5, 0.97, 1.03};
+    static const double dirs[][3] = {{0.2, 0.2, 0.0},  {0.5, 0.6, 0.1},
+                                     {0.9, 0.9, 0.0},  {1.2, 1.1, 0.05},
+                                     {0.3, 0.7, 2.0},  {1.0, 0.4, -0.3}};
+    const char *const names[] = {"LAFORTUNE", "LAMBERT+LAFORTUNE",
+                                 "ON+LAFORTUNE", "GGX", "LAMBERT+GGX", "AS"};
+    size_t i;
+    for (i = 0; i < sizeof names / sizeof names[0]; i++) {
+        const bf_model_type *t = bf_model_find(names[i]);
+        double p[BF_MAX_PARAMS];
+        size_t degree = BF_MAX_PARAMS;
+        int any = 0;
+        size_t j;
+        size_t a;
+        size_t d;
+        cr_assert_not_null(t, "%s", names[i]);
+        for (j = 0; j < t->p; j++) {
+            p[j] = t->param[j].value;
+            any |= t->param[j].homog == BF_HOMOG_UNIT;
+            degree = t->param[j].homog == BF_HOMOG_DEGREE ? j : degree;
+        }
+        cr_assert_eq(any, strstr(t->name, "LAFORTUNE") != NULL, "%s",
+                     t->name);
+        if (!any) {
+            continue;
+        }
+        cr_assert(degree < t->p, "%s: a unit parameter and no degree",
+                  t->name);
+        if (t->param[0].linear) {
+            p[0] = 0.0; /* a composite's rho_d: the lobe alone */
+        }
+        for (j = 0; j < t->p; j++) { /* a lobe of n = 40, Cxy -1, Cz 0.9 */
+            if (t->param[j].homog == BF_HOMOG_SCALED) {
+                p[j] = -1.0;
+            } else if (t->param[j].homog == BF_HOMOG_UNIT) {
+                p[j] = 0.9;
+            } else if (j == degree) {
+                p[j] = 40.0;
+            }
+        }
+        for (a = 0; a < sizeof t_of / sizeof t_of[0]; a++) {
+            double q[BF_MAX_PARAMS];
+            memcpy(q, p, sizeof q);
+            for (j = 0; j < t->p; j++) {
+                if (t->param[j].homog == BF_HOMOG_SCALED ||
+                    t->param[j].homog == BF_HOMOG_UNIT) {
+                    q[j] *= t_of[a];
+                }
+            }
+            for (d = 0; d < sizeof dirs / sizeof dirs[0]; d++) {
+                double v = value(t, p, dirs[d][0], dirs[d][1], dirs[d][2]);
+                double w = value(t, q, dirs[d][0], dirs[d][1], dirs[d][2]);
+                double want = pow(t_of[a], p[degree]) * v;
+                cr_expect(fabs(w - want) <= 1e-12 * fabs(want) + 1e-300,
+                          "%s, t %g at (%g, %g, %g): %.17g, want %.17g",
+                          t->name, t_of[a], dirs[d][0], dirs[d][1],
+                          dirs[d][2], w, want);
+            }
+        }
+    }
+}
+
 /* f(i, o) = f(o, i): swapping theta_i and theta_s at the same relative
  * azimuth, at rounding (the formulas are symmetric term by term). */
 Test(specular_models, every_model_is_reciprocal)
