@@ -745,8 +745,10 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         bf__vp_point_of(&gs, best[g].idx, x);
         if (gs.hg) {
             /* a homogeneous lobe: descends with its size solved exactly
-             * (the stiff direction of Cxy, Cz taken out), then, from
-             * where that stands for, over every parameter */
+             * (the stiff direction of Cxy, Cz taken out), then, where
+             * what that stands for is not inside the domain, over every
+             * parameter from there (bf__vp_grid_inside) */
+            int inside;
             f = bf__vp_grid_value(&gs, x, NULL);
             rc = descend(&gs, gstep, x, &f);
             if (rc == BF_OK && !gs.merged) {
@@ -756,9 +758,12 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
                 !(bf__vp_grid_value(&gs, x, y) < BF__VP_UNDEFINED)) {
                 continue;
             }
+            inside = bf__vp_grid_inside(&gs, x, y);
             memcpy(x, y, sizeof x);
             f = bf__vp_value_at(fc, x);
-            rc = descend(&sp, step, x, &f);
+            if (!inside) {
+                rc = descend(&sp, step, x, &f);
+            }
         } else {
             f = bf__vp_value_at(fc, x);
             rc = descend(&gs, gstep, x, &f);

@@ -79,6 +79,16 @@ void bf__vp_grid_init(bf__vp_space *gs, bf__fitctx *fc, unsigned mask);
  * domain. */
 double bf__vp_grid_value(const bf__vp_space *gs, const double *x, double *y);
 
+/* 1 when gs->hg and grid point x (after a descent in gs) stands for y
+ * (bf__vp_grid_value) inside the domain: every unit and scaled parameter
+ * of y off its bounds (nothing clamped) and the scaled ones of x (the
+ * ratio to the unit parameter, whose axis bounds are not the model's) off
+ * their axis's bounds (1e-6 of the span). Such a stationary point of the
+ * search with the lobe's size solved is one over every parameter: the map
+ * (x, size) -> y is one-to-one where the unit parameter is positive. */
+int bf__vp_grid_inside(const bf__vp_space *gs, const double *x,
+                       const double *y);
+
 /* The lobe's size at param, solved exactly: the NNLS scales of fc's
  * columns with c_0 (the lobe at param) one more scaled column (one block,
  * at most one scale in fc->lin_mask); *mag the lobe's scale, *value the

@@ -84,3 +84,22 @@ double bf__vp_grid_value(const bf__vp_space *gs, const double *x, double *y)
     }
     return v;
 }
+
+int bf__vp_grid_inside(const bf__vp_space *gs, const double *x,
+                       const double *y)
+{
+    const bf_problem *pb = gs->fc->pb;
+    size_t j;
+    for (j = 0; gs->hg && j < pb->type->p; j++) {
+        double tol = 1e-6 * (pb->hi[j] - pb->lo[j]);
+        int unit = j == gs->hg_unit;
+        if (!unit && !((gs->hg_scaled >> j) & 1u)) {
+            continue;
+        }
+        if (!(y[j] > pb->lo[j] + tol && y[j] < pb->hi[j] - tol) ||
+            (!unit && !(x[j] > pb->lo[j] + tol && x[j] < pb->hi[j] - tol))) {
+            return 0;
+        }
+    }
+    return gs->hg;
+}
