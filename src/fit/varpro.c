@@ -547,16 +547,18 @@ static void pick_starts(const bf__vp_space *sp, const double *vals,
     }
 }
 
-/* The scales of x solved at x's other values (fc->lin_mask). */
-static void fill_scales(bf__fitctx *fc, double *x)
+/* The scales of x solved at x's other values (fc->lin_mask); the value
+ * there (bf__vp_value_at: the scales' own values do not enter it). */
+static double fill_scales(bf__fitctx *fc, double *x)
 {
     size_t j;
-    (void)bf__vp_value_at(fc, x);
+    double v = bf__vp_value_at(fc, x);
     for (j = 0; j < fc->pb->type->p; j++) {
         if ((fc->lin_mask >> j) & 1u) {
             x[j] = fc->lin[j];
         }
     }
+    return v;
 }
 
 /* The steps of Nelder-Mead: one grid step (search coordinates). */
@@ -693,6 +695,7 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     double step[BF_MAX_PARAMS];
     double gstep[BF_MAX_PARAMS];
     double xbest[BF_MAX_PARAMS];
+    double fgrid;
     double fbest = BF__VP_UNDEFINED;
     int rc = BF_OK;
     fc->lin_mask = lin;
@@ -722,12 +725,12 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         return BF_EDOM;
     }
     start_of(&gs, best[0].idx, xbest);
-    fill_scales(fc, xbest);
+    fgrid = fill_scales(fc, xbest);
     if (grid != NULL) {
         memset(grid, 0, sizeof *grid);
         memcpy(grid->param, xbest, sizeof xbest);
         /* a homogeneous lobe's point clamped into its domain: its value */
-        grid->lse = gs.hg ? bf__vp_value_at(fc, xbest) : best[0].f;
+        grid->lse = gs.hg ? fgrid : best[0].f;
         grid->n_eval = points;
     }
     grid_steps(&sp, step);
@@ -943,8 +946,7 @@ static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     bf__vp_space_init(&sp, fc, fc->pb->free_mask & ~lin);
     grid_steps(&sp, step);
     if (grid != NULL) {
-        fill_scales(fc, grid->param);
-        grid->lse = bf__vp_value_at(fc, grid->param);
+        grid->lse = fill_scales(fc, grid->param);
     }
     memcpy(x, result->param, sizeof x);
     f = bf__vp_value_at(fc, x);

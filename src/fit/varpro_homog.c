@@ -17,6 +17,7 @@
 void bf__vp_grid_init(bf__vp_space *gs, bf__fitctx *fc, unsigned mask)
 {
     const bf_model_type *t = fc->pb->type;
+    unsigned lin = bf__varpro_lin(fc->pb);
     unsigned unit = 0;
     unsigned scaled = 0;
     size_t degree = t->p;
@@ -38,7 +39,7 @@ void bf__vp_grid_init(bf__vp_space *gs, bf__fitctx *fc, unsigned mask)
         default:
             break;
         }
-        n_lin += ((fc->pb->free_mask >> j) & 1u) && t->param[j].linear;
+        n_lin += (lin >> j) & 1u;
     }
     if (unit == 0 || degree == t->p || (mask & (unit | scaled)) !=
                                            (unit | scaled) ||

@@ -553,12 +553,14 @@ static void paint_problem(const char *file, const char *model, bf_geom *geom,
 }
 
 /* model's ngan fit to the Cornell file and its intervals (noise model
- * auto) into so, pb and iv: every free parameter's interval finite, not a
- * point, and holding the maximum-likelihood estimate. */
+ * auto) into so, pb (its data in buffers of this function) and iv: every
+ * free parameter's interval finite, not a point, and holding the
+ * maximum-likelihood estimate. */
 static void paint_intervals(const char *file, const char *model,
-                            bf_geom *geom, double *rho, bf__solo *so,
-                            bf_problem *pb, bf_interval *iv)
+                            bf__solo *so, bf_problem *pb, bf_interval *iv)
 {
+    static bf_geom geom[MAX_CONF];
+    static double rho[MAX_CONF];
     bf_fit_result fit;
     size_t j;
     paint_problem(file, model, geom, rho, pb);
@@ -581,13 +583,10 @@ static void paint_intervals(const char *file, const char *model,
 Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
      .timeout = 300)
 {
-    static bf_geom geom[MAX_CONF];
-    static double rho[MAX_CONF];
     bf__solo so;
     bf_problem pb;
     bf_interval iv;
-    paint_intervals("krylon_blue.brdf", "LAMBERT+GGX", geom, rho, &so, &pb,
-                    &iv);
+    paint_intervals("krylon_blue.brdf", "LAMBERT+GGX", &so, &pb, &iv);
     cr_assert(iv.noise_power > 1.0 && iv.noise_power <= BF_NOISE_PMAX,
               "p %g", iv.noise_power);
     cr_assert_eq(iv.not_identified, 0u);
@@ -606,15 +605,12 @@ Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
 Test(spec_intervals, a_profile_stays_inside_where_the_model_overflows,
      .timeout = 300)
 {
-    static bf_geom geom[MAX_CONF];
-    static double rho[MAX_CONF];
     bf__solo so;
     bf_problem pb;
     bf_interval iv;
     double x[BF_MAX_PARAMS];
     double v;
-    paint_intervals("mystique.brdf", "LAMBERT+LAFORTUNE", geom, rho, &so,
-                    &pb, &iv);
+    paint_intervals("mystique.brdf", "LAMBERT+LAFORTUNE", &so, &pb, &iv);
     /* Cxy's upper end short of its bound 2, where the lobe is still a
      * double; its lower end open */
     cr_assert(iv.high[1] < pb.hi[1], "Cxy's end %g", iv.high[1]);
