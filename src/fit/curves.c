@@ -20,34 +20,45 @@ struct bf_curves {
     unsigned mask; /* free parameters */
 };
 
+/* Grid points whose curves are read at once (bf__grid_curves: runs of
+ * this many doubles from each configuration's row). */
+#define POINT_BLOCK 32
+
 /* The objective of pb (weights w) at every grid point, the slow way: one
- * curve at a time through bf__objective (the scale and log objectives). */
+ * curve at a time through bf__objective (the scale and log objectives),
+ * read POINT_BLOCK curves at a time. */
 static int optima_by_point(const bf__grid *gr, const bf_problem *pb,
                            const double *cti, size_t n_w,
                            const double *const *w, double *lse)
 {
     const bf__grid_layout_t *lay = bf__grid_lay(gr);
     size_t cols = bf__grid_cols(gr);
-    double *curve = malloc(3 * pb->n * sizeof *curve);
+    double *curves = malloc((POINT_BLOCK + 2) * pb->n * sizeof *curves);
     double *scratch;
     double *log_d;
-    size_t g;
-    size_t b;
-    if (curve == NULL) {
+    size_t g0;
+    if (curves == NULL) {
         return BF_ENOMEM;
     }
-    scratch = curve + pb->n;
+    scratch = curves + (POINT_BLOCK * pb->n);
     log_d = scratch + pb->n;
     bf__data_transform(pb, log_d);
-    for (g = 0; g < lay->points; g++) {
-        bf__grid_curve(gr, g, curve);
-        for (b = 0; b < n_w; b++) {
-            bf_problem q = *pb;
-            q.weight = w[b];
-            lse[b * cols + g] = bf__objective(&q, cti, log_d, curve, scratch);
+    for (g0 = 0; g0 < lay->points; g0 += POINT_BLOCK) {
+        size_t nb = lay->points - g0 < POINT_BLOCK ? lay->points - g0
+                                                    : POINT_BLOCK;
+        size_t g;
+        size_t b;
+        bf__grid_curves(gr, g0, nb, curves);
+        for (g = 0; g < nb; g++) {
+            for (b = 0; b < n_w; b++) {
+                bf_problem q = *pb;
+                q.weight = w[b];
+                lse[(b * cols) + g0 + g] = bf__objective(
+                    &q, cti, log_d, curves + (g * pb->n), scratch);
+            }
         }
     }
-    free(curve);
+    free(curves);
     return BF_OK;
 }
 

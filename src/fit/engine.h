@@ -686,8 +686,10 @@ int bf__grid_weights_argmin(const bf__grid *gr, const double *data,
 /* Row k of the transposed curves and their row pitch. */
 const double *bf__grid_curve_row(const bf__grid *gr, size_t k,
                                  size_t *stride);
-/* The curve of grid point idx (n values). */
-void bf__grid_curve(const bf__grid *gr, size_t idx, double *curve);
+/* The curves of the nb grid points from idx0 (nb <= the points left), one
+ * after another (n values each), read row by row. */
+void bf__grid_curves(const bf__grid *gr, size_t idx0, size_t nb,
+                     double *curves);
 /* The result of a grid search whose best point is best (SIZE_MAX: none,
  * BF_EDOM) with that LSE: n_eval, bound flags and parameters as
  * bf_fit_grid reports them. */

@@ -297,28 +297,43 @@ struct bf__grid {
     unsigned char *ok; /* cols flags: 1 where the curve is defined */
 };
 
+/* Grid points computed before their curves are stored: the store writes
+ * runs of this many doubles per configuration instead of one double a
+ * configuration's row apart (the curves are stored by configuration). */
+#define POINT_BLOCK 32
+
 /* Fills gr's curves one grid point at a time through the engine (models
- * without a block kernel: ON, LAMBERT, WNO, WNO-R, other free masks). */
+ * without a block kernel: ON, LAMBERT, WNO, WNO-R, other free masks),
+ * POINT_BLOCK points into buf before they are stored. */
 static int curves_by_point(bf__grid *gr, const bf__prep *pm)
 {
     double param[BF_MAX_PARAMS];
-    double *curve = malloc(gr->n * sizeof *curve);
+    double *buf = malloc(POINT_BLOCK * gr->n * sizeof *buf);
     void *work = bf__work_alloc(pm);
-    size_t idx;
-    size_t k;
-    if (curve == NULL || work == NULL) {
-        free(curve);
+    size_t idx0;
+    if (buf == NULL || work == NULL) {
+        free(buf);
         free(work);
         return BF_ENOMEM;
     }
-    for (idx = 0; idx < gr->layout.points; idx++) {
-        bf__grid_point(&gr->layout, idx, param);
-        gr->ok[idx] = bf__curve(pm, param, work, curve) == BF_OK;
+    for (idx0 = 0; idx0 < gr->layout.points; idx0 += POINT_BLOCK) {
+        size_t nb = gr->layout.points - idx0;
+        size_t b;
+        size_t k;
+        nb = nb < POINT_BLOCK ? nb : POINT_BLOCK;
+        for (b = 0; b < nb; b++) {
+            bf__grid_point(&gr->layout, idx0 + b, param);
+            gr->ok[idx0 + b] =
+                bf__curve(pm, param, work, buf + (b * gr->n)) == BF_OK;
+        }
         for (k = 0; k < gr->n; k++) {
-            gr->curves[(k * gr->stride) + idx] = curve[k];
+            double *row = gr->curves + (k * gr->stride) + idx0;
+            for (b = 0; b < nb; b++) {
+                row[b] = buf[(b * gr->n) + k];
+            }
         }
     }
-    free(curve);
+    free(buf);
     free(work);
     return BF_OK;
 }
@@ -538,11 +553,16 @@ const double *bf__grid_curve_row(const bf__grid *gr, size_t k,
     return gr->curves + k * gr->stride;
 }
 
-void bf__grid_curve(const bf__grid *gr, size_t idx, double *curve)
+void bf__grid_curves(const bf__grid *gr, size_t idx0, size_t nb,
+                     double *curves)
 {
     size_t k;
+    size_t b;
     for (k = 0; k < gr->n; k++) {
-        curve[k] = gr->curves[k * gr->stride + idx];
+        const double *row = gr->curves + (k * gr->stride) + idx0;
+        for (b = 0; b < nb; b++) {
+            curves[(b * gr->n) + k] = row[b];
+        }
     }
 }
 

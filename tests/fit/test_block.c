@@ -309,7 +309,7 @@ Test(block, stored_grids_use_the_block_kernel_and_fall_back_where_it_declines)
             double stored[K];
             bf__grid_point(&lay, g, param);
             cr_assert_eq(bf__curve(&pm, param, work, curve), BF_OK);
-            bf__grid_curve(gr, g, stored);
+            bf__grid_curves(gr, g, 1, stored);
             cr_assert(memcmp(stored, curve, sizeof curve) == 0,
                       "pass %d, point %zu: the stored curve is bf__curve's",
                       pass, g);
