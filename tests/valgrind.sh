@@ -127,6 +127,11 @@
 # report_calibrate/many_panels... (38 s), whose figure code its thread
 # test runs; dispersion/krylon_blue_mean_index... (18 s, 31 channels of a
 # real file), whose code dispersion's synthetic tests run.
+# spec_intervals/dense_profile_ends_are_roots_on_all_the_data profiles and
+# refits LAMBERT+GGX on 72,000 configurations (114 s under valgrind, half
+# the file's time): the dense path (above BF__DENSE_K configurations: the
+# predicted steps and the narrowed bracket of profile.c) has no smaller
+# case; ASan runs it.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load
 # (fontconfig, pango, glib, ltdl, cairo).
@@ -216,7 +221,8 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     wno_r/is_finite_and_non_negative_over_the_hemisphere_and_domain
     wno_r/matches_gsls_adaptive_quadrature_to_1e_8_of_the_value
     report_calibrate/many_panels_are_split_into_figures_that_fit_a_page
-    dispersion/krylon_blue_mean_index_is_a_binders"}
+    dispersion/krylon_blue_mean_index_is_a_binders
+    spec_intervals/dense_profile_ends_are_roots_on_all_the_data"}
 
 # run_one EXE: runs EXE under valgrind, writes its verdict line to
 # BUILD/valgrind-NAME.verdict and its log to BUILD/valgrind-NAME.log.
