@@ -156,6 +156,7 @@ install: build
 # make format: clang-format (.clang-format) on the lines changed since the
 # last commit, staged or not; the rest of each file keeps its hand layout.
 format:
+	@scripts/install-deps.sh format
 	git clang-format --force --extensions c,h
 
 tidy: build

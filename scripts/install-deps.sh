@@ -8,6 +8,8 @@
 #   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
 #   scripts/install-deps.sh valgrind also valgrind (make valgrind)
 #   scripts/install-deps.sh coverage also gcovr (make coverage)
+#   scripts/install-deps.sh format   also clang-format and git clang-format
+#                                    (make format)
 set -eu
 
 # libplplot-dev, plplot-driver-cairo, fonts-dejavu-core: the report's
@@ -29,8 +31,9 @@ for group in "$@"; do
     fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
     valgrind) PACKAGES="$PACKAGES valgrind" ;;
     coverage) PACKAGES="$PACKAGES gcovr" ;;
+    format) PACKAGES="$PACKAGES clang-format" ;;
     *) echo "install-deps: unknown group '$group' (bench, fuzz, valgrind," \
-            "coverage)" >&2
+            "coverage, format)" >&2
        exit 2 ;;
     esac
 done
