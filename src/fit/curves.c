@@ -20,34 +20,31 @@ struct bf_curves {
     unsigned mask; /* free parameters */
 };
 
-/* Grid points whose curves are read at once (bf__grid_curves: runs of
- * this many doubles from each configuration's row). */
-#define POINT_BLOCK 32
-
 /* The objective of pb (weights w) at every grid point, the slow way: one
  * curve at a time through bf__objective (the scale and log objectives),
- * read POINT_BLOCK curves at a time. */
+ * read BF__GRID_BLOCK curves at a time. */
 static int optima_by_point(const bf__grid *gr, const bf_problem *pb,
                            const double *cti, size_t n_w,
                            const double *const *w, double *lse)
 {
     const bf__grid_layout_t *lay = bf__grid_lay(gr);
     size_t cols = bf__grid_cols(gr);
-    double *curves = malloc((POINT_BLOCK + 2) * pb->n * sizeof *curves);
+    double *curves =
+        malloc((BF__GRID_BLOCK + 2) * pb->n * sizeof *curves);
     double *scratch;
     double *log_d;
     size_t g0;
     if (curves == NULL) {
         return BF_ENOMEM;
     }
-    scratch = curves + (POINT_BLOCK * pb->n);
+    scratch = curves + (BF__GRID_BLOCK * pb->n);
     log_d = scratch + pb->n;
     bf__data_transform(pb, log_d);
-    for (g0 = 0; g0 < lay->points; g0 += POINT_BLOCK) {
-        size_t nb = lay->points - g0 < POINT_BLOCK ? lay->points - g0
-                                                    : POINT_BLOCK;
+    for (g0 = 0; g0 < lay->points; g0 += BF__GRID_BLOCK) {
+        size_t nb = lay->points - g0;
         size_t g;
         size_t b;
+        nb = nb < BF__GRID_BLOCK ? nb : BF__GRID_BLOCK;
         bf__grid_curves(gr, g0, nb, curves);
         for (g = 0; g < nb; g++) {
             for (b = 0; b < n_w; b++) {

@@ -686,6 +686,11 @@ int bf__grid_weights_argmin(const bf__grid *gr, const double *data,
 /* Row k of the transposed curves and their row pitch. */
 const double *bf__grid_curve_row(const bf__grid *gr, size_t k,
                                  size_t *stride);
+/* Grid points whose curves are stored or read at once (curves_by_point,
+ * bf__grid_curves' callers): runs of this many doubles from each
+ * configuration's row instead of one double a row apart (the curves are
+ * stored by configuration). */
+#define BF__GRID_BLOCK 32
 /* The curves of the nb grid points from idx0 (nb <= the points left), one
  * after another (n values each), read row by row. */
 void bf__grid_curves(const bf__grid *gr, size_t idx0, size_t nb,

@@ -297,18 +297,13 @@ struct bf__grid {
     unsigned char *ok; /* cols flags: 1 where the curve is defined */
 };
 
-/* Grid points computed before their curves are stored: the store writes
- * runs of this many doubles per configuration instead of one double a
- * configuration's row apart (the curves are stored by configuration). */
-#define POINT_BLOCK 32
-
 /* Fills gr's curves one grid point at a time through the engine (models
  * without a block kernel: ON, LAMBERT, WNO, WNO-R, other free masks),
- * POINT_BLOCK points into buf before they are stored. */
+ * BF__GRID_BLOCK points into buf before they are stored. */
 static int curves_by_point(bf__grid *gr, const bf__prep *pm)
 {
     double param[BF_MAX_PARAMS];
-    double *buf = malloc(POINT_BLOCK * gr->n * sizeof *buf);
+    double *buf = malloc(BF__GRID_BLOCK * gr->n * sizeof *buf);
     void *work = bf__work_alloc(pm);
     size_t idx0;
     if (buf == NULL || work == NULL) {
@@ -316,11 +311,11 @@ static int curves_by_point(bf__grid *gr, const bf__prep *pm)
         free(work);
         return BF_ENOMEM;
     }
-    for (idx0 = 0; idx0 < gr->layout.points; idx0 += POINT_BLOCK) {
+    for (idx0 = 0; idx0 < gr->layout.points; idx0 += BF__GRID_BLOCK) {
         size_t nb = gr->layout.points - idx0;
         size_t b;
         size_t k;
-        nb = nb < POINT_BLOCK ? nb : POINT_BLOCK;
+        nb = nb < BF__GRID_BLOCK ? nb : BF__GRID_BLOCK;
         for (b = 0; b < nb; b++) {
             bf__grid_point(&gr->layout, idx0 + b, param);
             gr->ok[idx0 + b] =
