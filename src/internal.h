@@ -450,6 +450,9 @@ int bf__study_groups_fit(const bf_study_spec *spec, bf_objective obj,
 int bf__dataset_rho(const bf_dataset *ds, size_t m, size_t c, size_t n,
                     const size_t *sel, double *out);
 void bf__study_groups_free(bf__groups_t *gs);
+/* bf_study_row_albedo of rows[0 .. n) on n_threads OpenMP threads (0 or
+ * 1: one; src/fit/study_albedo.c): the same values for any count. */
+void bf__study_rows_albedo(bf_study_row *rows, size_t n, int n_threads);
 
 /* --- the study path's kernels (src/fit/kernels.c) --- */
 

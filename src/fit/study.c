@@ -308,8 +308,9 @@ int bf_study_run(const bf_study_spec *spec, bf_study_row *rows, bf_error *err)
         }
     }
     bf__study_groups_free(&gs);
-    for (i = 0; rc == BF_OK && i < spec->n_targets * spec->n_models; i++) {
-        bf_study_row_albedo(&rows[i]); /* NaN: the models are diffuse */
+    if (rc == BF_OK) { /* NaN: the models are diffuse */
+        bf__study_rows_albedo(rows, spec->n_targets * spec->n_models,
+                              spec->n_threads);
     }
     return rc;
 }

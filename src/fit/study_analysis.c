@@ -175,8 +175,11 @@ int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
             if (r->status == BF_OK) {
                 r->fit = stats[u].refined;
             }
-            bf_study_row_albedo(r);
         }
+    }
+    if (opts->exact) {
+        bf__study_rows_albedo(rows, spec->n_targets * spec->n_models,
+                              spec->n_threads);
     }
     for (s = 0; opts->objective == BF_OBJ_NGAN && s < n_units; s++) {
         /* SPEC §10: the value reported is E = sqrt(S / K); a joint fit's
