@@ -184,11 +184,11 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
  * intervals under the noise model (unless opts->no_intervals), the
  * bootstrap, AIC and BIC, the cross-validation (gr, fold_grid: the grid
  * and the folds' grid optima; NULL for a specular model, whose folds have
- * their own fits). */
+ * their own fits, from the whole's minima warm; NULL for the others). */
 static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                         const bf_analysis_opts *opts, const size_t *fold,
                         const bf__grid *gr, const bf_fit_result *fold_grid,
-                        bf_fit_stats *st)
+                        const bf__vp_minima *warm, bf_fit_stats *st)
 {
     bf_interval iv;
     size_t j;
@@ -242,7 +242,8 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         if (pb->free_mask == 0) {
             st->cv = st->refined.lse; /* nothing to fit: CV = LSE */
         } else {
-            rc = bf__cv(fc, gr, fold, opts->folds, fold_grid, &st->cv);
+            rc = bf__cv(fc, gr, fold, opts->folds, fold_grid, warm,
+                        &st->cv);
             if (rc == BF_ENOMEM) {
                 return rc;
             }
@@ -299,7 +300,7 @@ static int analyse_joint(run_t *r, size_t u, bf__fitctx *fc, size_t n_ch)
     st->free_mask = pb.free_mask;
     st->n = n * n_ch;
     st->k = bf_problem_nparams(&pb) + (n_ch - 1) * n_lin;
-    rc = bf__varpro_fit(&jc, &st->grid, &st->refined);
+    rc = bf__varpro_fit(&jc, &st->grid, &st->refined, NULL);
     if (rc == BF_OK) {
         rc = bf__varpro_scales(&jc, st->grid.param, grid_p);
     }
@@ -370,11 +371,12 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     if (pb.type->kind == BF_MODEL_SPECULAR) {
         /* SPEC §9.3, §9.4 under an objective that keeps the scale: the
          * separable fit (varpro.c), its own grid; then as every model */
-        rc = bf__varpro_fit(fc, &st->grid, &st->refined);
+        bf__vp_minima minima;
+        rc = bf__varpro_fit(fc, &st->grid, &st->refined, &minima);
         if (rc != BF_OK) {
             return rc;
         }
-        return analyse_rest(fc, &pb, opts, fold, NULL, NULL, st);
+        return analyse_rest(fc, &pb, opts, fold, NULL, NULL, &minima, st);
     }
     if (gp->gr == NULL) {
         return gp->status;
@@ -421,7 +423,7 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
             return rc;
         }
     }
-    return analyse_rest(fc, &pb, opts, fold, gp->gr, grids + 1, st);
+    return analyse_rest(fc, &pb, opts, fold, gp->gr, grids + 1, NULL, st);
 }
 
 /* ==== the grid optima of a group, one pass (phase 2) ===================== */

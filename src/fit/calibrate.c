@@ -219,7 +219,7 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         }
         bf__fitctx_use(&so.fc, &sim);
         if (spec) { /* the separable fit (varpro.c) */
-            st = bf__varpro_fit(&so.fc, NULL, &best);
+            st = bf__varpro_fit(&so.fc, NULL, &best, NULL);
         } else {
             rc = bf__grid_optima(gr, &sim, so.cs.cti, 1, w, &g);
             if (rc != BF_OK) {

@@ -63,7 +63,8 @@ int bf_fit_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
 }
 
 int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
-           size_t folds, const bf_fit_result *fold_grid, double *cv)
+           size_t folds, const bf_fit_result *fold_grid,
+           const bf__vp_minima *warm, double *cv)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
@@ -107,8 +108,9 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         train.weight = w;
         bf__fitctx_use(fc, &train);
         if (spec) {
-            rc = vals != NULL ? bf__varpro_fit_grid(fc, vals + f * points, &r)
-                              : bf__varpro_fit(fc, NULL, &r);
+            rc = vals != NULL ? bf__varpro_fit_grid(fc, vals + f * points,
+                                                    warm, &r)
+                              : bf__varpro_fit(fc, NULL, &r, NULL);
         } else {
             rc = isfinite(fold_grid[f].lse)
                      ? bf__refine(fc, &fold_grid[f], &r)
@@ -154,7 +156,7 @@ int bf_fit_cv(const bf_problem *pb, const bf_curves *curves, size_t folds,
         rc = bf__solo_init(&so, pb);
         if (rc == BF_OK) {
             rc = bf__cv(&so.fc, bf__curves_grid(curves), fold, folds, NULL,
-                        cv);
+                        NULL, cv);
             bf__solo_free(&so);
         }
     }

@@ -380,6 +380,15 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
  * (profile.c). */
 #define BF__DENSE_K 65536
 
+/* The distinct minima a separable fit's descents ended at, in the order
+ * reached (bf__varpro_fit): full parameter vectors, the scales as solved
+ * there. At most BF__VP_MINIMA, the fit's descents. */
+#define BF__VP_MINIMA 6
+typedef struct {
+    size_t n;
+    double x[BF__VP_MINIMA][BF_MAX_PARAMS];
+} bf__vp_minima;
+
 /* The fit of a specular model (BF_MODEL_SPECULAR: SPEC §9.3 and the
  * composites of §9.4) under an objective that keeps the scale (SPEC §10):
  * the scales (bf_param.linear) solved exactly for every value of the
@@ -388,10 +397,12 @@ int bf__varpro_value(bf__fitctx *fc, const double *param, double *value);
  * minima with the scales re-solved (variable projection); under cuberoot
  * and log1p that solution starts a refinement of every free parameter.
  * grid (may be NULL) gets the grid optimum, result the fit (lse: S of the
- * objective, not its report). BF_OK, BF_EDOM (no point defined),
- * BF_EINVAL (more than two free scales, or not such a model). */
+ * objective, not its report), minima (may be NULL) the ngan search's
+ * distinct minima (none on dense data or a joint fit). BF_OK, BF_EDOM (no
+ * point defined), BF_EINVAL (more than two free scales, or not such a
+ * model). */
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
-                   bf_fit_result *result);
+                   bf_fit_result *result, bf__vp_minima *minima);
 /* Cross-validation's folds share the separable fit's grid: the ngan
  * values of its every point under each fold's training problem (fc->pb's
  * data, weight 1 off fold f -- fold[k] != f -- and 0 on it), the model
@@ -403,12 +414,14 @@ int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
 int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
                           double **vals, size_t *points);
 /* bf__varpro_fit of a fold's problem fc->pb with its grid's values vals
- * (one fold's of bf__varpro_fold_grids) instead of computing them, its
- * descents from the grid's minima stopping where they join a minimum an
- * earlier one reached, at no lower value (varpro.c): the lowest of the
- * same minima. */
+ * (one fold's of bf__varpro_fold_grids) instead of computing them: with
+ * warm (the whole data's minima; NULL or none: the grid's minima as a
+ * whole fit), a descent from each of warm's minima and one from the
+ * grid's lowest minimum, which stops where it joins a minimum reached
+ * before at no lower value (varpro.c; doc/methods.md §5); the lowest of
+ * those minima. */
 int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
-                        bf_fit_result *result);
+                        const bf__vp_minima *warm, bf_fit_result *result);
 /* The free scales of pb (bf_param.linear): the mask the separable fit
  * solves. */
 unsigned bf__varpro_lin(const bf_problem *pb);
@@ -598,9 +611,12 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       bf_calibration *out);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
- * bf__grid_optima_folds), or NULL to compute them. */
+ * bf__grid_optima_folds), or NULL to compute them; warm (NULL: none) the
+ * minima of the whole data's separable fit (bf__varpro_fit), where the
+ * folds' fits of a specular model start (bf__varpro_fit_grid). */
 int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
-           size_t folds, const bf_fit_result *fold_grid, double *cv);
+           size_t folds, const bf_fit_result *fold_grid,
+           const bf__vp_minima *warm, double *cv);
 
 /* ======================================================================
  * --- scoring many weight vectors against stored curves (weights.c) ---

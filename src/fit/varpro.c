@@ -676,11 +676,77 @@ static void add_known(bf__vp_space *sp, const double *x, double f)
     sp->known_f[sp->n_known++] = f;
 }
 
+/* Adds x to rec (not NULL) unless one of its minima lies within
+ * MERGE_NEAR of a grid step of it (sp's coordinates, steps step) on every
+ * axis: the same minimum. */
+static void add_minimum(bf__vp_minima *rec, const bf__vp_space *sp,
+                        const double *step, const double *x)
+{
+    size_t e;
+    size_t a;
+    if (rec == NULL || rec->n == BF__VP_MINIMA) {
+        return;
+    }
+    for (e = 0; e < rec->n; e++) {
+        int same = 1;
+        for (a = 0; same && a < sp->m; a++) {
+            double d = to_u(sp, a, x[sp->idx[a]]) -
+                       to_u(sp, a, rec->x[e][sp->idx[a]]);
+            same = fabs(d) <= MERGE_NEAR * step[a];
+        }
+        if (same) {
+            return;
+        }
+    }
+    memcpy(rec->x[rec->n++], x, sizeof rec->x[0]);
+}
+
+/* A fold's descents from the whole data's minima warm (doc/methods.md
+ * §5): Levenberg-Marquardt alone from each (its free values; the fold's
+ * minimum mostly lies a small step away, and where the whole's needed
+ * Nelder-Mead to leave a bound it started there). The lowest into xbest,
+ * *fbest. Their ends are not known minima that the fold's descent from
+ * its grid merges into: where the held-out configurations carry much of
+ * S (a gloss peak), the fold's surface differs, and such an end is where
+ * LM stopped, not a basin's minimum (cayman, LAMBERT+GGX: a fold's
+ * descent from its grid that merged into one ended at S 13.95; on its
+ * own, at 9.95). */
+static int warm_descents(bf__fitctx *fc, bf__vp_space *sp,
+                         const bf__vp_minima *warm, double *xbest,
+                         double *fbest)
+{
+    size_t e;
+    size_t a;
+    int rc = BF_OK;
+    for (e = 0; e < warm->n && rc == BF_OK; e++) {
+        double x[BF_MAX_PARAMS];
+        double f;
+        memcpy(x, fc->pb->fixed, sizeof x);
+        for (a = 0; a < sp->m; a++) {
+            x[sp->idx[a]] = warm->x[e][sp->idx[a]];
+        }
+        f = bf__vp_value_at(fc, x);
+        if (!(f < BF__VP_UNDEFINED)) {
+            continue;
+        }
+        rc = levenberg(sp, x, &f, NULL);
+        if (rc == BF_OK && f < *fbest) {
+            *fbest = f;
+            memcpy(xbest, x, sizeof x);
+        }
+    }
+    return rc;
+}
+
 /* The separable ngan fit on fc (fc->pb's objective ngan); pre (NULL:
  * computed here) the grid's values, as bf__varpro_fold_grids gives them:
  * a fold's fit, whose descents merge into the minima the earlier ones
- * reached (bf__vp_space.known_u). */
+ * reached (bf__vp_space.known_u), and with warm (not NULL, not empty) the
+ * whole data's minima: their descents (warm_descents), then one from the
+ * grid's lowest minimum. rec (not NULL) gets the distinct minima of the
+ * descents. */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
+                       const bf__vp_minima *warm, bf__vp_minima *rec,
                        bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
@@ -741,6 +807,13 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     for (a = 0; a < gs.m; a++) {
         gs.near[a] = MERGE_NEAR * gstep[a];
     }
+    if (rec != NULL) {
+        rec->n = 0;
+    }
+    if (pre != NULL && warm != NULL && warm->n > 0) {
+        rc = warm_descents(fc, &sp, warm, xbest, &fbest);
+        n_best = 1;
+    }
     for (g = 0; g < n_best && rc == BF_OK; g++) {
         double x[BF_MAX_PARAMS];
         double y[BF_MAX_PARAMS];
@@ -773,6 +846,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
             if (rc == BF_OK) {
                 add_known(&gs, x, f);
             }
+        }
+        if (rc == BF_OK) {
+            add_minimum(rec, &sp, step, x);
         }
         if (rc == BF_OK && f < fbest) {
             fbest = f;
@@ -916,7 +992,8 @@ static int ngan_subsample(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
             rc = bf__fitctx_init(&sfc, &pm);
             if (rc == BF_OK) {
                 bf__fitctx_use(&sfc, &sub);
-                rc = varpro_ngan(&sfc, lin, NULL, grid, result);
+                rc = varpro_ngan(&sfc, lin, NULL, NULL, NULL, grid,
+                                 result);
                 fc->n_eval += sfc.n_eval;
                 bf__fitctx_free(&sfc);
             }
@@ -958,23 +1035,26 @@ static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
     return rc;
 }
 
-/* bf__varpro_fit with the grid's ngan values pre (NULL: computed). */
+/* bf__varpro_fit with the grid's ngan values pre (NULL: computed), a
+ * fold's warm starts warm, the minima into rec (varpro_ngan). */
 static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
+                          const bf__vp_minima *warm, bf__vp_minima *rec,
                           bf_fit_result *grid, bf_fit_result *result);
 
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
-                   bf_fit_result *result)
+                   bf_fit_result *result, bf__vp_minima *minima)
 {
-    return varpro_fit_pre(fc, NULL, grid, result);
+    return varpro_fit_pre(fc, NULL, NULL, minima, grid, result);
 }
 
 int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
-                        bf_fit_result *result)
+                        const bf__vp_minima *warm, bf_fit_result *result)
 {
-    return varpro_fit_pre(fc, vals, NULL, result);
+    return varpro_fit_pre(fc, vals, warm, NULL, NULL, result);
 }
 
 static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
+                          const bf__vp_minima *warm, bf__vp_minima *rec,
                           bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
@@ -985,6 +1065,9 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
     size_t j;
     int rc;
     memset(result, 0, sizeof *result);
+    if (rec != NULL) {
+        rec->n = 0; /* dense data, a joint fit: none */
+    }
     if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
         !bf_objective_keeps_scale(pb->objective)) {
         return BF_EINVAL;
@@ -1001,7 +1084,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
      * (the subsample holds one channel) */
     rc = pb->n > BF__DENSE_K && fc->blocks == 1
              ? varpro_dense(fc, lin, grid, result)
-             : varpro_ngan(fc, lin, pre, grid, result);
+             : varpro_ngan(fc, lin, pre, warm, rec, grid, result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */

@@ -10,8 +10,9 @@
 
 /* Scales solved exactly per point (columns besides c0), at most. */
 #define BF__VP_MAX_LIN 2
-/* Descents from the grid's lowest local minima. */
-#define BF__VP_STARTS 6
+/* Descents from the grid's lowest local minima (each can be one of a
+ * fit's minima). */
+#define BF__VP_STARTS BF__VP_MINIMA
 /* The value of a point where the objective is not defined. */
 #define BF__VP_UNDEFINED 1e300
 

@@ -255,7 +255,7 @@ static void sandwich_case(double q, double *ratio, double *factor)
     pb.objective = BF_OBJ_NGAN;
     pb.free_mask = 3u; /* rho_d, rho_s; alpha and F0 held at the truth */
     cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
-    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &best), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &best, NULL), BF_OK);
     bf__solo_free(&so);
     cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_ABSOLUTE, LEVEL, &iv),
                  BF_OK);
@@ -358,7 +358,7 @@ Test(spec_intervals, f0_without_effect_is_flagged_not_identified)
         data[k] = so.fc.curve[k] * (1.0 + 0.02 * gsl_ran_gaussian(rng, 1.0));
     }
     bf__fitctx_use(&so.fc, &pb);
-    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, NULL), BF_OK);
     cr_assert_eq(bf__intervals(&so.fc, &fit, BF_NOISE_RELATIVE, LEVEL, &iv),
                  BF_OK);
     cr_assert(iv.not_identified & (1u << 3), "F0 [%g, %g] open %u flags %u",
@@ -431,7 +431,7 @@ Test(spec_intervals, dense_profile_ends_are_roots_on_all_the_data,
         data[n] = so.fc.curve[n] * (1.0 + 0.03 * gsl_ran_gaussian(rng, 1.0));
     }
     bf__fitctx_use(&so.fc, &pb);
-    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, NULL), BF_OK);
     for (j = 0; j < 4; j++) {
         double end[2];
         unsigned open = 7;
@@ -450,7 +450,7 @@ Test(spec_intervals, dense_profile_ends_are_roots_on_all_the_data,
             held.free_mask &= ~(1u << j);
             held.fixed[j] = end[e];
             bf__fitctx_use(&so.fc, &held);
-            cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &r), BF_OK);
+            cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &r, NULL), BF_OK);
             bf__fitctx_use(&so.fc, &pb);
             crit = (double)DENSE_N * log(r.lse / fit.lse);
             cr_assert(fabs(crit - chi2) < DENSE_CRIT_TOL,
@@ -565,7 +565,7 @@ static void paint_intervals(const char *file, const char *model,
     size_t j;
     paint_problem(file, model, geom, rho, pb);
     cr_assert_eq(bf__solo_init(so, pb), BF_OK);
-    cr_assert_eq(bf__varpro_fit(&so->fc, NULL, &fit), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so->fc, NULL, &fit, NULL), BF_OK);
     cr_assert_eq(bf__intervals(&so->fc, &fit, BF_NOISE_AUTO, LEVEL, iv),
                  BF_OK, "%s on %s", model, file);
     for (j = 0; j < pb->type->p; j++) {
@@ -644,7 +644,7 @@ Test(spec_intervals, the_interval_curve_crosses_its_threshold_at_the_ends,
     paint_problem("krylon_blue.brdf", "LAMBERT+GGX", geom, rho, &pb);
     nu = (double)pb.n - 5.0;
     cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
-    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, NULL), BF_OK);
     bf__solo_free(&so);
     cr_assert_eq(bf_fit_intervals(&pb, &fit, BF_NOISE_AUTO, LEVEL, &iv),
                  BF_OK);
