@@ -181,21 +181,46 @@ static int thorough_fit(profile_t *p, bf_fit_result *g)
     return grid_fit(p, g);
 }
 
+/* 1 when the thorough fit would repeat the warm one: a specular model's
+ * (a refinement from p->est) where the warm start holds the same free
+ * values -- each side's first outward step, which starts from the
+ * optimum. */
+static int thorough_is_warm(const profile_t *p)
+{
+    size_t j;
+    if (p->sub.type->kind != BF_MODEL_SPECULAR) {
+        return 0; /* the thorough fit is a grid fit */
+    }
+    for (j = 0; j < p->sub.type->p; j++) {
+        if (((p->sub.free_mask >> j) & 1u) && p->start[j] != p->est[j]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* S_p(theta): the warm-started refinement, and with thorough also the
- * thorough fit; *improved = 1 when that was lower. */
+ * thorough fit (not where it would repeat the warm one); *improved = 1
+ * when that was lower. */
 static int inner(profile_t *p, double theta, int thorough, double *s,
                  int *improved)
 {
     bf_fit_result warm;
     int rc;
+    int same;
     *improved = 0;
     p->sub.fixed[p->j] = theta;
     p->start[p->j] = theta;
     if (p->sub.free_mask == 0) {
         return bf__fit_value(p->fc, p->sub.fixed, s);
     }
+    same = thorough && thorough_is_warm(p);
+    thorough = thorough && !same;
     rc = warm_fit(p, &warm);
     if (rc != BF_OK) {
+        if (same && rc != BF_ENOMEM) {
+            return BF_EDOM; /* as the thorough fit's failure would be */
+        }
         if (!thorough || rc == BF_ENOMEM) {
             return rc;
         }
