@@ -184,11 +184,12 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
  * intervals under the noise model (unless opts->no_intervals), the
  * bootstrap, AIC and BIC, the cross-validation (gr, fold_grid: the grid
  * and the folds' grid optima; NULL for a specular model, whose folds have
- * their own fits, from the whole's minima warm; NULL for the others). */
+ * their own fits, from what its whole fit left them, whole; NULL for the
+ * others). */
 static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                         const bf_analysis_opts *opts, const size_t *fold,
                         const bf__grid *gr, const bf_fit_result *fold_grid,
-                        const bf__vp_minima *warm, bf_fit_stats *st)
+                        const bf__vp_whole *whole, bf_fit_stats *st)
 {
     bf_interval iv;
     size_t j;
@@ -242,7 +243,7 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         if (pb->free_mask == 0) {
             st->cv = st->refined.lse; /* nothing to fit: CV = LSE */
         } else {
-            rc = bf__cv(fc, gr, fold, opts->folds, fold_grid, warm,
+            rc = bf__cv(fc, gr, fold, opts->folds, fold_grid, whole,
                         &st->cv);
             if (rc == BF_ENOMEM) {
                 return rc;
@@ -371,12 +372,16 @@ static int analyse_unit(run_t *r, size_t u, bf__fitctx *fc, size_t *fold,
     if (pb.type->kind == BF_MODEL_SPECULAR) {
         /* SPEC §9.3, §9.4 under an objective that keeps the scale: the
          * separable fit (varpro.c), its own grid; then as every model */
-        bf__vp_minima minima;
-        rc = bf__varpro_fit(fc, &st->grid, &st->refined, &minima);
-        if (rc != BF_OK) {
-            return rc;
+        bf__vp_whole whole;
+        memset(&whole, 0, sizeof whole);
+        whole.fold = cv ? fold : NULL; /* its folds' grid values too */
+        whole.folds = opts->folds;
+        rc = bf__varpro_fit(fc, &st->grid, &st->refined, &whole);
+        if (rc == BF_OK) {
+            rc = analyse_rest(fc, &pb, opts, fold, NULL, NULL, &whole, st);
         }
-        return analyse_rest(fc, &pb, opts, fold, NULL, NULL, &minima, st);
+        bf__vp_whole_free(&whole);
+        return rc;
     }
     if (gp->gr == NULL) {
         return gp->status;

@@ -64,7 +64,7 @@ int bf_fit_cv_folds(size_t n, size_t folds, unsigned long seed, size_t *fold)
 
 int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid,
-           const bf__vp_minima *warm, double *cv)
+           const bf__vp_whole *whole, double *cv)
 {
     const bf_problem *pb = fc->pb;
     size_t n = pb->n;
@@ -89,7 +89,9 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         rc = BF_ENOMEM;
         goto done;
     }
-    if (spec) {
+    if (spec && whole != NULL && whole->vals != NULL) {
+        points = whole->points; /* from the whole fit's grid pass */
+    } else if (spec) {
         rc = bf__varpro_fold_grids(fc, fold, folds, &vals, &points);
         if (rc == BF_EINVAL) {
             rc = BF_OK; /* no grid to share: each fold its own fit */
@@ -108,9 +110,13 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         train.weight = w;
         bf__fitctx_use(fc, &train);
         if (spec) {
-            rc = vals != NULL ? bf__varpro_fit_grid(fc, vals + f * points,
-                                                    warm, &r)
-                              : bf__varpro_fit(fc, NULL, &r, NULL);
+            const double *fv = vals != NULL ? vals
+                               : whole != NULL ? whole->vals
+                                               : NULL;
+            rc = fv != NULL ? bf__varpro_fit_grid(
+                                  fc, fv + f * points,
+                                  whole != NULL ? &whole->minima : NULL, &r)
+                            : bf__varpro_fit(fc, NULL, &r, NULL);
         } else {
             rc = isfinite(fold_grid[f].lse)
                      ? bf__refine(fc, &fold_grid[f], &r)

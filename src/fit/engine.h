@@ -389,6 +389,21 @@ typedef struct {
     double x[BF__VP_MINIMA][BF_MAX_PARAMS];
 } bf__vp_minima;
 
+/* What the separable fit of the whole data leaves its cross-validation
+ * folds (bf__varpro_fit, bf__cv): the distinct minima its descents ended
+ * at, and with fold set every fold's values at its grid's points,
+ * computed in its own pass over the grid, where it evaluates the model
+ * anyway (bf__varpro_fold_grids' values; none where the fit uses no grid
+ * of its problem: dense data, a joint fit). */
+typedef struct {
+    const size_t *fold; /* in: each configuration's fold, or NULL */
+    size_t folds;       /* in */
+    bf__vp_minima minima;
+    double *vals;       /* folds x points, or NULL (bf__vp_whole_free) */
+    size_t points;
+} bf__vp_whole;
+void bf__vp_whole_free(bf__vp_whole *wh);
+
 /* The fit of a specular model (BF_MODEL_SPECULAR: SPEC §9.3 and the
  * composites of §9.4) under an objective that keeps the scale (SPEC §10):
  * the scales (bf_param.linear) solved exactly for every value of the
@@ -397,12 +412,13 @@ typedef struct {
  * minima with the scales re-solved (variable projection); under cuberoot
  * and log1p that solution starts a refinement of every free parameter.
  * grid (may be NULL) gets the grid optimum, result the fit (lse: S of the
- * objective, not its report), minima (may be NULL) the ngan search's
- * distinct minima (none on dense data or a joint fit). BF_OK, BF_EDOM (no
- * point defined), BF_EINVAL (more than two free scales, or not such a
- * model). */
+ * objective, not its report), whole (may be NULL) what its folds take
+ * from it (bf__vp_whole: the ngan search's distinct minima, none on dense
+ * data or a joint fit; the folds' grid values). BF_OK, BF_EDOM (no point
+ * defined), BF_EINVAL (more than two free scales, or not such a model),
+ * BF_ENOMEM. */
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
-                   bf_fit_result *result, bf__vp_minima *minima);
+                   bf_fit_result *result, bf__vp_whole *whole);
 /* Cross-validation's folds share the separable fit's grid: the ngan
  * values of its every point under each fold's training problem (fc->pb's
  * data, weight 1 off fold f -- fold[k] != f -- and 0 on it), the model
@@ -611,12 +627,13 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       bf_calibration *out);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
- * bf__grid_optima_folds), or NULL to compute them; warm (NULL: none) the
- * minima of the whole data's separable fit (bf__varpro_fit), where the
- * folds' fits of a specular model start (bf__varpro_fit_grid). */
+ * bf__grid_optima_folds), or NULL to compute them; whole (NULL: none)
+ * what the whole data's separable fit left its folds (bf__varpro_fit with
+ * these folds): a specular model's folds' fits start from its minima
+ * (bf__varpro_fit_grid) on its grid values. */
 int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
            size_t folds, const bf_fit_result *fold_grid,
-           const bf__vp_minima *warm, double *cv);
+           const bf__vp_whole *whole, double *cv);
 
 /* ======================================================================
  * --- scoring many weight vectors against stored curves (weights.c) ---

@@ -754,10 +754,11 @@ static int warm_descents(bf__fitctx *fc, bf__vp_space *sp,
  * a fold's fit, whose descents merge into the minima the earlier ones
  * reached (bf__vp_space.known_u), and with warm (not NULL, not empty) the
  * whole data's minima: their descents (warm_descents), then one from the
- * grid's lowest minimum. rec (not NULL) gets the distinct minima of the
- * descents. */
+ * grid's lowest minimum. whole (not NULL) gets the distinct minima of the
+ * descents and, with its folds set (and pre NULL), every fold's values
+ * at the grid's points from the same pass (bf__vp_foldpass). */
 static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
-                       const bf__vp_minima *warm, bf__vp_minima *rec,
+                       const bf__vp_minima *warm, bf__vp_whole *whole,
                        bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
@@ -774,6 +775,9 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     double xbest[BF_MAX_PARAMS];
     double fgrid;
     double fbest = BF__VP_UNDEFINED;
+    bf__vp_minima *rec = whole != NULL ? &whole->minima : NULL;
+    bf__vp_foldpass fp;
+    int pass = 0;
     int rc = BF_OK;
     fc->lin_mask = lin;
     bf__vp_space_init(&sp, fc, pb->free_mask & ~lin);
@@ -781,8 +785,23 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
     for (a = 0; a < gs.m; a++) {
         points *= gs.count[a];
     }
+    if (pre == NULL && whole != NULL && whole->fold != NULL) {
+        rc = bf__vp_foldpass_init(&fp, fc, whole->fold, whole->folds);
+        if (rc == BF_ENOMEM) {
+            fc->lin_mask = 0;
+            return rc;
+        }
+        pass = rc == BF_OK && fp.points == points;
+        if (rc == BF_OK && !pass) {
+            bf__vp_foldpass_free(&fp);
+        }
+        rc = BF_OK;
+    }
     vals = malloc(points * sizeof *vals);
     if (vals == NULL) {
+        if (pass) {
+            bf__vp_foldpass_free(&fp);
+        }
         fc->lin_mask = 0;
         return BF_ENOMEM;
     }
@@ -794,6 +813,16 @@ static int varpro_ngan(bf__fitctx *fc, unsigned lin, const double *pre,
         }
         bf__vp_point_of(&gs, g, x);
         vals[g] = bf__vp_grid_value(&gs, x, NULL);
+        if (pass) { /* the folds' values from the same columns */
+            bf__vp_foldpass_point(&fp, fc, &gs, g, x,
+                                  vals[g] < BF__VP_UNDEFINED);
+        }
+    }
+    if (pass) {
+        whole->vals = fp.vals;
+        whole->points = points;
+        fp.vals = NULL;
+        bf__vp_foldpass_free(&fp);
     }
     pick_starts(&gs, vals, points, best, &n_best);
     free(vals);
@@ -1047,15 +1076,24 @@ static int varpro_dense(bf__fitctx *fc, unsigned lin, bf_fit_result *grid,
 }
 
 /* bf__varpro_fit with the grid's ngan values pre (NULL: computed), a
- * fold's warm starts warm, the minima into rec (varpro_ngan). */
+ * fold's warm starts warm, what the folds take into whole (varpro_ngan). */
 static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
-                          const bf__vp_minima *warm, bf__vp_minima *rec,
+                          const bf__vp_minima *warm, bf__vp_whole *whole,
                           bf_fit_result *grid, bf_fit_result *result);
 
 int bf__varpro_fit(bf__fitctx *fc, bf_fit_result *grid,
-                   bf_fit_result *result, bf__vp_minima *minima)
+                   bf_fit_result *result, bf__vp_whole *whole)
 {
-    return varpro_fit_pre(fc, NULL, NULL, minima, grid, result);
+    return varpro_fit_pre(fc, NULL, NULL, whole, grid, result);
+}
+
+void bf__vp_whole_free(bf__vp_whole *wh)
+{
+    if (wh != NULL) {
+        free(wh->vals);
+        wh->vals = NULL;
+        wh->points = 0;
+    }
 }
 
 int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
@@ -1065,7 +1103,7 @@ int bf__varpro_fit_grid(bf__fitctx *fc, const double *vals,
 }
 
 static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
-                          const bf__vp_minima *warm, bf__vp_minima *rec,
+                          const bf__vp_minima *warm, bf__vp_whole *whole,
                           bf_fit_result *grid, bf_fit_result *result)
 {
     const bf_problem *pb = fc->pb;
@@ -1076,8 +1114,10 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
     size_t j;
     int rc;
     memset(result, 0, sizeof *result);
-    if (rec != NULL) {
-        rec->n = 0; /* dense data, a joint fit: none */
+    if (whole != NULL) { /* dense data, a joint fit: none */
+        whole->minima.n = 0;
+        whole->vals = NULL;
+        whole->points = 0;
     }
     if (pb->type->kind != BF_MODEL_SPECULAR || fc->cols == NULL ||
         !bf_objective_keeps_scale(pb->objective)) {
@@ -1095,7 +1135,7 @@ static int varpro_fit_pre(bf__fitctx *fc, const double *pre,
      * (the subsample holds one channel) */
     rc = pb->n > BF__DENSE_K && fc->blocks == 1
              ? varpro_dense(fc, lin, grid, result)
-             : varpro_ngan(fc, lin, pre, warm, rec, grid, result);
+             : varpro_ngan(fc, lin, pre, warm, whole, grid, result);
     bf__fitctx_use(fc, pb);
     if (rc == BF_OK && pb->objective != BF_OBJ_NGAN) {
         /* SPEC §10's other objectives: every free parameter from there */

@@ -97,6 +97,36 @@ int bf__vp_grid_inside(const bf__vp_space *gs, const double *x,
 int bf__varpro_magnitude(bf__fitctx *fc, const double *param, double *mag,
                          double *value);
 
+/* Every cross-validation fold's ngan value at each point of a separable
+ * fit's grid (varpro_folds.c), filled point by point in a pass over it:
+ * bf__varpro_fold_grids' own pass, or the whole data's fit's
+ * (varpro_ngan), which evaluates the model there anyway. */
+typedef struct {
+    const size_t *fold; /* each configuration's fold */
+    size_t folds;
+    size_t points;      /* the grid's */
+    size_t n_lin;       /* the scales solved */
+    double hi[BF__VP_MAX_LIN + 1]; /* their bounds */
+    bf_problem whole;   /* fc's problem under ngan, unweighted */
+    double *mom;        /* 6 (folds + 1) sums, then n weights */
+    double *vals;       /* folds x points: fold f's at point g in
+                           vals[f * points + g] */
+} bf__vp_foldpass;
+
+/* The pass for fc's problem (its grid: bf__vp_grid_init of its free
+ * parameters but the scales) and the folds fold. BF_OK; BF_EINVAL where
+ * the fit uses no grid of its problem (dense data, a joint fit, not a
+ * specular model: points 0) or no folds; BF_ENOMEM. */
+int bf__vp_foldpass_init(bf__vp_foldpass *fp, bf__fitctx *fc,
+                         const size_t *fold, size_t folds);
+/* Grid point g (x its vector; fc's columns evaluated there, as
+ * bf__vp_grid_value of gs leaves them, defined when defined): every
+ * fold's value. fc's problem is left as it was. */
+void bf__vp_foldpass_point(bf__vp_foldpass *fp, bf__fitctx *fc,
+                           const bf__vp_space *gs, size_t g,
+                           const double *x, int defined);
+void bf__vp_foldpass_free(bf__vp_foldpass *fp);
+
 /* Grid point idx of sp (the first axis slowest) as a full vector. */
 void bf__vp_point_of(const bf__vp_space *sp, size_t idx, double *x);
 

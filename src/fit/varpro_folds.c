@@ -128,82 +128,114 @@ static void fold_values(const bf__fitctx *fc, size_t n_l, const double *hi,
     }
 }
 
+int bf__vp_foldpass_init(bf__vp_foldpass *fp, bf__fitctx *fc,
+                         const size_t *fold, size_t folds)
+{
+    const bf_problem *pb = fc->pb;
+    unsigned lin = bf__varpro_lin(pb);
+    size_t j;
+    memset(fp, 0, sizeof *fp);
+    fp->fold = fold;
+    fp->folds = folds;
+    fp->points = grid_points(fc, lin);
+    for (j = 0; j < pb->type->p; j++) { /* the scales and their bounds */
+        if ((lin >> j) & 1u) {
+            if (fp->n_lin < BF__VP_MAX_LIN) {
+                fp->hi[fp->n_lin] = pb->hi[j];
+            }
+            fp->n_lin++;
+        }
+    }
+    if (fp->points == 0 || fp->n_lin > BF__VP_MAX_LIN ||
+        !bf_objective_keeps_scale(pb->objective) || fold == NULL ||
+        folds == 0) {
+        return BF_EINVAL;
+    }
+    fp->vals = malloc(folds * fp->points * sizeof *fp->vals);
+    fp->mom = malloc((6 * (folds + 1) + pb->n) * sizeof *fp->mom);
+    if (fp->vals == NULL || fp->mom == NULL) {
+        bf__vp_foldpass_free(fp);
+        return BF_ENOMEM;
+    }
+    fp->whole = *pb;
+    fp->whole.objective = BF_OBJ_NGAN;
+    fp->whole.weight = NULL;
+    return BF_OK;
+}
+
+void bf__vp_foldpass_point(bf__vp_foldpass *fp, bf__fitctx *fc,
+                           const bf__vp_space *gs, size_t g,
+                           const double *x, int defined)
+{
+    const bf_problem *keep = fc->pb;
+    double hi[BF__VP_MAX_LIN + 1];
+    double *w = fp->mom + 6 * (fp->folds + 1);
+    size_t f;
+    if (!defined) {
+        for (f = 0; f < fp->folds; f++) {
+            fp->vals[f * fp->points + g] = BF__VP_UNDEFINED;
+        }
+        return;
+    }
+    memcpy(hi, fp->hi, sizeof hi);
+    if (gs->hg) {
+        hi[fp->n_lin] = HUGE_VAL; /* the lobe's size (varpro_scales.c) */
+    }
+    fold_values(fc, fp->n_lin, hi, gs->hg, fp->fold, fp->folds, fp->mom,
+                fp->vals + g, fp->points);
+    for (f = 0; f < fp->folds; f++) {
+        bf_problem train = fp->whole;
+        size_t k;
+        if (!isnan(fp->vals[f * fp->points + g])) {
+            continue;
+        }
+        for (k = 0; k < train.n; k++) {
+            w[k] = fp->fold[k] == f ? 0.0 : 1.0;
+        }
+        train.weight = w;
+        bf__fitctx_use(fc, &train);
+        fp->vals[f * fp->points + g] = bf__vp_grid_value(gs, x, NULL);
+        bf__fitctx_use(fc, keep);
+    }
+}
+
+void bf__vp_foldpass_free(bf__vp_foldpass *fp)
+{
+    free(fp->vals);
+    free(fp->mom);
+    fp->vals = NULL;
+    fp->mom = NULL;
+}
+
 int bf__varpro_fold_grids(bf__fitctx *fc, const size_t *fold, size_t folds,
                           double **vals, size_t *n_points)
 {
     const bf_problem *pb = fc->pb;
-    bf_problem whole = *pb;
-    unsigned lin = bf__varpro_lin(pb);
-    size_t points = grid_points(fc, lin);
-    double hi[BF__VP_MAX_LIN] = {0.0, 0.0};
-    size_t n_lin = 0;
-    double *mom;
-    double *w;
+    bf__vp_foldpass fp;
     bf__vp_space sp;
     size_t g;
-    size_t f;
-    size_t j;
+    int rc = bf__vp_foldpass_init(&fp, fc, fold, folds);
     *vals = NULL;
-    *n_points = points;
-    for (j = 0; j < pb->type->p; j++) { /* the scales and their bounds */
-        if ((lin >> j) & 1u) {
-            if (n_lin < BF__VP_MAX_LIN) {
-                hi[n_lin] = pb->hi[j];
-            }
-            n_lin++;
-        }
+    *n_points = fp.points;
+    if (rc != BF_OK) {
+        return rc;
     }
-    if (points == 0 || n_lin > BF__VP_MAX_LIN ||
-        !bf_objective_keeps_scale(pb->objective)) {
-        return BF_EINVAL;
-    }
-    *vals = malloc(folds * points * sizeof **vals);
-    mom = malloc((6 * (folds + 1) + pb->n) * sizeof *mom);
-    if (*vals == NULL || mom == NULL) {
-        free(*vals);
-        free(mom);
-        *vals = NULL;
-        return BF_ENOMEM;
-    }
-    w = mom + 6 * (folds + 1);
-    whole.objective = BF_OBJ_NGAN;
-    whole.weight = NULL;
-    bf__fitctx_use(fc, &whole);
-    fc->lin_mask = lin;
-    bf__vp_grid_init(&sp, fc, pb->free_mask & ~lin);
-    if (sp.hg) {
-        hi[n_lin] = HUGE_VAL; /* the lobe's size (varpro_scales.c) */
-    }
+    bf__fitctx_use(fc, &fp.whole);
+    fc->lin_mask = bf__varpro_lin(pb);
+    bf__vp_grid_init(&sp, fc, pb->free_mask & ~fc->lin_mask);
     /* point by point: the model once (its columns), every fold's scales
      * and S from sums over the configurations (fold_values), summed
      * directly where they cancel (bf__varpro_value keeps the columns) */
-    for (g = 0; g < points; g++) {
+    for (g = 0; g < fp.points; g++) {
         double x[BF_MAX_PARAMS];
         bf__vp_point_of(&sp, g, x);
-        if (bf__vp_grid_value(&sp, x, NULL) < BF__VP_UNDEFINED) {
-            fold_values(fc, n_lin, hi, sp.hg, fold, folds, mom, *vals + g,
-                        points);
-            for (f = 0; f < folds; f++) {
-                bf_problem train = whole;
-                size_t k;
-                if (!isnan((*vals)[f * points + g])) {
-                    continue;
-                }
-                for (k = 0; k < pb->n; k++) {
-                    w[k] = fold[k] == f ? 0.0 : 1.0;
-                }
-                train.weight = w;
-                bf__fitctx_use(fc, &train);
-                (*vals)[f * points + g] = bf__vp_grid_value(&sp, x, NULL);
-                bf__fitctx_use(fc, &whole);
-            }
-        } else {
-            for (f = 0; f < folds; f++) {
-                (*vals)[f * points + g] = BF__VP_UNDEFINED;
-            }
-        }
+        bf__vp_foldpass_point(
+            &fp, fc, &sp, g, x,
+            bf__vp_grid_value(&sp, x, NULL) < BF__VP_UNDEFINED);
     }
-    free(mom);
+    *vals = fp.vals;
+    fp.vals = NULL;
+    bf__vp_foldpass_free(&fp);
     bf__fitctx_use(fc, pb);
     fc->lin_mask = 0;
     return BF_OK;

@@ -386,7 +386,9 @@ static size_t cornell_geom(const char *name, bf_geom *geom, double *data)
 }
 
 /* Every fold of pb's CV (folds, seed) fitted as bf__cv fits it ends at
- * least as low as a fresh separable fit of that fold. */
+ * least as low as a fresh separable fit of that fold; the folds' grid
+ * values from the whole fit's pass over its grid are those of
+ * bf__varpro_fold_grids' own pass, bit for bit. */
 static void folds_as_low_as_fresh(const bf_problem *pb, size_t folds,
                                   unsigned long seed)
 {
@@ -394,8 +396,8 @@ static void folds_as_low_as_fresh(const bf_problem *pb, size_t folds,
     static double w[MAX_FOLDS][CV_K];
     bf__solo so;
     bf__solo fresh;
-    bf__vp_minima warm;
-    bf_fit_result whole;
+    bf__vp_whole whole;
+    bf_fit_result fit;
     double *vals = NULL;
     size_t points = 0;
     size_t k;
@@ -403,11 +405,22 @@ static void folds_as_low_as_fresh(const bf_problem *pb, size_t folds,
     cr_assert_eq(bf_fit_cv_folds(pb->n, folds, seed, fold), BF_OK);
     cr_assert_eq(bf__solo_init(&so, pb), BF_OK);
     cr_assert_eq(bf__solo_init(&fresh, pb), BF_OK);
-    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &whole, &warm), BF_OK);
-    cr_assert(warm.n > 0);
+    memset(&whole, 0, sizeof whole);
+    whole.fold = fold;
+    whole.folds = folds;
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, &whole), BF_OK);
+    cr_assert(whole.minima.n > 0);
     cr_assert_eq(bf__varpro_fold_grids(&so.fc, fold, folds, &vals, &points),
                  BF_OK);
     cr_assert(points > 0);
+    cr_assert_not_null(whole.vals);
+    cr_assert_eq(whole.points, points);
+    for (k = 0; k < folds * points; k++) {
+        cr_assert(memcmp(&whole.vals[k], &vals[k], sizeof *vals) == 0,
+                  "fold %zu, grid point %zu: %.17g in the fit's pass, "
+                  "%.17g in its own",
+                  k / points, k % points, whole.vals[k], vals[k]);
+    }
     for (f = 0; f < folds; f++) {
         bf_problem train = *pb;
         bf_fit_result cv;
@@ -417,8 +430,8 @@ static void folds_as_low_as_fresh(const bf_problem *pb, size_t folds,
         }
         train.weight = w[f];
         bf__fitctx_use(&so.fc, &train);
-        cr_assert_eq(bf__varpro_fit_grid(&so.fc, vals + f * points, &warm,
-                                         &cv),
+        cr_assert_eq(bf__varpro_fit_grid(&so.fc, vals + f * points,
+                                         &whole.minima, &cv),
                      BF_OK);
         bf__fitctx_use(&fresh.fc, &train);
         cr_assert_eq(bf__varpro_fit(&fresh.fc, NULL, &ref, NULL), BF_OK);
@@ -430,6 +443,7 @@ static void folds_as_low_as_fresh(const bf_problem *pb, size_t folds,
                   seed, f, folds, cv.lse, ref.lse);
     }
     free(vals);
+    bf__vp_whole_free(&whole);
     bf__solo_free(&fresh);
     bf__solo_free(&so);
 }
