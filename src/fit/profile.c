@@ -17,12 +17,16 @@
  * besides, the refinement from the last point's nuisance optimum; the
  * lowest counts. Because that
  * grid fit costs a grid of model curves per point, it is done where the
- * interval's end is bracketed (the outward steps) and at the end found;
- * the root finder in between uses the warm-started refinement alone. If
- * the grid fit at the end found finds a lower S_p than the warm one did
- * (the warm start followed a local minimum, so the end was too early), the
- * search goes on from there. The result is the end of the true profile
- * wherever the nuisance grid resolves its minima.
+ * interval's end is bracketed -- at an outward step whose warm-started
+ * criterion lies above the threshold (below it, a lower S_p could only
+ * put the point further inside: the step is inside either way) -- and at
+ * the end found; the root finder in between uses the warm-started
+ * refinement alone. If the grid fit at an outward step finds the point
+ * inside after all, the walk goes on; if the grid fit at the end found
+ * finds a lower S_p than the warm one did (the warm start followed a
+ * local minimum, so the end was too early), the search goes on from
+ * there. The result is the end of the true profile wherever the nuisance
+ * grid resolves its minima.
  *
  * A specular model or composite (SPEC §9; varpro.c): at every point its
  * free scales are solved exactly (NNLS; a held scale joins the fixed part
@@ -410,7 +414,15 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
             (limit < theta_hat && next <= edge)) {
             next = edge == limit ? limit : 0.5 * (x + edge);
         }
-        c = crit_at(p, next, 1, &improved);
+        /* the thorough fit only where the warm one puts next outside
+         * (or fails): inside, it could only lower S_p further */
+        c = crit_at(p, next, 0, &improved);
+        if (p->status == BF_EDOM || c > 0.0) {
+            if (p->status == BF_EDOM) {
+                p->status = BF_OK;
+            }
+            c = crit_at(p, next, 1, &improved);
+        }
         if (p->status == BF_EDOM) {
             /* not defined at next (with theta there the model overflows
              * from every start the inner fits take: a lobe's power beyond
