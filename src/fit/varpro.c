@@ -74,7 +74,7 @@
  * S to twelve digits. Run to LM_TOL they crawl on for tens of iterations
  * below that (the finite-difference gradient's noise); on the ten
  * specular models x five Cornell files every fold's S stays within 1e-9
- * of the crawl's end, CV within 5e-7, at a sixth fewer of the folds'
+ * of the crawl's end, CV within 4.2e-7, at a sixth fewer of the folds'
  * model evaluations. */
 #define WARM_STALL 1e-12
 
@@ -710,10 +710,11 @@ static void add_minimum(bf__vp_minima *rec, const bf__vp_space *sp,
 }
 
 /* A fold's descents from the whole data's minima warm (doc/methods.md
- * §5): Levenberg-Marquardt alone from each (its free values; the fold's
- * minimum mostly lies a small step away, and where the whole's needed
- * Nelder-Mead to leave a bound it started there), each stopped once an
- * iteration gains less than WARM_STALL. The lowest into xbest, *fbest. Their ends are not known minima that the fold's descent from
+ * §1, §5): Levenberg-Marquardt alone from each (its free values; the
+ * fold's minimum mostly lies a small step away, and where the whole's
+ * needed Nelder-Mead to leave a bound it started there), each stopped
+ * once an iteration gains less than WARM_STALL. The lowest into xbest,
+ * *fbest. Their ends are not known minima that the fold's descent from
  * its grid merges into: where the held-out configurations carry much of
  * S (a gloss peak), the fold's surface differs, and such an end is where
  * LM stopped, not a basin's minimum (cayman, LAMBERT+GGX: a fold's
