@@ -73,9 +73,11 @@
 # under valgrind in composite's other tests; its dense recovery (72,000
 # configurations through the CLI) likewise, and its check of the folds'
 # fits (cv_folds_fit_at_least...: 15 folds of LAMBERT+LAFORTUNE on 1439
-# configurations, each fitted twice, about 4 s of CPU plain) -- the folds'
-# grid and fits run under valgrind in every compare of a composite with
-# its default ten folds in composite's other tests.
+# configurations, each fitted twice, about 4 s of CPU plain;
+# cv_folds_with_the_gloss_peak...: 20 folds of two composites on cayman,
+# 74 s under valgrind) -- the folds' grid and fits run under valgrind in
+# every compare of a composite with its default ten folds in composite's
+# other tests.
 # composite/lafortune_fits_reach_the_truths_basin fits 100 simulated data
 # sets twice (about 5 s of CPU plain); composite/a_lafortune_fit... runs
 # the first of them under valgrind.
@@ -198,6 +200,7 @@ skip=${VALGRIND_SKIP-"test_model_sweep
     specular_options/separable_and_height_fits_differ
     composite/dense_recovery_through_the_subsample
     composite/cv_folds_fit_at_least_as_well_as_fresh_fits
+    composite/cv_folds_with_the_gloss_peak_held_out
     composite/lafortune_fits_reach_the_truths_basin
     spec_intervals/a_profile_stays_inside_where_the_model_overflows
     specular_models/ggx_without_fresnel_conserves_energy
