@@ -203,8 +203,20 @@ static int thorough_is_warm(const profile_t *p)
     return 1;
 }
 
-/* S_p(theta): the warm-started refinement, and with thorough also the
- * thorough fit (not where it would repeat the warm one); *improved = 1
+/* inner's thorough: FIT_WARM, the warm-started refinement alone;
+ * FIT_THOROUGH, the thorough fit too; FIT_OUTWARD (an outward step), the
+ * thorough fit only where the warm one puts theta outside the interval
+ * or fails (inside, a lower S_p could only put it further inside). */
+enum { FIT_WARM = 0, FIT_THOROUGH, FIT_OUTWARD };
+
+/* n ln(S / S_min) - chi2: negative inside the interval. */
+static double crit_of(const profile_t *p, double s)
+{
+    return p->n_w * log(s / p->s_min) - p->chi2;
+}
+
+/* S_p(theta): the warm-started refinement, and as thorough says the
+ * thorough fit (never where it would repeat the warm one); *improved = 1
  * when that was lower. */
 static int inner(profile_t *p, double theta, int thorough, double *s,
                  int *improved)
@@ -221,6 +233,10 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     same = thorough && thorough_is_warm(p);
     thorough = thorough && !same;
     rc = warm_fit(p, &warm);
+    if (rc == BF_OK && thorough == FIT_OUTWARD &&
+        crit_of(p, warm.lse) <= 0.0) {
+        thorough = FIT_WARM;
+    }
     if (rc != BF_OK) {
         if (same && rc != BF_ENOMEM) {
             return BF_EDOM; /* as the thorough fit's failure would be */
@@ -249,7 +265,8 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     return BF_OK;
 }
 
-/* n ln(S_p(theta) / S_min) - chi2: negative inside the interval. */
+/* n ln(S_p(theta) / S_min) - chi2: negative inside the interval (inner,
+ * thorough as there). */
 static double crit_at(profile_t *p, double theta, int thorough,
                       int *improved)
 {
@@ -261,7 +278,7 @@ static double crit_at(profile_t *p, double theta, int thorough,
         }
         return GSL_POSINF;
     }
-    return p->n_w * log(s / p->s_min) - p->chi2;
+    return crit_of(p, s);
 }
 
 /* The root finder's criterion: every point refined from the same start,
@@ -282,7 +299,7 @@ static double crit_warm(double theta, void *arg)
         }
     }
     memcpy(p->start, p->anchor, sizeof p->start);
-    p->last_c = crit_at(p, theta, 0, &improved);
+    p->last_c = crit_at(p, theta, FIT_WARM, &improved);
     return p->last_c;
 }
 
@@ -354,7 +371,7 @@ static int narrow(profile_t *p, double theta_hat, double *x, double *cx,
         if (!((t - *x) * (*out - t) > 0.0)) {
             break; /* not strictly inside the bracket */
         }
-        c = crit_at(p, t, 1, &improved);
+        c = crit_at(p, t, FIT_THOROUGH, &improved);
         if (p->status != BF_OK) {
             return p->status;
         }
@@ -414,15 +431,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
             (limit < theta_hat && next <= edge)) {
             next = edge == limit ? limit : 0.5 * (x + edge);
         }
-        /* the thorough fit only where the warm one puts next outside
-         * (or fails): inside, it could only lower S_p further */
-        c = crit_at(p, next, 0, &improved);
-        if (p->status == BF_EDOM || c > 0.0) {
-            if (p->status == BF_EDOM) {
-                p->status = BF_OK;
-            }
-            c = crit_at(p, next, 1, &improved);
-        }
+        c = crit_at(p, next, FIT_OUTWARD, &improved);
         if (p->status == BF_EDOM) {
             /* not defined at next (with theta there the model overflows
              * from every start the inner fits take: a lobe's power beyond
@@ -478,7 +487,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
         if (rc != BF_OK || p->status != BF_OK) {
             break;
         }
-        c = crit_at(p, *end, 1, &improved);
+        c = crit_at(p, *end, FIT_THOROUGH, &improved);
         if (p->status != BF_OK || !improved || c > 0.0) {
             break; /* the grid fit agrees: the end stands */
         }
