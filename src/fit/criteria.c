@@ -77,7 +77,8 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
                            ? malloc((folds + 1) * sizeof *g)
                            : NULL;
     double *resid = malloc(n * sizeof *resid);
-    double *vals = NULL;
+    double *vals = NULL;         /* the folds' grid values computed here */
+    const double *grid_vals = NULL; /* those, or the whole fit's */
     size_t points = 0;
     double sum = 0.0;
     size_t f;
@@ -90,12 +91,14 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         goto done;
     }
     if (spec && whole != NULL && whole->vals != NULL) {
-        points = whole->points; /* from the whole fit's grid pass */
+        grid_vals = whole->vals; /* from the whole fit's grid pass */
+        points = whole->points;
     } else if (spec) {
         rc = bf__varpro_fold_grids(fc, fold, folds, &vals, &points);
         if (rc == BF_EINVAL) {
             rc = BF_OK; /* no grid to share: each fold its own fit */
         }
+        grid_vals = vals;
     }
     if (fold_grid == NULL && !spec) { /* every fold's grid optimum */
         rc = bf__grid_optima_folds(gr, pb, fc->pm->cs->cti, fold, folds, g);
@@ -110,13 +113,11 @@ int bf__cv(bf__fitctx *fc, const bf__grid *gr, const size_t *fold,
         train.weight = w;
         bf__fitctx_use(fc, &train);
         if (spec) {
-            const double *fv = vals != NULL ? vals
-                               : whole != NULL ? whole->vals
-                                               : NULL;
-            rc = fv != NULL ? bf__varpro_fit_grid(
-                                  fc, fv + f * points,
-                                  whole != NULL ? &whole->minima : NULL, &r)
-                            : bf__varpro_fit(fc, NULL, &r, NULL);
+            rc = grid_vals != NULL
+                     ? bf__varpro_fit_grid(
+                           fc, grid_vals + f * points,
+                           whole != NULL ? &whole->minima : NULL, &r)
+                     : bf__varpro_fit(fc, NULL, &r, NULL);
         } else {
             rc = isfinite(fold_grid[f].lse)
                      ? bf__refine(fc, &fold_grid[f], &r)
