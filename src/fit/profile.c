@@ -21,7 +21,9 @@
  * criterion lies above the threshold (below it, a lower S_p could only
  * put the point further inside: the step is inside either way) -- and at
  * the end found; the root finder in between uses the warm-started
- * refinement alone. If the grid fit at an outward step finds the point
+ * refinement alone, on the criterion's signed root (signed_root: the same
+ * root, about linear in theta), from the bracket's two ends as the walk
+ * found them. If the grid fit at an outward step finds the point
  * inside after all, the walk goes on; if the grid fit at the end found
  * finds a lower S_p than the warm one did (the warm start followed a
  * local minimum, so the end was too early), the search goes on from
@@ -101,9 +103,9 @@ typedef struct {
     int status;                  /* first failure, BF_OK if none */
     double last_x;               /* the root finder's last point */
     double last_c;               /* and its criterion */
-    /* dense data: the bracket's ends and their criteria, known from the
-     * outward steps, which the root finder's first two evaluations then
-     * do not repeat */
+    /* the bracket's ends and their criteria, known from the outward
+     * steps, which the root finder's first two evaluations then do not
+     * repeat */
     double known_x[2];
     double known_c[2];
     size_t n_known;
@@ -281,11 +283,24 @@ static double crit_at(profile_t *p, double theta, int thorough,
     return crit_of(p, s);
 }
 
-/* The root finder's criterion: every point refined from the same start,
- * the bracket's inside end's nuisance optimum, so that the function it
- * sees is one basin's, continuous, whatever order it evaluates in (a start
- * carried from point to point can hop to another basin between the two
- * ends of the bracket). */
+/* The signed root of a criterion c: sqrt(n ln(S_p / S_min)) -
+ * sqrt(chi2), of c's sign and 0 where c is. Where the profile is
+ * quadratic about the estimate (Wilks' asymptotics [1] §9.2), n ln(S_p /
+ * S_min) = c + chi2 grows as (theta - theta_hat)^2, so this is linear in
+ * theta and an interpolating root finder lands on its root in a step or
+ * two. */
+static double signed_root(const profile_t *p, double c)
+{
+    double q = c + p->chi2;
+    return sqrt(q > 0.0 ? q : 0.0) - sqrt(p->chi2);
+}
+
+/* The root finder's function: the signed root of the criterion (same root,
+ * fewer steps), every point refined from the same start, the bracket's
+ * inside end's nuisance optimum, so that the function it sees is one
+ * basin's, continuous, whatever order it evaluates in (a start carried
+ * from point to point can hop to another basin between the two ends of
+ * the bracket). */
 static double crit_warm(double theta, void *arg)
 {
     profile_t *p = arg;
@@ -295,12 +310,12 @@ static double crit_warm(double theta, void *arg)
     for (i = 0; i < p->n_known; i++) {
         if (theta == p->known_x[i]) {
             p->last_c = p->known_c[i];
-            return p->last_c;
+            return signed_root(p, p->last_c);
         }
     }
     memcpy(p->start, p->anchor, sizeof p->start);
     p->last_c = crit_at(p, theta, FIT_WARM, &improved);
-    return p->last_c;
+    return signed_root(p, p->last_c);
 }
 
 /* Root of the warm criterion in [in, out] (crit(in) <= 0 < crit(out)). */
@@ -339,17 +354,16 @@ static int root(profile_t *p, double in, double out, double *x)
     return status == GSL_SUCCESS ? BF_OK : BF_ENOCONV;
 }
 
-/* The end predicted in the bracket [x, out] (criteria cx <= 0 < co): on a
- * profile quadratic about theta_hat (Wilks' asymptotics, dense data),
- * sqrt(n ln(S_p / S_min)) = sqrt(c + chi2) is linear in |theta -
- * theta_hat|; interpolated linearly there to sqrt(chi2), then moved
- * CI_BEYOND of its distance from theta_hat outwards. */
+/* The end predicted in the bracket [x, out] (criteria cx <= 0 < co): the
+ * zero of the signed root (linear in theta on a profile quadratic about
+ * theta_hat, as on dense data) interpolated linearly between the two,
+ * then moved CI_BEYOND of its distance from theta_hat outwards. */
 static double predict(const profile_t *p, double theta_hat, double x,
                       double cx, double out, double co)
 {
-    double gx = sqrt(cx + p->chi2 > 0.0 ? cx + p->chi2 : 0.0);
-    double go = sqrt(co + p->chi2);
-    double e = x + (out - x) * (sqrt(p->chi2) - gx) / (go - gx);
+    double gx = signed_root(p, cx);
+    double go = signed_root(p, co);
+    double e = x + (out - x) * -gx / (go - gx);
     return e + CI_BEYOND * (e - theta_hat);
 }
 
@@ -475,13 +489,11 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
         double c;
         /* the warm starts begin at the bracket's inside point */
         memcpy(p->anchor, inside, sizeof inside);
-        if (p->fc->pb->n > BF__DENSE_K) {
-            p->known_x[0] = x;
-            p->known_c[0] = cx;
-            p->known_x[1] = out;
-            p->known_c[1] = co;
-            p->n_known = 2;
-        }
+        p->known_x[0] = x;
+        p->known_c[0] = cx;
+        p->known_x[1] = out;
+        p->known_c[1] = co;
+        p->n_known = 2;
         rc = root(p, x, out, end);
         p->n_known = 0;
         if (rc != BF_OK || p->status != BF_OK) {
