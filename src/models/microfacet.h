@@ -94,17 +94,32 @@ static inline void bf__mf_at(const double *t, size_t n, size_t k,
 }
 
 /* pow(x, y) for the lobes' x >= 0 and exponents y > 0, the same value
- * every time: x < 2^e with e the exponent field of x less 1022 (frexp's
- * e, an upper bound for subnormal x too); where e y <= -1100, x^y <
- * 2^-1100 lies below half the least subnormal and pow rounds it to 0 --
- * returned without pow's slow underflow path, which a sharp lobe (n in
- * the hundreds) takes at most configurations. */
+ * every time. A normal x = 2^(e - 1) (1 + f), f in [i / 16, (i + 1) / 16)
+ * with e its exponent field less 1022 and i the top four bits of its
+ * fraction, lies below 2^(e - 1) (1 + (i + 1) / 16); a subnormal x below
+ * 2^-1022. Where that bound's log2 times y is <= -1100, x^y < 2^-1100
+ * lies below half the least subnormal and pow rounds it to 0 -- returned
+ * without pow's slow underflow path, which a sharp lobe (n in the
+ * hundreds) takes at most configurations. */
 static inline double bf__mf_pow(double x, double y)
 {
+    /* log2(1 + (i + 1) / 16), i = 0 .. 15 */
+    static const double top[16] = {
+        0.087462841250339401, 0.16992500144231237, 0.24792751344358549,
+        0.32192809488736235,  0.39231742277876031, 0.45943161863729726,
+        0.52356195605701283,  0.58496250072115619, 0.6438561897747247,
+        0.70043971814109218,  0.75488750216346856, 0.80735492205760406,
+        0.85798099512757209,  0.90689059560851848, 0.95419631038687525,
+        1.0};
     if (x > 0.0 && x < 1.0 && y > 0.0) {
         uint64_t bits;
+        int e;
+        double log2_above;
         memcpy(&bits, &x, sizeof bits);
-        if ((double)((int)((bits >> 52) & 0x7ffu) - 1022) * y <= -1100.0) {
+        e = (int)((bits >> 52) & 0x7ffu) - 1022;
+        log2_above = e == -1022 ? -1022.0
+                                : (double)(e - 1) + top[(bits >> 48) & 0xfu];
+        if (log2_above * y <= -1100.0) {
             return 0.0;
         }
     }

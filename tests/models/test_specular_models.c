@@ -703,3 +703,43 @@ Test(specular_models, albedo_rejects_bad_input)
     cr_assert_eq(bf_model_albedo(ggx, p, 0.1, NULL), BF_EINVAL);
     cr_assert_eq(a, 42.0);
 }
+
+/* The lobes' power skips pow only where pow gives 0: the same bits as pow
+ * over every fraction bucket of x in (0, 1), subnormal x, and exponents
+ * at, below and above where x^y leaves the subnormals. */
+Test(specular_models, the_lobes_power_is_pow_bit_for_bit)
+{
+    static const double ys[] = {1.0, 7.5, 100.0, 999.9, 1e4};
+    static const double sub[] = {4.9406564584124654e-324, 1e-310,
+                                 2.2250738585072009e-308};
+    size_t checked = 0;
+    size_t zeros = 0;
+    int k;
+    size_t a;
+    for (k = -4; k < 4100; k++) {
+        double x = k < 0 ? sub[(size_t)(-k) % 3] * (double)(-k)
+                         : (k == 4096 ? nextafter(1.0, 0.0)
+                                      : ((double)k + 0.5) / 4096.5);
+        double at = -1074.0 / log2(x); /* x^at = 2^-1074 */
+        double y[sizeof ys / sizeof ys[0] + 4];
+        if (!(x > 0.0 && x < 1.0)) {
+            continue;
+        }
+        memcpy(y, ys, sizeof ys);
+        y[5] = at * 0.999;
+        y[6] = at;
+        y[7] = at * 1.001;
+        y[8] = at * 1.03;
+        for (a = 0; a < sizeof y / sizeof y[0]; a++) {
+            double want = pow(x, y[a]);
+            double got = bf__mf_pow(x, y[a]);
+            cr_assert(memcmp(&want, &got, sizeof want) == 0,
+                      "pow(%.17g, %.17g) = %a, bf__mf_pow %a", x, y[a], want,
+                      got);
+            zeros += want == 0.0;
+            checked++;
+        }
+    }
+    cr_assert_gt(zeros, 1000u, "the sweep reaches pow's zeros (%zu)", zeros);
+    cr_assert_gt(checked, 36000u);
+}
