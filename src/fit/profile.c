@@ -492,13 +492,17 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     }
     for (verify = 0; verify < CI_VERIFY; verify++) {
         double c;
-        /* the warm starts begin at the bracket's inside point */
+        /* the warm starts begin at the bracket's inside point, whose
+         * criterion is known; so is the outside point's, found by the walk
+         * from the same start -- but not once a grid fit has moved the
+         * inside point to a lower basin, from whose optimum the root
+         * finder evaluates it again */
         memcpy(p->anchor, inside, sizeof inside);
         p->known_x[0] = x;
         p->known_c[0] = cx;
         p->known_x[1] = out;
         p->known_c[1] = co;
-        p->n_known = 2;
+        p->n_known = verify == 0 ? 2 : 1;
         rc = root(p, x, out, end);
         p->n_known = 0;
         if (rc != BF_OK || p->status != BF_OK) {
