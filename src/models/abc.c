@@ -34,25 +34,39 @@ static double abc_value(const bf__mf_t *m, const double *p)
 
 /* The kernel: abc_value's operations in its order, so the same bits,
  * from per-configuration factors kept in the workspace -- G_V / (ci co)
- * and 1 - cos th (the geometry's, once), F for the last ior, the power
- * for the last (B, C): a fit's finite differences and a profile's steps
- * change one parameter at a time, so one of the two is reused. */
+ * and 1 - cos th (the geometry's, once), the power for the last (B, C),
+ * and F for each of the last ABC_F_SLOTS values of ior (a round robin;
+ * one on data too large for ABC_F_CACHE bytes of them): the separable
+ * fit's grid takes ior as its fastest axis (a few values, every (B, C)
+ * again), its finite differences and a profile's steps change one
+ * parameter at a time, so F or the power is mostly reused. */
+#define ABC_F_SLOTS 8
+#define ABC_F_CACHE (8u << 20)
+
 typedef struct {
     int geo;      /* 1 once corner, omch, gv hold the geometry's */
-    int f_used;   /* 1 once f holds F at ior */
     int p_used;   /* 1 once pw holds the power at (b, c) */
-    double ior;
     double b;
     double c;
-    double v[];   /* corner, omch, gv, f, pw: n each */
+    size_t next;  /* the F slot filled next */
+    int f_used[ABC_F_SLOTS]; /* 1 once slot s holds F at f_ior[s] */
+    double f_ior[ABC_F_SLOTS];
+    double v[];   /* corner, omch, gv, pw, then F per slot: n each */
 } abc_work;
 
-enum { ABC_CORNER, ABC_OMCH, ABC_GV, ABC_F, ABC_PW, ABC_ROWS };
+enum { ABC_CORNER, ABC_OMCH, ABC_GV, ABC_PW, ABC_F };
+
+/* The F slots of a workspace for n configurations. */
+static size_t abc_slots(size_t n)
+{
+    size_t fit = ABC_F_CACHE / (sizeof(double) * (n > 0 ? n : 1));
+    return fit < 1 ? 1 : (fit > ABC_F_SLOTS ? ABC_F_SLOTS : fit);
+}
 
 static size_t abc_kwork(const bf_kernel *kr, size_t n)
 {
     (void)kr;
-    return sizeof(abc_work) + ABC_ROWS * n * sizeof(double);
+    return sizeof(abc_work) + (ABC_F + abc_slots(n)) * n * sizeof(double);
 }
 
 static int abc_kvalues(const bf__prep *pm, const double *param, void *work,
@@ -61,15 +75,26 @@ static int abc_kvalues(const bf__prep *pm, const double *param, void *work,
     abc_work *w = work;
     const double *t = pm->terms;
     size_t n = pm->n;
+    size_t slots = abc_slots(n);
     double *corner = w->v + ABC_CORNER * n;
     double *omch = w->v + ABC_OMCH * n;
     double *gv = w->v + ABC_GV * n;
-    double *f = w->v + ABC_F * n;
     double *pw = w->v + ABC_PW * n;
-    int new_f = !w->f_used || w->ior != param[3];
+    double *f;
+    size_t s = 0;
+    int new_f = 1;
     int new_p = !w->p_used || w->b != param[1] || w->c != param[2];
     int rc = BF_OK;
     size_t k;
+    while (s < slots && new_f) {
+        new_f = !w->f_used[s] || w->f_ior[s] != param[3];
+        s += new_f ? 1 : 0;
+    }
+    if (new_f) { /* not held: the round robin's next slot */
+        s = w->next;
+        w->next = (w->next + 1) % slots;
+    }
+    f = w->v + (ABC_F + s) * n;
     for (k = 0; k < n && (!w->geo || new_f); k++) {
         bf__mf_t m;
         bf__mf_at(t, n, k, &m);
@@ -87,9 +112,9 @@ static int abc_kvalues(const bf__prep *pm, const double *param, void *work,
                                              param[2]);
     }
     w->geo = 1;
-    w->f_used = 1;
+    w->f_used[s] = 1;
+    w->f_ior[s] = param[3];
     w->p_used = 1;
-    w->ior = param[3];
     w->b = param[1];
     w->c = param[2];
     for (k = 0; k < n; k++) {

@@ -92,6 +92,49 @@ static void expect_kernel_bits(const bf_model_type *t, const double *p,
     bf__cset_free(&cs);
 }
 
+/* A kernel that keeps factors of earlier calls in its workspace (ABC: F
+ * per ior in a few slots, the power per (B, C)) gives eval's bits in any
+ * order of calls: one workspace over a sequence that changes ior, B or C
+ * alone, cycles ior through more values than the slots and comes back. */
+Test(specular_vectors, a_kernels_kept_factors_give_evals_bits_in_any_order)
+{
+    const bf_model_type *t = bf_model_find("ABC");
+    bf_geom g[6];
+    bf__cset cs;
+    bf__prep pm;
+    void *work;
+    double out[6];
+    double ref[6];
+    size_t i;
+    size_t k;
+    cr_assert_not_null(t);
+    for (k = 0; k < 6; k++) {
+        g[k] = bf_geom_from_measurement(0.1 + 0.2 * (double)k, 0.3,
+                                        0.15 + 0.2 * (double)k, 3.0);
+    }
+    cr_assert_eq(bf__cset_init(&cs, 6, g), BF_OK);
+    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
+    work = bf__work_alloc(&pm);
+    cr_assert_not_null(work);
+    for (i = 0; i < 60; i++) {
+        /* ior through 11 values (eight slots), B every 7th call, C every
+         * 5th; A every call */
+        double p[4] = {1.0 + (double)i, 300.0 * (double)(1 + (i / 7) % 3),
+                       0.5 + 0.25 * (double)((i / 5) % 4),
+                       1.1 + 0.2 * (double)((i * 3) % 11)};
+        cr_assert_eq(bf_model_eval(t, p, 6, g, ref), BF_OK);
+        (void)pm.kr->values(&pm, p, work, out);
+        for (k = 0; k < 6; k++) {
+            cr_expect(memcmp(&out[k], &ref[k], sizeof out[k]) == 0,
+                      "call %zu at %zu: %.17g vs eval %.17g", i, k, out[k],
+                      ref[k]);
+        }
+    }
+    free(work);
+    bf__prep_free(&pm);
+    bf__cset_free(&cs);
+}
+
 Test(specular_vectors, every_model_gives_the_reference_values)
 {
     FILE *fp = fopen(VECTORS, "r");
