@@ -242,7 +242,8 @@ typedef struct {
     double *block_lin;
     /* Levenberg-Marquardt's stall stop (varpro.c): 0, or the relative
      * decrease of the cost below which an iteration ends the run (the
-     * profiles' inner fits, profile.c). */
+     * profiles' inner fits, profile.c; there Nelder-Mead off a bound
+     * makes one coarser pass, which LM finishes). */
     double stall;
     /* Levenberg-Marquardt's workspace for lm_n residuals and lm_p
      * parameters and lm_n square roots of the weights (varpro.c), kept
