@@ -237,8 +237,8 @@ static int inner(profile_t *p, double theta, int thorough, double *s,
     if (p->sub.free_mask == 0) {
         return bf__fit_value(p->fc, p->sub.fixed, s);
     }
-    same = thorough && thorough_is_warm(p);
-    thorough = thorough && !same;
+    same = thorough != FIT_WARM && thorough_is_warm(p);
+    thorough = same ? FIT_WARM : thorough; /* keeps FIT_OUTWARD */
     rc = warm_fit(p, &warm);
     if (rc == BF_OK && thorough == FIT_OUTWARD &&
         crit_of(p, warm.lse) <= 0.0) {
