@@ -81,15 +81,15 @@ static int abc_kvalues(const bf__prep *pm, const double *param, void *work,
     double *gv = w->v + ABC_GV * n;
     double *pw = w->v + ABC_PW * n;
     double *f;
-    size_t s = 0;
-    int new_f = 1;
+    size_t s;
+    int new_f;
     int new_p = !w->p_used || w->b != param[1] || w->c != param[2];
     int rc = BF_OK;
     size_t k;
-    while (s < slots && new_f) {
-        new_f = !w->f_used[s] || w->f_ior[s] != param[3];
-        s += new_f ? 1 : 0;
+    for (s = 0; s < slots && !(w->f_used[s] && w->f_ior[s] == param[3]);
+         s++) {
     }
+    new_f = s == slots;
     if (new_f) { /* not held: the round robin's next slot */
         s = w->next;
         w->next = (w->next + 1) % slots;
