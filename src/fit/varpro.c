@@ -260,11 +260,9 @@ static int nelder_mead(bf__vp_space *sp, double *x, const double *step,
 static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
 {
     const bf__vp_space *sp = arg;
-    const bf_problem *pb = sp->fc->pb;
     double x[BF_MAX_PARAMS];
     double v;
     size_t a;
-    size_t k;
     memcpy(x, sp->base, sizeof x);
     for (a = 0; a < sp->m; a++) {
         x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
@@ -273,10 +271,7 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     if (!(v < BF__VP_UNDEFINED)) {
         return GSL_EDOM;
     }
-    for (k = 0; k < pb->n * sp->fc->blocks; k++) { /* every block's */
-        double w = sp->sw != NULL ? sp->sw[k % pb->n] : 1.0;
-        f->data[k * f->stride] = w * (sp->fc->curve[k] - pb->data[k]);
-    }
+    bf__vp_residuals(sp->fc, sp->sw, f->data, f->stride);
     return GSL_SUCCESS;
 }
 

@@ -22,6 +22,12 @@ typedef struct {
     double g11, g12, g22, b1, b2;
 } bf__vp_normal;
 
+/* The residuals sw_k (curve_k - R_k) of fc's last evaluation (fc->curve,
+ * every block's; sw NULL: 1) into f at stride: Levenberg-Marquardt's
+ * vector (varpro.c). */
+void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f,
+                      size_t stride);
+
 /* NNLS from the normal equations ne (two columns when two): 1 with t the
  * unconstrained optimum when it is inside [0, hi]; else 0 with t the two
  * one-column optima clamped into [0, hi] (one column: always 1). */

@@ -13,6 +13,13 @@
 
 #include "fit/varpro.h"
 
+/* The passes over the data run at every evaluation of a separable fit
+ * (the normal equations' sums, the columns' scaling, the curve, the
+ * residuals): one clone per ISA (BF__CLONES, built as the kernels are),
+ * so the element-wise loops vectorise; the sums stay in index order, so
+ * the bits are the baseline's. */
+#include "internal.h"
+
 static double weight_of(const bf_problem *pb, size_t k)
 {
     return pb->weight != NULL ? pb->weight[k] : 1.0;
@@ -61,6 +68,8 @@ int bf__vp_nnls_solve(const bf__vp_normal *ne, int two, const double *hi,
 
 /* The NNLS scales of one or two columns c1, c2 for the target R - c0 (c0
  * NULL: R), each clamped into [0, hi]. */
+BF__CLONES
+BF__CLONES
 static void nnls(const bf_problem *pb, const double *c0, const double *c1,
                  const double *c2, const double *hi, double *t)
 {
@@ -105,6 +114,7 @@ typedef struct {
 /* The columns of fc's model at param into c, as bf__curve gives rho =
  * values cos ti; kept from the last evaluation when it was at the same
  * point. */
+BF__CLONES
 static int columns(bf__fitctx *fc, const double *param, columns_t *c)
 {
     const bf_problem *pb = fc->pb;
@@ -139,12 +149,16 @@ static int columns(bf__fitctx *fc, const double *param, columns_t *c)
         }
         for (q = 0; q <= c->n_l; q++) {
             const double *cti = fc->pm->cs->cti;
+            double *cq = c->col[q];
+            double nf = 0.0;
             size_t k;
+#pragma omp simd reduction(+ : nf)
             for (k = 0; k < n; k++) {
-                c->col[q][k] *= cti[k];
-                if (!isfinite(c->col[q][k])) {
-                    return BF_EDOM;
-                }
+                cq[k] *= cti[k];
+                nf += cq[k] - cq[k]; /* NaN once a value is not finite */
+            }
+            if (nf != 0.0) {
+                return BF_EDOM;
             }
         }
         memcpy(fc->cols_at, param, pb->type->p * sizeof *param);
@@ -154,6 +168,8 @@ static int columns(bf__fitctx *fc, const double *param, columns_t *c)
     return BF_OK;
 }
 
+BF__CLONES
+BF__CLONES
 int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
 {
     const bf_problem *pb = fc->pb;
@@ -232,4 +248,26 @@ int bf__varpro_magnitude(bf__fitctx *fc, const double *param, double *mag,
     *mag = t[c.n_l];
     *value = bf__objective(pb, fc->pm->cs->cti, NULL, fc->curve, fc->scratch);
     return isfinite(*value) ? BF_OK : BF_EDOM;
+}
+
+BF__CLONES
+void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f,
+                      size_t stride)
+{
+    const size_t n = fc->pb->n;
+    const double *c = fc->curve;
+    const double *d = fc->pb->data;
+    size_t b;
+    size_t k;
+    for (b = 0; b < fc->blocks; b++, c += n, d += n, f += n * stride) {
+        if (sw == NULL && stride == 1) { /* the common case, vectorised */
+            for (k = 0; k < n; k++) {
+                f[k] = c[k] - d[k];
+            }
+            continue;
+        }
+        for (k = 0; k < n; k++) {
+            f[k * stride] = (sw != NULL ? sw[k] : 1.0) * (c[k] - d[k]);
+        }
+    }
 }
