@@ -203,19 +203,56 @@ static size_t part_work(const bf_kernel *kr, size_t n)
                                   : 0;
 }
 
+/* D's term kept between evaluations, at the head of the kernel's
+ * workspace (zeroed when allocated, bound to one configuration set): at
+ * D's parameters dp, D's values dv on the configurations (n doubles
+ * after this header), the cos ti each is divided by, ce (n more; at
+ * grazing the limit's, below), and d0 = v_D(n, n). A fit changes S's
+ * parameters at nearly every evaluation and D's (LAMBERT has none)
+ * seldom. */
+typedef struct {
+    int held; /* 1 once dv, ce, d0 hold D's at dp */
+    double d0;
+    double dp[BF_MAX_PARAMS];
+} diff_memo;
+
+static size_t line_bytes(size_t bytes)
+{
+    return (bytes + 63) / 64 * 64;
+}
+
+/* The memo, dv and ce: the head of the workspace. */
+static size_t head_bytes(size_t n)
+{
+    return line_bytes(sizeof(diff_memo)) + 2 * line_bytes(n * sizeof(double));
+}
+
 static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
 {
     const comp_kernel *ck = comp_of(kr);
-    return (n * sizeof(double) + 63) / 64 * 64 + part_work(ck->d->kernel, n)
+    return head_bytes(n) + part_work(ck->d->kernel, n)
            + part_work(ck->s->kernel, n) + part_work(ck->d->kernel, 1);
 }
 
-/* The workspace of comp_values and comp_columns: n doubles, then D's,
- * S's and the normal configuration's D's, apart (a part may keep a cache
- * of its configurations' terms in its workspace: FC's Fresnel factor). */
+/* The workspace of comp_values and comp_columns: the memo with dv and ce
+ * (head_bytes), then D's, S's and the normal configuration's D's, apart
+ * (a part may keep a cache of its configurations' terms in its
+ * workspace: FC's Fresnel factor). */
+static double *dv_of(const bf__prep *pm, void *work)
+{
+    (void)pm;
+    return (double *)((char *)work + line_bytes(sizeof(diff_memo)));
+}
+
+static double *ce_of(const bf__prep *pm, void *work)
+{
+    return (double *)((char *)dv_of(pm, work)
+                      + line_bytes(pm->n * sizeof(double)));
+}
+
 static char *d_work(const bf__prep *pm, void *work)
 {
-    return (char *)work + (pm->n * sizeof(double) + 63) / 64 * 64;
+    return (char *)work + head_bytes(pm->n);
 }
 
 static char *s_work(const bf__prep *pm, void *work)
@@ -223,15 +260,17 @@ static char *s_work(const bf__prep *pm, void *work)
     return d_work(pm, work) + part_work(comp_of(pm->kr)->d->kernel, pm->n);
 }
 
-/* Adds D's term rho d(i, o) of SPEC §9.4 at param (the composite's) to
- * out from D's kernel; NaN everywhere and BF_EDOM where D(n, n) is not
- * positive. */
-static int add_diffuse(const bf__prep *pm, const double *param, double rho,
-                       void *work, double *out)
+/* D's values, divisors and d0 at param (the composite's) into the memo
+ * from D's kernel; held when all are defined. BF_OK, or BF_EDOM where
+ * D(n, n) is not positive (d0 NaN, nothing else set) or a value is
+ * undefined. */
+static int diffuse_memo(const bf__prep *pm, const double *param, void *work)
 {
     const comp_kernel *ck = comp_of(pm->kr);
     const bf_model_type *d = ck->d;
-    double *dv = work;
+    diff_memo *mo = work;
+    double *dv = dv_of(pm, work);
+    double *ce = ce_of(pm, work);
     char *nw = s_work(pm, work) + part_work(ck->s->kernel, pm->n);
     bf__prep pd;
     bf__prep pn;
@@ -239,18 +278,16 @@ static int add_diffuse(const bf__prep *pm, const double *param, double rho,
     bf__trig_t trig;
     double cti;
     double d0;
-    double scale;
     size_t k;
     int rc;
+    mo->held = 0;
+    mo->d0 = NAN;
     part_prep(pm, 2, &pn, &ncs, &trig, &cti);
     rc = d->kernel->values(&pn, param + 1, nw, &d0);
     if ((rc != BF_OK) || !(d0 > 0.0) || !isfinite(d0)) {
-        for (k = 0; k < pm->n; k++) {
-            out[k] = NAN;
-        }
         return BF_EDOM;
     }
-    scale = rho / (BF__PI * d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    mo->d0 = d0;
     part_prep(pm, 0, &pd, NULL, NULL, NULL);
     rc = d->kernel->values(&pd, param + 1, d_work(pm, work), dv);
     for (k = 0; k < pm->n; k++) {
@@ -266,9 +303,44 @@ static int add_diffuse(const bf__prep *pm, const double *param, double rho,
             }
             dv[k] = v;
         }
-        out[k] += scale * dv[k] / ci;
+        ce[k] = ci;
+    }
+    if (rc == BF_OK) {
+        memcpy(mo->dp, param + 1, d->p * sizeof *param);
+        mo->held = 1;
     }
     return rc == BF_OK ? BF_OK : BF_EDOM;
+}
+
+/* Adds D's term rho d(i, o) of SPEC §9.4 at param (the composite's) to
+ * out, D's part from the memo (diffuse_memo where it does not hold D's
+ * parameters); NaN everywhere and BF_EDOM where D(n, n) is not
+ * positive. */
+BF__CLONES
+static int add_diffuse(const bf__prep *pm, const double *param, double rho,
+                       void *work, double *out)
+{
+    const bf_model_type *d = comp_of(pm->kr)->d;
+    const diff_memo *mo = work;
+    const double *dv = dv_of(pm, work);
+    const double *ce = ce_of(pm, work);
+    double scale;
+    size_t k;
+    int rc = BF_OK;
+    if (!mo->held || memcmp(mo->dp, param + 1, d->p * sizeof *param) != 0) {
+        rc = diffuse_memo(pm, param, work);
+        if (rc != BF_OK && !(mo->d0 > 0.0)) {
+            for (k = 0; k < pm->n; k++) {
+                out[k] = NAN;
+            }
+            return BF_EDOM;
+        }
+    }
+    scale = rho / (BF__PI * mo->d0); /* SPEC §9.4: d(n, n) = 1/pi */
+    for (k = 0; k < pm->n; k++) {
+        out[k] += scale * dv[k] / ce[k];
+    }
+    return rc;
 }
 
 /* Values of the composite from its parts' kernels (the reference path's
