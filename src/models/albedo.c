@@ -13,8 +13,19 @@
  * The lobe of a specular model is as narrow as alpha = 1e-3 (SPEC §9.3)
  * around the mirror direction (to = ti, phi_s = 0; SPEC §1.2), so both
  * integrals get break points at geometric distances from it, ti +- w 4^k
- * and w 4^k (w = 1e-5), and adapt between them: every width from 1e-5 to
- * the hemisphere is resolved by some interval.
+ * and w0 4^k, and adapt between them: every width from w = 1e-5 to the
+ * hemisphere is resolved by some interval. The lobes are functions of the
+ * angle g between o and the mirror direction r (or of the half vector's,
+ * which follows it), and
+ *   1 - cos g = (1 - cos(to - ti)) + sin to sin ti (1 - cos phi_s),
+ * so at a zenith to the inner integrand changes with phi_s on no finer
+ * scale than the phi_s where the second term reaches a sixteenth of the
+ * first: phi_1 = sqrt((1 - cos(to - ti)) / (8 sin to sin ti)), about
+ * |to - ti| / (4 sqrt(sin to sin ti)). The inner break points start at
+ * w0 = max(w, phi_1 / 4) (none at normal incidence, where nothing
+ * depends on phi_s): the outer nodes away from ti skip the finest
+ * intervals, which there would each cost 21 evaluations to integrate a
+ * constant.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -46,16 +57,16 @@ typedef struct {
     int failed;
 } alb_t;
 
-/* Break points a, a + w 4^k (k = 0, 1, ...) below hi, and hi, after lo
+/* Break points a, a + w0 4^k (k = 0, 1, ...) below hi, and hi, after lo
  * when lo < a: sorted, into pts (capacity ALB_MAXPTS), with those below a
- * mirrored (a - w 4^k above lo). Returns the count. */
-static size_t breaks(double lo, double a, double hi, double *pts)
+ * mirrored (a - w0 4^k above lo). Returns the count. */
+static size_t breaks(double lo, double a, double hi, double w0, double *pts)
 {
     double below[ALB_MAXPTS / 2];
     size_t nb = 0;
     size_t n = 0;
     double d;
-    for (d = ALB_W; (a - d > lo) && (nb < ALB_MAXPTS / 2 - 2); d *= 4.0) {
+    for (d = w0; (a - d > lo) && (nb < ALB_MAXPTS / 2 - 2); d *= 4.0) {
         below[nb++] = a - d;
     }
     pts[n++] = lo;
@@ -65,11 +76,25 @@ static size_t breaks(double lo, double a, double hi, double *pts)
     if (a > lo && a < hi) {
         pts[n++] = a;
     }
-    for (d = ALB_W; (a + d < hi) && (n < ALB_MAXPTS - 1); d *= 4.0) {
+    for (d = w0; (a + d < hi) && (n < ALB_MAXPTS - 1); d *= 4.0) {
         pts[n++] = a + d;
     }
     pts[n++] = hi;
     return n;
+}
+
+/* The first inner break point's width at zenith to (file comment): w0 =
+ * max(ALB_W, phi_1 / 4); HUGE_VAL where nothing depends on phi_s. */
+static double inner_w0(double theta_i, double theta_o)
+{
+    double s = sin(theta_o) * sin(theta_i);
+    double c = 1.0 - cos(theta_o - theta_i);
+    double phi_1;
+    if (!(s > 0.0)) {
+        return HUGE_VAL;
+    }
+    phi_1 = sqrt(c / (8.0 * s));
+    return phi_1 / 4.0 > ALB_W ? phi_1 / 4.0 : ALB_W;
 }
 
 /* A quadrature's result r with error estimate err and GSL status st is
@@ -115,6 +140,9 @@ static double over_phi(double theta_o, void *arg)
     double err = 0.0;
     a->theta_o = theta_o;
     a->cos_sin_o = cos(theta_o) * sin(theta_o);
+    /* the mirror: phi_s = 0 */
+    a->n_in = breaks(0.0, 0.0, BF__PI, inner_w0(a->theta_i, theta_o),
+                     a->pts_in);
     if (!accepted(gsl_integration_qagp(&fn, a->pts_in, a->n_in,
                                        ALB_EPSABS_IN, ALB_EPSREL_IN,
                                        ALB_LIMIT, a->inner, &r, &err),
@@ -172,8 +200,7 @@ int bf_model_albedo(const bf_model_type *type, const double *param,
         free(a.work);
         return BF_ENOMEM;
     }
-    a.n_in = breaks(0.0, 0.0, BF__PI, a.pts_in); /* the mirror: phi_s = 0 */
-    n_out = breaks(0.0, theta_i, BF__PI_2, pts_out); /* and to = ti */
+    n_out = breaks(0.0, theta_i, BF__PI_2, ALB_W, pts_out); /* to = ti */
     fn.function = over_phi;
     fn.params = &a;
     st = accepted(gsl_integration_qagp(&fn, pts_out, n_out, ALB_EPSABS_OUT,
