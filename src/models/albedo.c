@@ -2,8 +2,8 @@
  * the energy check), by adaptive quadrature.
  *
  * References:
- *   [1] GSL manual, "Numerical Integration": QAGP (adaptive Gauss-Kronrod
- *       21-point with known break points).
+ *   [1] GSL manual, "Numerical Integration": QAG (adaptive Gauss-Kronrod,
+ *       21 points), one per interval between break points.
  *
  * Equations:
  *   a(theta_i) = int_0^{pi/2} int_{-pi}^{pi} f(ti, to, phi_s) cos to sin to
@@ -13,8 +13,12 @@
  * The lobe of a specular model is as narrow as alpha = 1e-3 (SPEC §9.3)
  * around the mirror direction (to = ti, phi_s = 0; SPEC §1.2), so both
  * integrals get break points at geometric distances from it, ti +- w 4^k
- * and w0 4^k, and adapt between them: every width from w = 1e-5 to the
- * hemisphere is resolved by some interval. The lobes are functions of the
+ * and w0 4^k, and adapt between them: every width from w to the
+ * hemisphere is resolved by some interval. w is the lobe's own scale
+ * (lobe_width: a quarter of the first of 1e-5 4^k at which f moves by a
+ * thousandth of its value at the mirror direction, not below 1e-5), so a
+ * wide lobe is not cut into intervals far finer than anything in it, and
+ * a narrow one keeps w = 1e-5. The lobes are functions of the
  * angle g between o and the mirror direction r (or of the half vector's,
  * which follows it), and
  *   1 - cos g = (1 - cos(to - ti)) + sin to sin ti (1 - cos phi_s),
@@ -35,6 +39,7 @@
 #include "internal.h"
 
 #define ALB_W 1e-5        /* the narrowest width resolved (radians) */
+#define ALB_FLAT 1e-3     /* lobe_width(): a relative change it resolves */
 #define ALB_LIMIT 1000    /* subintervals per quadrature */
 #define ALB_MAXPTS 40
 #define ALB_EPSREL_IN 1e-9
@@ -49,6 +54,7 @@ typedef struct {
     const double *param;
     void *work;
     double theta_i;
+    double w;         /* the narrowest width resolved (lobe_width) */
     double theta_o;
     double cos_sin_o; /* cos to sin to, once per to */
     gsl_integration_workspace *inner;
@@ -84,8 +90,8 @@ static size_t breaks(double lo, double a, double hi, double w0, double *pts)
 }
 
 /* The first inner break point's width at zenith to (file comment): w0 =
- * max(ALB_W, phi_1 / 4); HUGE_VAL where nothing depends on phi_s. */
-static double inner_w0(double theta_i, double theta_o)
+ * max(w, phi_1 / 4); HUGE_VAL where nothing depends on phi_s. */
+static double inner_w0(double w, double theta_i, double theta_o)
 {
     double s = sin(theta_o) * sin(theta_i);
     double c = 1.0 - cos(theta_o - theta_i);
@@ -94,7 +100,48 @@ static double inner_w0(double theta_i, double theta_o)
         return HUGE_VAL;
     }
     phi_1 = sqrt(c / (8.0 * s));
-    return phi_1 / 4.0 > ALB_W ? phi_1 / 4.0 : ALB_W;
+    return phi_1 / 4.0 > w ? phi_1 / 4.0 : w;
+}
+
+/* f at (ti, to, phi_s); NaN where not defined. */
+static double f_at(const alb_t *a, double theta_o, double phi_s)
+{
+    bf_geom g;
+    double v = NAN;
+    g.theta_i = a->theta_i;
+    g.phi_i = BF__PI;
+    g.theta_s = theta_o;
+    g.phi_s = phi_s;
+    if (a->type->eval(a->param, 1, &g, &v, a->work) != BF_OK) {
+        return NAN;
+    }
+    return v;
+}
+
+/* The narrowest width both integrals resolve (file comment): a quarter
+ * of the first of d = ALB_W 4^k (k = 0, 1, ...) at which f, from the
+ * mirror direction to to = ti + d (ti - d where that passes the horizon)
+ * in the plane, changes by more than ALB_FLAT of its value -- where the
+ * lobe's curvature shows -- and not below ALB_W; ALB_W where f at the
+ * mirror direction is not positive. The angle from the mirror direction
+ * changes fastest along to (by d; along phi_s, by sqrt(sin to sin ti)
+ * d), so the lobe is flat to ALB_FLAT within d / 4 every way. */
+static double lobe_width(const alb_t *a)
+{
+    double v0 = f_at(a, a->theta_i, 0.0);
+    double d;
+    if (!(v0 > 0.0) || !isfinite(v0)) {
+        return ALB_W;
+    }
+    for (d = ALB_W; d < 0.25; d *= 4.0) {
+        double to = a->theta_i + d < BF__PI_2 ? a->theta_i + d
+                                               : a->theta_i - d;
+        double v = f_at(a, to, 0.0);
+        if (!isfinite(v) || fabs(v - v0) > ALB_FLAT * v0) {
+            break;
+        }
+    }
+    return d / 4.0 > ALB_W ? d / 4.0 : ALB_W;
 }
 
 /* A quadrature's result r with error estimate err and GSL status st is
@@ -111,6 +158,37 @@ static int accepted(int st, double r, double err, double acc)
     return (st == GSL_EROUND || st == GSL_EMAXITER || st == GSL_ESING ||
             st == GSL_EDIVERGE) &&
            isfinite(r) && isfinite(err) && err <= acc * fabs(r) + 1e-12;
+}
+
+/* int fn over [pts[0], pts[n - 1]]: QAG (Gauss-Kronrod 21 points, no
+ * extrapolation) on every interval between break points, each to the
+ * relative tolerance epsrel and its share of epsabs; *r and *err the
+ * sums, the status the first failure's (GSL_SUCCESS when none). Not
+ * QAGP, whose extrapolation (the epsilon algorithm, made for integrable
+ * singularities at the break points) ran over kinks of the lobes'
+ * masking (ABC's V-groove min() at one phi_s of each theta_o) to results
+ * 1e-7 off with error estimates of 1e-11, and the outer integral, fed
+ * those, to 5e-5 off (doc/methods.md §11). */
+static int qag_pieces(gsl_function *fn, const double *pts, size_t n,
+                      double epsabs, double epsrel,
+                      gsl_integration_workspace *w, double *r, double *err)
+{
+    int st = GSL_SUCCESS;
+    size_t i;
+    *r = 0.0;
+    *err = 0.0;
+    for (i = 0; i + 1 < n; i++) {
+        double ri = 0.0;
+        double ei = 0.0;
+        int si = gsl_integration_qag(fn, pts[i], pts[i + 1],
+                                     epsabs / (double)(n - 1), epsrel,
+                                     ALB_LIMIT, GSL_INTEG_GAUSS21, w, &ri,
+                                     &ei);
+        st = st == GSL_SUCCESS ? si : st;
+        *r += ri;
+        *err += ei;
+    }
+    return st;
 }
 
 /* f cos to sin to at (ti, to, phi_s). */
@@ -141,11 +219,10 @@ static double over_phi(double theta_o, void *arg)
     a->theta_o = theta_o;
     a->cos_sin_o = cos(theta_o) * sin(theta_o);
     /* the mirror: phi_s = 0 */
-    a->n_in = breaks(0.0, 0.0, BF__PI, inner_w0(a->theta_i, theta_o),
+    a->n_in = breaks(0.0, 0.0, BF__PI, inner_w0(a->w, a->theta_i, theta_o),
                      a->pts_in);
-    if (!accepted(gsl_integration_qagp(&fn, a->pts_in, a->n_in,
-                                       ALB_EPSABS_IN, ALB_EPSREL_IN,
-                                       ALB_LIMIT, a->inner, &r, &err),
+    if (!accepted(qag_pieces(&fn, a->pts_in, a->n_in, ALB_EPSABS_IN,
+                             ALB_EPSREL_IN, a->inner, &r, &err),
                   r, err, ALB_ACCEPT_IN)) {
         a->failed = 1;
     }
@@ -200,12 +277,12 @@ int bf_model_albedo(const bf_model_type *type, const double *param,
         free(a.work);
         return BF_ENOMEM;
     }
-    n_out = breaks(0.0, theta_i, BF__PI_2, ALB_W, pts_out); /* to = ti */
+    a.w = lobe_width(&a);
+    n_out = breaks(0.0, theta_i, BF__PI_2, a.w, pts_out); /* to = ti */
     fn.function = over_phi;
     fn.params = &a;
-    st = accepted(gsl_integration_qagp(&fn, pts_out, n_out, ALB_EPSABS_OUT,
-                                       ALB_EPSREL_OUT, ALB_LIMIT, outer, &r,
-                                       &err),
+    st = accepted(qag_pieces(&fn, pts_out, n_out, ALB_EPSABS_OUT,
+                             ALB_EPSREL_OUT, outer, &r, &err),
                   r, err, ALB_ACCEPT_OUT)
              ? GSL_SUCCESS
              : GSL_FAILURE;
