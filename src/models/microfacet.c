@@ -146,24 +146,6 @@ void bf__mf_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms)
     }
 }
 
-int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
-                   bf__mf_value_fn f)
-{
-    const double *t = pm->terms;
-    size_t n = pm->n;
-    int rc = BF_OK;
-    size_t k;
-    for (k = 0; k < n; k++) {
-        bf__mf_t m;
-        bf__mf_at(t, n, k, &m);
-        out[k] = f(&m, param);
-        if (isnan(out[k])) {
-            rc = BF_EDOM;
-        }
-    }
-    return rc;
-}
-
 /* Walter et al. eq. 33 (SPEC §9.2), cos^4 th multiplied out. */
 double bf__mf_d_ggx(const bf__mf_t *m, double alpha)
 {

@@ -136,10 +136,28 @@ int bf__mf_eval(const double *param, size_t n, const bf_geom *geom,
                 double *out, bf__mf_value_fn f);
 
 /* The engine's kernel: terms (the rows above, once per configuration set)
- * and values through f from them (the same bits as bf__mf_eval). */
+ * and values through f from them (the same bits as bf__mf_eval). The
+ * values' loop is inline, so that each model file's kernel (BF__MF_ENTRY)
+ * has its value function inlined into it rather than called through a
+ * pointer per configuration, with its terms in registers. */
 void bf__mf_kterms(const bf_kernel *kr, const bf__cset *cs, double *terms);
-int bf__mf_kvalues(const bf__prep *pm, const double *param, double *out,
-                   bf__mf_value_fn f);
+static inline int bf__mf_kvalues(const bf__prep *pm, const double *param,
+                                 double *out, bf__mf_value_fn f)
+{
+    const double *t = pm->terms;
+    size_t n = pm->n;
+    int rc = BF_OK;
+    size_t k;
+    for (k = 0; k < n; k++) {
+        bf__mf_t m;
+        bf__mf_at(t, n, k, &m);
+        out[k] = f(&m, param);
+        if (isnan(out[k])) {
+            rc = BF_EDOM;
+        }
+    }
+    return rc;
+}
 
 /* The eval function, kernel values and kernel of one type object whose
  * value function is value (`name_eval`, `name_kernel`); cols the
