@@ -12,13 +12,13 @@
 #include <string.h>
 
 #include "fit/varpro.h"
+#include "internal.h"
 
 /* The passes over the data run at every evaluation of a separable fit
  * (the normal equations' sums, the columns' scaling, the curve, the
  * residuals): one clone per ISA (BF__CLONES, built as the kernels are),
  * so the element-wise loops vectorise; the sums stay in index order, so
  * the bits are the baseline's. */
-#include "internal.h"
 
 static double weight_of(const bf_problem *pb, size_t k)
 {
@@ -68,7 +68,6 @@ int bf__vp_nnls_solve(const bf__vp_normal *ne, int two, const double *hi,
 
 /* The NNLS scales of one or two columns c1, c2 for the target R - c0 (c0
  * NULL: R), each clamped into [0, hi]. */
-BF__CLONES
 BF__CLONES
 static void nnls(const bf_problem *pb, const double *c0, const double *c1,
                  const double *c2, const double *hi, double *t)
@@ -168,7 +167,6 @@ static int columns(bf__fitctx *fc, const double *param, columns_t *c)
     return BF_OK;
 }
 
-BF__CLONES
 BF__CLONES
 int bf__varpro_value(bf__fitctx *fc, const double *param, double *value)
 {
