@@ -135,6 +135,62 @@ Test(specular_vectors, a_kernels_kept_factors_give_evals_bits_in_any_order)
     bf__cset_free(&cs);
 }
 
+/* A composite's kernel keeps D's term (values, divisors, d(n, n)) in its
+ * workspace for D's parameters: one workspace over a sequence that
+ * changes rho_d and S's parameters at every call and D's (ON's rho,
+ * sigma) every third, back and forth, with a grazing incidence among the
+ * configurations (D's limit there), gives eval's values every time, and
+ * so does its columns' sum. A term kept for other parameters than D's
+ * would be off by far more than the 1e-14 allowed. */
+Test(specular_vectors, a_composites_kept_diffuse_term_follows_its_parameters)
+{
+    const bf_model_type *t = bf_model_find("ON+GGX");
+    bf_geom g[6];
+    bf__cset cs;
+    bf__prep pm;
+    void *work;
+    double out[6];
+    double ref[6];
+    double c0[6];
+    double buf[2][6];
+    double *col[2] = {buf[0], buf[1]};
+    size_t i;
+    size_t k;
+    cr_assert_not_null(t);
+    for (k = 0; k < 5; k++) {
+        g[k] = bf_geom_from_measurement(0.1 + 0.25 * (double)k, 0.3,
+                                        0.15 + 0.2 * (double)k, 3.0);
+    }
+    g[5] = bf_geom_from_measurement(BF__PI_2, 0.0, 0.7, 2.0); /* grazing */
+    cr_assert_eq(bf__cset_init(&cs, 6, g), BF_OK);
+    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
+    work = bf__work_alloc(&pm);
+    cr_assert_not_null(work);
+    for (i = 0; i < 24; i++) {
+        /* rho_d, ON's rho and sigma, GGX's rho_s, alpha, F0 */
+        double s = (double)((i / 3) % 4);
+        double p[6] = {0.1 + 0.05 * (double)i, 0.3 + 0.1 * s,
+                       0.1 + 0.2 * s, 0.5 + 0.01 * (double)i,
+                       0.05 + 0.01 * (double)i, 0.04};
+        cr_assert_eq(bf_model_eval(t, p, 6, g, ref), BF_OK);
+        cr_assert_eq(pm.kr->values(&pm, p, work, out), BF_OK);
+        cr_assert_eq(pm.kr->columns(&pm, p, 1u | 8u, work, c0, col),
+                     BF_OK);
+        for (k = 0; k < 6; k++) {
+            double sum = c0[k] + p[0] * col[0][k] + p[3] * col[1][k];
+            cr_expect(fabs(out[k] - ref[k]) <= 1e-14 * fabs(ref[k]),
+                      "call %zu at %zu: %.17g vs eval %.17g", i, k, out[k],
+                      ref[k]);
+            cr_expect(fabs(sum - ref[k]) <= 1e-14 * fabs(ref[k]),
+                      "call %zu at %zu: columns %.17g vs eval %.17g", i, k,
+                      sum, ref[k]);
+        }
+    }
+    free(work);
+    bf__prep_free(&pm);
+    bf__cset_free(&cs);
+}
+
 Test(specular_vectors, every_model_gives_the_reference_values)
 {
     FILE *fp = fopen(VECTORS, "r");
