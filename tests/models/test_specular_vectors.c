@@ -67,6 +67,26 @@ static void row_params(const bf_model_type *t, const char *params, double *p)
     cr_assert_eq(n, t->p, "%s: %zu of %zu parameters", t->name, n, t->p);
 }
 
+/* The engine's kernel of t on the n configurations g: its configuration
+ * set cs, prepared model pm and a workspace (returned; kernel_close). */
+static void *kernel_open(const bf_model_type *t, size_t n, const bf_geom *g,
+                         bf__cset *cs, bf__prep *pm)
+{
+    void *work;
+    cr_assert_eq(bf__cset_init(cs, n, g), BF_OK);
+    cr_assert_eq(bf__prep_init(pm, t, cs), BF_OK);
+    work = bf__work_alloc(pm);
+    cr_assert_not_null(work);
+    return work;
+}
+
+static void kernel_close(void *work, bf__prep *pm, bf__cset *cs)
+{
+    free(work);
+    bf__prep_free(pm);
+    bf__cset_free(cs);
+}
+
 /* The kernel's values at p on the configurations g equal eval's bits. */
 static void expect_kernel_bits(const bf_model_type *t, const double *p,
                                size_t n, const bf_geom *g, const double *ref)
@@ -78,18 +98,14 @@ static void expect_kernel_bits(const bf_model_type *t, const double *p,
     size_t k;
     cr_assert_leq(n, 8);
     cr_assert_not_null(t->kernel, "%s", t->name);
-    cr_assert_eq(bf__cset_init(&cs, n, g), BF_OK);
-    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
-    work = bf__work_alloc(&pm);
+    work = kernel_open(t, n, g, &cs, &pm);
     (void)pm.kr->values(&pm, p, work, out);
     for (k = 0; k < n; k++) {
         cr_expect(memcmp(&out[k], &ref[k], sizeof out[k]) == 0,
                   "%s kernel at %zu: %.17g vs eval %.17g", t->name, k,
                   out[k], ref[k]);
     }
-    free(work);
-    bf__prep_free(&pm);
-    bf__cset_free(&cs);
+    kernel_close(work, &pm, &cs);
 }
 
 /* A kernel that keeps factors of earlier calls in its workspace (ABC: F
@@ -112,10 +128,7 @@ Test(specular_vectors, a_kernels_kept_factors_give_evals_bits_in_any_order)
         g[k] = bf_geom_from_measurement(0.1 + 0.2 * (double)k, 0.3,
                                         0.15 + 0.2 * (double)k, 3.0);
     }
-    cr_assert_eq(bf__cset_init(&cs, 6, g), BF_OK);
-    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
-    work = bf__work_alloc(&pm);
-    cr_assert_not_null(work);
+    work = kernel_open(t, 6, g, &cs, &pm);
     for (i = 0; i < 60; i++) {
         /* ior through 11 values (eight slots), B every 7th call, C every
          * 5th; A every call */
@@ -130,9 +143,7 @@ Test(specular_vectors, a_kernels_kept_factors_give_evals_bits_in_any_order)
                       ref[k]);
         }
     }
-    free(work);
-    bf__prep_free(&pm);
-    bf__cset_free(&cs);
+    kernel_close(work, &pm, &cs);
 }
 
 /* A composite's kernel keeps D's term (values, divisors, d(n, n)) in its
@@ -162,10 +173,7 @@ Test(specular_vectors, a_composites_kept_diffuse_term_follows_its_parameters)
                                         0.15 + 0.2 * (double)k, 3.0);
     }
     g[5] = bf_geom_from_measurement(BF__PI_2, 0.0, 0.7, 2.0); /* grazing */
-    cr_assert_eq(bf__cset_init(&cs, 6, g), BF_OK);
-    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
-    work = bf__work_alloc(&pm);
-    cr_assert_not_null(work);
+    work = kernel_open(t, 6, g, &cs, &pm);
     for (i = 0; i < 24; i++) {
         /* rho_d, ON's rho and sigma, GGX's rho_s, alpha, F0 */
         double s = (double)((i / 3) % 4);
@@ -186,9 +194,7 @@ Test(specular_vectors, a_composites_kept_diffuse_term_follows_its_parameters)
                       sum, ref[k]);
         }
     }
-    free(work);
-    bf__prep_free(&pm);
-    bf__cset_free(&cs);
+    kernel_close(work, &pm, &cs);
 }
 
 Test(specular_vectors, every_model_gives_the_reference_values)
@@ -316,10 +322,7 @@ static void expect_columns(const bf_model_type *t, unsigned *seed)
         }
     }
     cr_assert_leq(n_lin, 2u, "%s", t->name);
-    cr_assert_eq(bf__cset_init(&cs, N, g), BF_OK);
-    cr_assert_eq(bf__prep_init(&pm, t, &cs), BF_OK);
-    work = bf__work_alloc(&pm);
-    cr_assert_not_null(work);
+    work = kernel_open(t, N, g, &cs, &pm);
     for (trial = 0; trial < 40 && ok < 4; trial++) {
         param_at(t, seed, p);
         if (pm.kr->values(&pm, p, work, val) != BF_OK) {
@@ -357,9 +360,7 @@ static void expect_columns(const bf_model_type *t, unsigned *seed)
     }
     cr_expect_eq(ok, 4, "%s: defined at %d of %d parameter draws", t->name,
                  ok, trial);
-    free(work);
-    bf__prep_free(&pm);
-    bf__cset_free(&cs);
+    kernel_close(work, &pm, &cs);
 }
 
 Test(specular_vectors, columns_reproduce_the_values)
