@@ -195,13 +195,7 @@ static int qag_pieces(gsl_function *fn, const double *pts, size_t n,
 static double integrand(double phi_s, void *arg)
 {
     alb_t *a = arg;
-    bf_geom g;
-    double v = NAN;
-    g.theta_i = a->theta_i;
-    g.phi_i = BF__PI;
-    g.theta_s = a->theta_o;
-    g.phi_s = phi_s;
-    (void)a->type->eval(a->param, 1, &g, &v, a->work);
+    double v = f_at(a, a->theta_o, phi_s);
     if (!isfinite(v)) {
         a->failed = 1;
         return 0.0;

@@ -36,11 +36,16 @@ BF_REGISTRY(BF_REGISTRY_DECLARE)
 #define GRAZING_EPS 1e-7
 #define NAME_MAX_LEN 48
 
+/* bytes rounded up to whole 64-byte lines (the workspace's parts apart). */
+static size_t line_bytes(size_t bytes)
+{
+    return (bytes + 63) / 64 * 64;
+}
+
 /* Workspace: CHUNK values and geometries of D, then D's and S's own. */
 static size_t chunk_bytes(void)
 {
-    size_t b = CHUNK * (sizeof(double) + sizeof(bf_geom));
-    return (b + 63) / 64 * 64;
+    return line_bytes(CHUNK * (sizeof(double) + sizeof(bf_geom)));
 }
 
 static int composite_eval(const bf_model_type *d, const bf_model_type *s,
@@ -197,11 +202,6 @@ static void comp_terms(const bf_kernel *kr, const bf__cset *cs,
     }
 }
 
-static size_t part_work(const bf_kernel *kr, size_t n)
-{
-    return kr->work_bytes != NULL ? (kr->work_bytes(kr, n) + 63) / 64 * 64
-                                  : 0;
-}
 
 /* D's term kept between evaluations, at the head of the kernel's
  * workspace (zeroed when allocated, bound to one configuration set): at
@@ -216,9 +216,9 @@ typedef struct {
     double dp[BF_MAX_PARAMS];
 } diff_memo;
 
-static size_t line_bytes(size_t bytes)
+static size_t part_work(const bf_kernel *kr, size_t n)
 {
-    return (bytes + 63) / 64 * 64;
+    return kr->work_bytes != NULL ? line_bytes(kr->work_bytes(kr, n)) : 0;
 }
 
 /* The memo, dv and ce: the head of the workspace. */
@@ -238,15 +238,14 @@ static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
  * (head_bytes), then D's, S's and the normal configuration's D's, apart
  * (a part may keep a cache of its configurations' terms in its
  * workspace: FC's Fresnel factor). */
-static double *dv_of(const bf__prep *pm, void *work)
+static double *dv_of(void *work)
 {
-    (void)pm;
     return (double *)((char *)work + line_bytes(sizeof(diff_memo)));
 }
 
 static double *ce_of(const bf__prep *pm, void *work)
 {
-    return (double *)((char *)dv_of(pm, work)
+    return (double *)((char *)dv_of(work)
                       + line_bytes(pm->n * sizeof(double)));
 }
 
@@ -269,7 +268,7 @@ static int diffuse_memo(const bf__prep *pm, const double *param, void *work)
     const comp_kernel *ck = comp_of(pm->kr);
     const bf_model_type *d = ck->d;
     diff_memo *mo = work;
-    double *dv = dv_of(pm, work);
+    double *dv = dv_of(work);
     double *ce = ce_of(pm, work);
     char *nw = s_work(pm, work) + part_work(ck->s->kernel, pm->n);
     bf__prep pd;
@@ -322,7 +321,7 @@ static int add_diffuse(const bf__prep *pm, const double *param, double rho,
 {
     const bf_model_type *d = comp_of(pm->kr)->d;
     const diff_memo *mo = work;
-    const double *dv = dv_of(pm, work);
+    const double *dv = dv_of(work);
     const double *ce = ce_of(pm, work);
     double scale;
     size_t k;
