@@ -608,6 +608,27 @@ static void contents(FILE *fp, const bf_rep_study *st)
           fp);
 }
 
+/* Table 2 or 3 under its title, the text tables' (tables.h): Table 2
+ * holds the optima alone, Table 3 the lowest of each sample in bold. */
+static void titled_table(FILE *fp, const bf_rep_study *st, int which)
+{
+    char title[BF_REP_TITLE_LEN];
+    if (which == 2) {
+        bf_rep_table2_title(st, 0, title, sizeof title);
+    } else {
+        bf_rep_table3_title(st, 0, title, sizeof title);
+    }
+    fputs("<h3>", fp);
+    bf_tt_html_text(fp, title);
+    fputs("</h3>\n", fp);
+    if (which == 2) {
+        bf_report_table2(fp, st);
+    } else {
+        fputs("<p>The lowest of each sample is in bold.</p>\n", fp);
+        bf_report_table3(fp, st);
+    }
+}
+
 /* ==== the page =========================================================== */
 
 int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
@@ -631,17 +652,9 @@ int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
           fp);
     contents(fp, st);
     data_section(fp, st);
-    fputs("<h2 id=\"tables\">Tables 2 and 3</h2>\n<h3>Table 2: fitted "
-          "parameters (grid optima; * on a grid bound)</h3>\n",
-          fp);
-    bf_report_table2(fp, st);
-    {
-        char ktext[48];
-        fprintf(fp, "<h3>Table 3: LSE (sum over the %s used configurations; "
-                    "lowest per sample highlighted)</h3>\n",
-                bf_fig_k_text(st, ktext, sizeof ktext));
-    }
-    bf_report_table3(fp, st);
+    fputs("<h2 id=\"tables\">Tables 2 and 3</h2>\n", fp);
+    titled_table(fp, st, 2);
+    titled_table(fp, st, 3);
     energy_table(fp, st);
     fputs("<p>The same as files: <a href=\"fits.csv\">fits.csv</a>, <a href="
           "\"table2.md\">table2.md</a>, <a href=\"table3.md\">table3.md</a>."

@@ -1,8 +1,8 @@
 /* report_tables.c: the tables of report.html (report_html.h) -- Table 2
- * (fitted parameters), Table 3 (LSE) and, with the analysis, the model
- * selection (samples won per criterion, BIC per sample; doc/methods.md
- * §4-5) and the fitted parameters with their 95% intervals (§3), each as
- * an HTML table. */
+ * (fitted parameters), Table 3 (each fit's objective value) and, with the
+ * analysis, the model selection (samples won per criterion, BIC per
+ * sample; doc/methods.md §4-5) and the fitted parameters with their 95%
+ * intervals (§3), each as an HTML table. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -249,33 +249,57 @@ static const char *table3_label(bf_objective obj)
                                 : "objective S";
 }
 
-/* Table 3's title, in table3.md (file) and as printed: the value it holds
- * and the configurations it sums over. */
-static void table3_title(const bf_rep_study *st, int file, FILE *fp)
+/* 1 when some fit ended on a bound (Table 2's asterisk). */
+static int any_bound_hit(const bf_study_spec *spec, const bf_study_row *rows)
+{
+    size_t i;
+    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
+        if (rows[i].status == BF_OK && rows[i].fit.bound_hit != 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+void bf_rep_table2_title(const bf_rep_study *st, int grid_beside, char *buf,
+                         size_t len)
+{
+    const char *what = !st->opts.exact ? "grid optima"
+                       : grid_beside  ? "exact optimum (grid optimum)"
+                                      : "exact optima";
+    const char *note = !any_bound_hit(&st->spec, st->rows) ? ""
+                       : st->opts.exact ? "; * on a bound of the search range"
+                                        : "; * on a grid bound";
+    snprintf(buf, len, "Table 2: fitted parameters (%s%s)", what, note);
+}
+
+void bf_rep_table3_title(const bf_rep_study *st, int file, char *buf,
+                         size_t len)
 {
     const char *label = table3_label(st->opts.objective);
     if (st->opts.channel != NULL && strcmp(st->opts.channel, "joint") == 0) {
         /* SPEC §9.4: one E per joint fit, the same on its channels' rows */
-        fprintf(fp, "Table 3: E = sqrt(S / (K C)) of the ngan objective "
-                    "of each joint fit, S over the K used configurations "
-                    "(theta_i, theta_o <= 80 deg) of all C channels; the "
-                    "same on every channel's row (SPEC §9.4, §10)\n\n");
+        snprintf(buf, len,
+                 "Table 3: E = sqrt(S / (K C)) of the ngan objective of each "
+                 "joint fit, S over the K used configurations (theta_i, "
+                 "theta_o <= 80 deg) of all C channels; the same on every "
+                 "channel's row (SPEC §9.4, §10)");
     } else if (bf_objective_keeps_scale(st->opts.objective)) {
-        fprintf(fp, "Table 3: %s (over each sample's used configurations "
-                    "with theta_i, theta_o <= 80 deg: K in fits.csv's k, "
-                    "SPEC §10)\n\n",
-                label);
+        snprintf(buf, len,
+                 "Table 3: %s (over each sample's used configurations with "
+                 "theta_i, theta_o <= 80 deg: K in fits.csv's k, SPEC §10)",
+                 label);
     } else if (file) {
-        fprintf(fp, "Table 3: %s (sum over the K used configurations)\n\n",
-                label);
+        snprintf(buf, len, "Table 3: %s (sum over the K used configurations)",
+                 label);
     } else if (st->n_sel > 0) {
-        fprintf(fp, "Table 3: %s (sum over the K = %zu used configurations)"
-                    "\n\n",
-                label, st->n_sel);
+        snprintf(buf, len,
+                 "Table 3: %s (sum over the K = %zu used configurations)",
+                 label, st->n_sel);
     } else {
-        fprintf(fp, "Table 3: %s (sum over each sample's K used "
-                    "configurations)\n\n",
-                label);
+        snprintf(buf, len,
+                 "Table 3: %s (sum over each sample's K used configurations)",
+                 label);
     }
 }
 
@@ -469,17 +493,6 @@ static int build_tables(const bf_rep_study *st, bf_tt **t2, bf_tt **t3)
     return bf_tt_failed(*t2) || bf_tt_failed(*t3) ? -1 : 0;
 }
 
-static int any_bound_hit(const bf_study_spec *spec, const bf_study_row *rows)
-{
-    size_t i;
-    for (i = 0; i < spec->n_targets * spec->n_models; i++) {
-        if (rows[i].status == BF_OK && rows[i].fit.bound_hit != 0) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* 1 when type takes a fixed input of kind `kind`. */
 static int needs_input(const bf_model_type *type, bf_input kind)
 {
@@ -515,8 +528,8 @@ static void report_missing(const bf_study_spec *spec,
 static int write_outputs(const bf_rep_study *st, const bf_tt *t2,
                          const bf_tt *t3)
 {
-    const bf_report_options *o = &st->opts;
     bf_out f[3];
+    char title[BF_REP_TITLE_LEN];
     size_t i;
     size_t opened = 0;
     int rc = bf_rep_make_outdir(st->out_dir);
@@ -538,13 +551,11 @@ static int write_outputs(const bf_rep_study *st, const bf_tt *t2,
         rc = bf_rep_write_error("fits.csv", rc);
         goto fail;
     }
-    fputs(o->exact ? "Table 2: fitted parameters (exact optimum (grid "
-                     "optimum); * on a bound of the search range)\n\n"
-                   : "Table 2: fitted parameters (grid optima; * on a grid "
-                     "bound)\n\n",
-          f[1].fp);
+    bf_rep_table2_title(st, 1, title, sizeof title);
+    fprintf(f[1].fp, "%s\n\n", title);
     bf_tt_print(t2, f[1].fp);
-    table3_title(st, 1, f[2].fp);
+    bf_rep_table3_title(st, 1, title, sizeof title);
+    fprintf(f[2].fp, "%s\n\n", title);
     bf_tt_print(t3, f[2].fp);
     for (i = 0; i < 3; i++) {
         rc = bf_out_commit(&f[i]);
@@ -667,6 +678,7 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     bf_tt *t2 = NULL;
     bf_tt *t3 = NULL;
     FILE *fp = st->opts.echo;
+    char title[BF_REP_TITLE_LEN];
     int dispersion = 0;
     int rc;
 
@@ -690,15 +702,12 @@ int bf_rep_study_write_tables(const bf_rep_study *st)
     if (rc != BF_REPORT_OK) {
         goto done;
     }
-    fprintf(fp, "Table 2: fitted parameters (%s%s)\n\n",
-           st->opts.exact ? "exact optimum (grid optimum)" : "grid optima",
-           any_bound_hit(&st->spec, st->rows)
-               ? (st->opts.exact ? "; * on a bound of the search range"
-                                 : "; * on a grid bound")
-               : "");
+    bf_rep_table2_title(st, 1, title, sizeof title);
+    fprintf(fp, "%s\n\n", title);
     bf_tt_print(t2, fp);
     fputc('\n', fp);
-    table3_title(st, 0, fp);
+    bf_rep_table3_title(st, 0, title, sizeof title);
+    fprintf(fp, "%s\n\n", title);
     bf_tt_print(t3, fp);
     energy(st, fp);
     on_compare(st, fp);

@@ -16,6 +16,25 @@ void bf_rep_describe_data(const bf_rep_study *st, FILE *fp);
 /* The specular exclusion in words, into buf. */
 void bf_rep_describe_cone(const bf_rep_study *st, char *buf, size_t len);
 
+/* The longest title bf_rep_table2_title and bf_rep_table3_title write. */
+#define BF_REP_TITLE_LEN 320
+
+/* Table 2's title, "Table 2: fitted parameters (...)" without a line end,
+ * as table2.md, the terminal and report.html give it: grid or exact
+ * optima (grid_beside: the exact optimum with the grid's beside it, as
+ * the text tables show them), and what an asterisk means when some fit
+ * is on a bound. Into buf (len bytes, BF_REP_TITLE_LEN suffice). */
+void bf_rep_table2_title(const bf_rep_study *st, int grid_beside, char *buf,
+                         size_t len);
+
+/* Table 3's title, "Table 3: ..." without a line end: the value it holds
+ * under the run's objective (LSE, objective S, or SPEC §10's E; a joint
+ * fit's E over K C values) and the configurations it sums over -- "the K
+ * used" in table3.md (file), with K's value where every sample has the
+ * same otherwise. Into buf as bf_rep_table2_title. */
+void bf_rep_table3_title(const bf_rep_study *st, int file, char *buf,
+                         size_t len);
+
 /* Prints what was run: data, configurations used, conventions, the fit,
  * its free parameters and the analysis. Returns BF_REPORT_OK, or
  * BF_REPORT_SOFTWARE after the message when out of memory. */

@@ -301,6 +301,15 @@ Test(plane_abs, description_under_ngan)
     cr_assert(strstr(html, "Every figure shows radiance normalised") ==
               NULL);
     cr_assert(strstr(html, "LSE (the sum over") == NULL); /* Fig. 2(b) */
+    /* the page's Tables 2 and 3 are titled as the printed ones: the exact
+     * optima, and E of the ngan objective, never an LSE sum */
+    cr_assert(strstr(html, "<h3>Table 2: fitted parameters (exact optima")
+              != NULL);
+    cr_assert(strstr(html, "<h3>Table 3: E = sqrt(S / K) of the ngan "
+                           "objective") != NULL);
+    cr_assert(strstr(html, "<h3>Table 3: LSE") == NULL);
+    cr_assert(strstr(copy, "Table 2: fitted parameters (exact optimum (grid "
+                           "optimum)") != NULL);
     /* the specular model's fit is the separable one, not Brent / NM */
     cr_assert(strstr(copy, "Fit of GGX: separable least squares") != NULL,
               "%s", copy);
