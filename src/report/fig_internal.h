@@ -59,9 +59,10 @@ typedef struct {
 void *bf_fig_alloc(bf_fig_desc *d, size_t size);
 void bf_fig_desc_free(bf_fig_desc *d);
 
-/* What the figures call a fit's value (bf_study_row.fit.lse) under obj:
- * the paper's "LSE", SPEC §10's "E" under ngan, the objective "S" under
- * cuberoot and log1p. (fig_plane.c) */
+/* What the figures and the page call a fit's value (bf_study_row.fit.lse)
+ * under obj, as Table 3 does (tables.c): the paper's "LSE" under max,
+ * SPEC §10's "E" under ngan, the objective's "S" under every other.
+ * (fig_plane.c) */
 const char *bf_fig_value_name(bf_objective obj);
 
 /* The study row of sample index s and model index m. */

@@ -1,7 +1,8 @@
 /* fig_paper.c: the figures of the paper's protocol (fig_internal.h) --
- * Figure 2(b) (LSE of each model against the samples sorted by fitted
- * FC-E slope), Figures 3-6 (predicted against measured normalised
- * radiance) and the count of samples each model fits best.
+ * Figure 2(b) (each model's Table 3 value, the LSE under the paper's
+ * objective, against the samples sorted by fitted FC-E slope), Figures
+ * 3-6 (predicted against measured normalised radiance) and the count of
+ * samples each model fits best.
  *
  * References:
  *   [1] H. Ragheb, E. R. Hancock, "Comparing Variants of the Beckmann
@@ -97,6 +98,7 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     const char **ticks = bf_fig_alloc(d, N * sizeof *ticks);
     bf_plot_series *ser = bf_fig_alloc(d, M * sizeof *ser);
     bf_plot_panel *p = bf_fig_alloc(d, sizeof *p);
+    char *ylabel = bf_fig_alloc(d, 32);
     char models[512];
     char ktext[48];
     double lo = HUGE_VAL;
@@ -107,7 +109,7 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
 
     (void)full;
     if (order == NULL || x == NULL || y == NULL || num == NULL ||
-        ticks == NULL || ser == NULL || p == NULL ||
+        ticks == NULL || ser == NULL || p == NULL || ylabel == NULL ||
         (by_slope = order_by_slope(st, order)) < 0) {
         return BF_ENOMEM;
     }
@@ -158,13 +160,9 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     d->fig.nx = d->fig.ny = 1;
     d->fig.xlabel = by_slope ? "sample (by increasing fitted FC-E slope)"
                              : "sample";
-    if (st->opts.objective == BF_OBJ_NGAN) { /* SPEC §10's E */
-        d->fig.ylabel = p->logy ? "E (log scale)" : "E";
-    } else if (bf_objective_keeps_scale(st->opts.objective)) {
-        d->fig.ylabel = p->logy ? "S (log scale)" : "S";
-    } else {
-        d->fig.ylabel = p->logy ? "LSE (log scale)" : "LSE";
-    }
+    snprintf(ylabel, 32, "%s%s", bf_fig_value_name(st->opts.objective),
+             p->logy ? " (log scale)" : "");
+    d->fig.ylabel = ylabel;
     d->fig.legend = BF_LEGEND_TOP;
     d->fig.panels = p;
     d->fig.n_panels = 1;
@@ -176,13 +174,10 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  st->models[m]->name);
     }
     snprintf(e->base, sizeof e->base, "fig2b");
-    snprintf(e->title, sizeof e->title, "Figure 2(b): LSE of each model, "
-             "samples %s", by_slope ? "sorted by fitted FC-E slope"
-                                    : "by number");
+    snprintf(e->title, sizeof e->title, "Figure 2(b): %s of each model, "
+             "samples %s", bf_fig_value_name(st->opts.objective),
+             by_slope ? "sorted by fitted FC-E slope" : "by number");
     if (bf_objective_keeps_scale(st->opts.objective)) {
-        snprintf(e->title, sizeof e->title, "Figure 2(b): %s of each "
-                 "model, samples %s", bf_fig_value_name(st->opts.objective),
-                 by_slope ? "sorted by fitted FC-E slope" : "by number");
         snprintf(e->caption, sizeof e->caption,
                  "%s of the %s objective (SPEC §10: over each sample's used "
                  "configurations with \xce\xb8i, \xce\xb8o \xe2\x89\xa4 "
@@ -194,6 +189,17 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                        "\xcf\x81\xcc\x82)\xc2\xb2 / K)"
                      : "The sum S",
                  bf_objective_name(st->opts.objective), models, N,
+                 by_slope ? "in order of increasing fitted FC-E slope m"
+                          : "in increasing order (FC-E is not in the run)",
+                 p->logy ? "; logarithmic axis" : "");
+    } else if (st->opts.objective != BF_OBJ_MAX) {
+        snprintf(e->caption, sizeof e->caption,
+                 "The sum S of the %s objective (doc/methods.md §1) over the "
+                 "%s used configurations, data and models normalised as "
+                 "that objective asks (SPEC §2, §7), of %s for each of the "
+                 "%zu samples; the x axis lists the sample numbers %s%s.",
+                 bf_objective_name(st->opts.objective),
+                 bf_fig_k_text(st, ktext, sizeof ktext), models, N,
                  by_slope ? "in order of increasing fitted FC-E slope m"
                           : "in increasing order (FC-E is not in the run)",
                  p->logy ? "; logarithmic axis" : "");
@@ -211,7 +217,8 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              p->logy ? "; logarithmic LSE axis" : "");
     }
     snprintf(e->alt, sizeof e->alt,
-             "Line chart: LSE of %zu models (%.400s) for %zu samples%s.", M,
+             "Line chart: %s of %zu models (%.400s) for %zu samples%s.",
+             bf_fig_value_name(st->opts.objective), M,
              models, N, by_slope ? " sorted by FC-E slope" : "");
     return BF_OK;
 }
@@ -294,13 +301,13 @@ int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->title, sizeof e->title, "Samples fitted best by each model");
     snprintf(e->caption, sizeof e->caption,
              "For each model, the number of the %zu samples on which it has "
-             "the lowest LSE among the models evaluated for that sample (a "
-             "tie counts for every tied model).",
-             st->n_samples);
+             "the lowest %s (Table 3) among the models evaluated for that "
+             "sample (a tie counts for every tied model).",
+             st->n_samples, bf_fig_value_name(st->opts.objective));
     snprintf(e->alt, sizeof e->alt,
              "Bar chart: number of samples each of %zu models fits with the "
-             "lowest LSE.",
-             M);
+             "lowest %s.",
+             M, bf_fig_value_name(st->opts.objective));
     return BF_OK;
 }
 
@@ -376,8 +383,9 @@ static void scatter_fill(const bf_fig_data *D, size_t s0, size_t ns,
                          name, sep, bf_fig_value_name(st->opts.objective),
                          row->fit.lse);
             } else if (row->status == BF_OK) {
-                snprintf(w->notes[p], sizeof w->notes[p], "%.24s%sLSE %.2f",
-                         name, sep, row->fit.lse);
+                snprintf(w->notes[p], sizeof w->notes[p], "%.24s%s%s %.2f",
+                         name, sep, bf_fig_value_name(st->opts.objective),
+                         row->fit.lse);
             } else {
                 snprintf(w->notes[p], sizeof w->notes[p],
                          "%.24s%snot evaluated", name, sep);

@@ -302,9 +302,7 @@ static void clip_far(double *y, size_t n, double lo, double hi, int logy)
 
 const char *bf_fig_value_name(bf_objective obj)
 {
-    return obj == BF_OBJ_NGAN               ? "E"
-           : bf_objective_keeps_scale(obj) ? "S"
-                                           : "LSE";
+    return obj == BF_OBJ_MAX ? "LSE" : obj == BF_OBJ_NGAN ? "E" : "S";
 }
 
 int bf_fig_plane(const bf_fig_data *D0, bf_fig_entry *e, bf_fig_desc *d,
@@ -414,8 +412,9 @@ static int plane_describe(const bf_fig_data *D, const char *suffix,
                      row->type->name, bf_fig_value_name(st->opts.objective),
                      row->fit.lse);
         } else if (row->status == BF_OK) {
-            snprintf(labels[b], sizeof labels[b], "%s (LSE %.2f)",
-                     row->type->name, row->fit.lse);
+            snprintf(labels[b], sizeof labels[b], "%s (%s %.2f)",
+                     row->type->name, bf_fig_value_name(st->opts.objective),
+                     row->fit.lse);
         } else {
             snprintf(labels[b], sizeof labels[b], "%s (not evaluated)",
                      row->type->name);

@@ -385,9 +385,23 @@ static void conventions(FILE *fp, const bf_rep_study *st,
               "§2). Every figure shows radiance normalised this way.</li>\n",
               fp);
     }
-    fputs("<li>LSE = Σ<sub>k</sub> (L<sub>model,k</sub> − L<sub>data,k"
-          "</sub>)², a sum over the K configurations (SPEC §7.3).</li>\n"
-          "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "
+    if (st->opts.objective == BF_OBJ_NGAN) {
+        fputs("<li>E = √(Σ<sub>k</sub> (ρ<sub>k</sub> − ρ̂<sub>k</sub>)² / "
+              "K), over each sample's K used configurations (SPEC §10); "
+              "Table 3 and the figures give each fit's E.</li>\n",
+              fp);
+    } else if (st->opts.objective != BF_OBJ_MAX) {
+        fprintf(fp, "<li>S, the sum of the %s objective over the K used "
+                    "configurations (doc/methods.md §1); Table 3 and the "
+                    "figures give each fit's S.</li>\n",
+                bf_objective_name(st->opts.objective));
+    } else {
+        fputs("<li>LSE = Σ<sub>k</sub> (L<sub>model,k</sub> − "
+              "L<sub>data,k</sub>)², a sum over the K configurations (SPEC "
+              "§7.3).</li>\n",
+              fp);
+    }
+    fputs("<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "
           "Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 i, i = 0…500; ties "
           "keep the smaller value; * marks an optimum on a grid bound. The "
           "slopes of the Gaussian (G) and exponential (E) forms are different "

@@ -310,6 +310,11 @@ Test(plane_abs, description_under_ngan)
     cr_assert(strstr(html, "<h3>Table 3: LSE") == NULL);
     cr_assert(strstr(copy, "Table 2: fitted parameters (exact optimum (grid "
                            "optimum)") != NULL);
+    /* the wins figure and the conventions name E too */
+    cr_assert(strstr(html, "the lowest E (Table 3)") != NULL);
+    cr_assert(strstr(html, "<li>E = √(Σ") != NULL);
+    cr_assert(strstr(html, "lowest LSE") == NULL);
+    cr_assert(strstr(html, "<li>LSE = ") == NULL);
     /* the specular model's fit is the separable one, not Brent / NM */
     cr_assert(strstr(copy, "Fit of GGX: separable least squares") != NULL,
               "%s", copy);
