@@ -374,6 +374,25 @@ static int ticks_fit(const bf__layout *L, const bf__ticks *t, double width)
     return total <= width;
 }
 
+/* Whether the names of t stand side by side on an axis [lo, hi] of width
+ * points, each centred on its tick: no two neighbours closer than half
+ * their widths and two gaps. */
+static int names_fit(const bf__layout *L, const bf__ticks *t, double lo,
+                     double hi, double width)
+{
+    size_t k;
+    for (k = 1; k < t->n; k++) {
+        double room = (t->v[k] - t->v[k - 1]) / (hi - lo) * width;
+        double need = 0.5 * (bf__text_width(t->text[k - 1], L->font) +
+                             bf__text_width(t->text[k], L->font)) +
+                      2 * PAD;
+        if (need > room) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Whether panel i is the lowest one of its column (it writes the x
  * numbers of a shared axis). */
 static int lowest_in_column(const bf_plot_figure *fig, size_t i)
@@ -575,19 +594,16 @@ int bf__layout_make(const bf_plot_figure *fig, bf__layout *L)
     }
     /* x names that do not fit side by side are written upwards */
     for (i = 0; i < fig->n_panels; i++) {
-        double total = 0.0;
+        const bf_plot_panel *p = &fig->panels[i];
         double widest = 0.0;
         size_t k;
-        if (fig->panels[i].polar || !L->xnum[i] ||
-            fig->panels[i].xtick_labels == NULL) {
+        if (p->polar || !L->xnum[i] || p->xtick_labels == NULL) {
             continue;
         }
         for (k = 0; k < L->xt[i].n; k++) {
-            double w = bf__text_width(L->xt[i].text[k], L->font);
-            total += w + 2 * PAD;
-            widest = fmax(widest, w);
+            widest = fmax(widest, bf__text_width(L->xt[i].text[k], L->font));
         }
-        if (total > aw) {
+        if (!names_fit(L, &L->xt[i], p->xmin, p->xmax, aw)) {
             L->xrot[i] = 1;
             bot[i] += widest - L->xnum_height[i];
             L->xnum_height[i] = widest;

@@ -536,3 +536,44 @@ Test(plot, keeps_every_x_label_inside_the_page_and_apart)
                        1e-12);
     free(L);
 }
+
+/* x names (a bar or heat-map axis) are written upwards when two
+ * neighbours would touch, though all of them together fit the axis: four
+ * models where two long composite names sit side by side (the ΔBIC
+ * figure wrote "LAMBERT+GGXLAMBERT+WARD"); short ones stay upright. */
+Test(plot, writes_x_names_upwards_where_neighbours_would_touch)
+{
+    static const char *const longer[4] = {"FC-E", "VH-E", "LAMBERT+GGX",
+                                          "LAMBERT+WARD"};
+    static const char *const shorter[4] = {"FC-E", "VH-E", "GGX", "WARD"};
+    const char *const *names[2] = {shorter, longer};
+    bf__layout *L = malloc(sizeof *L);
+    int c;
+    cr_assert_not_null(L);
+    for (c = 0; c < 2; c++) {
+        bf_plot_figure fig;
+        bf_plot_panel panel;
+        double aw;
+        double total = 0.0;
+        size_t k;
+        memset(&panel, 0, sizeof panel);
+        panel.xmin = 0.5;
+        panel.xmax = 4.5;
+        panel.ymax = 1.0;
+        panel.xtick_labels = names[c];
+        panel.n_xticks = 4;
+        memset(&fig, 0, sizeof fig);
+        fig.width = 382; /* the ΔBIC figure's width for four models */
+        fig.nx = fig.ny = 1;
+        fig.panels = &panel;
+        fig.n_panels = 1;
+        cr_assert_eq(bf__layout_make(&fig, L), BF_OK);
+        aw = L->axes[0].x1 - L->axes[0].x0;
+        for (k = 0; k < 4; k++) {
+            total += bf__text_width(names[c][k], L->font) + 2.0 * 1.6;
+        }
+        cr_assert_lt(total, aw, "case %d: all the names fit the axis", c);
+        cr_expect_eq(L->xrot[0], c, "case %d", c);
+    }
+    free(L);
+}
