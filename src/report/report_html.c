@@ -358,6 +358,26 @@ static void data_section(FILE *fp, const bf_rep_study *st)
     fputs("</ul>\n", fp);
 }
 
+/* 1 when a model of st fits an input of kind `kind` that the paper's
+ * protocol holds (bf_model_variant_exact: FC's n, ON's rho and sigma),
+ * as the run's "Free parameters" line says (tables.c). */
+static int input_freed(const bf_rep_study *st, bf_input kind)
+{
+    size_t m;
+    size_t j;
+    for (m = 0; m < st->n_models; m++) {
+        const bf_model_type *v = st->models[m];
+        const bf_model_type *base = bf_model_find(v->name);
+        for (j = 0; base != NULL && j < v->p && j < base->p; j++) {
+            if (v->param[j].fitted && !base->param[j].fitted &&
+                base->param[j].input == kind) {
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 static void conventions(FILE *fp, const bf_rep_study *st,
                         const bf_report_meta *meta)
 {
@@ -411,14 +431,26 @@ static void conventions(FILE *fp, const bf_rep_study *st,
         fputs("refractive index per sample from <code>", fp);
         bf_tt_html_text(fp, st->opts.n_file);
         fputs("</code>.</li>\n", fp);
+    } else if (input_freed(st, BF_INPUT_INDEX)) {
+        fputs("refractive index n fitted per sample (the exact fit frees "
+              "it, doc/methods.md §6: its range under \"Free parameters\" "
+              "in the run's description).</li>\n",
+              fp);
     } else {
         fprintf(fp, "refractive index n = %g for every sample (SPEC §4.2)."
                     "</li>\n",
                 st->opts.n);
     }
-    fputs("<li>Oren–Nayar (ON) is evaluated, not fitted, at tabulated ρ, σ "
-          "(SPEC §5)", fp);
-    if (st->opts.on_file != NULL) {
+    if (input_freed(st, BF_INPUT_ON)) {
+        fputs("<li>Oren–Nayar (ON): ρ and σ fitted per sample (the exact "
+              "fit frees them, doc/methods.md §6), not taken from a table",
+              fp);
+    } else {
+        fputs("<li>Oren–Nayar (ON) is evaluated, not fitted, at tabulated "
+              "ρ, σ (SPEC §5)",
+              fp);
+    }
+    if (st->opts.on_file != NULL && !input_freed(st, BF_INPUT_ON)) {
         fputs(" from <code>", fp);
         bf_tt_html_text(fp, st->opts.on_file);
         fputs("</code>", fp);

@@ -414,6 +414,40 @@ Test(report, draws_single_column_figures_on_request)
     free(page);
 }
 
+/* The page's conventions say what the run held and what it fitted: the
+ * paper's protocol holds n = 1.7 and evaluates ON at tabulated rho,
+ * sigma; --fit exact frees both (bf_model_variant_exact), and with --n
+ * given n stays fixed. */
+Test(report, conventions_follow_the_exact_fits_freed_inputs)
+{
+    static const char *const paper[] = {"--models", "FC-E,ON", "--format",
+                                        "svg", NULL};
+    static const char *const exact[] = {"--models", "FC-E,ON", "--fit",
+                                        "exact", "--format", "svg", NULL};
+    static const char *const given[] = {"--models", "FC-E,ON", "--fit",
+                                        "exact", "--n", "1.5", "--format",
+                                        "svg", NULL};
+    const char *const *runs[3] = {paper, exact, given};
+    const char *n_text[3] = {"refractive index n = 1.7 for every sample",
+                             "refractive index n fitted per sample",
+                             "refractive index n = 1.5 for every sample"};
+    int on_fitted[3] = {0, 1, 1};
+    int r;
+    for (r = 0; r < 3; r++) {
+        const char *dir = bf_test_tmpdir();
+        char *page;
+        cr_assert_eq(run_report(dir, "44", runs[r], NULL), 0, "run %d", r);
+        page = page_of(dir);
+        cr_expect(strstr(page, n_text[r]) != NULL, "run %d", r);
+        cr_expect_eq(strstr(page, "Oren–Nayar (ON): ρ and σ fitted") != NULL,
+                     on_fitted[r], "run %d", r);
+        cr_expect_eq(strstr(page, "Oren–Nayar (ON) is evaluated, not "
+                                  "fitted") != NULL,
+                     !on_fitted[r], "run %d", r);
+        free(page);
+    }
+}
+
 Test(report, refuses_a_bad_format_size_or_incidence_before_writing_anything)
 {
     static const char *const bad[][3] = {{"--format", "png,gif", NULL},
