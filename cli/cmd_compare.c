@@ -19,10 +19,10 @@ static void usage(FILE *fp)
 "501-point grids. Prints Table 2 (fitted parameters) and Table 3 (LSE) and\n"
 "writes fits.csv, table2.md and table3.md into the output folder. With\n"
 "specular models, the energy table after Table 3: each fit's albedo at\n"
-"theta_i 0, 30, 60, 80 deg, OVER 1 where it exceeds 1. With --fresnel\n"
-"dielectric on channels with a wavelength (--channel each or joint on\n"
-"spectral data), also dispersion.csv: n against wavelength with its 95%\n"
-"interval.\n"
+"theta_i 0, 30, 60, 80 deg, OVER 1 where it exceeds 1. With a fitted\n"
+"refractive index (--fresnel dielectric, or ABC's ior) on channels with a\n"
+"wavelength (--channel each or joint on spectral data), also\n"
+"dispersion.csv: n against wavelength with its 95% interval.\n"
 "\n"
 "Options:\n",
         fp);

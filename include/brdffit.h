@@ -165,7 +165,11 @@ double bf_fresnel_fc2(double theta_i, double theta_s, double n);
 
 /* Where a parameter that a fit holds fixed takes its value for one
  * material of a study (bf_study_spec): the model type says it, so the
- * study never guesses from parameter names. */
+ * study never guesses from parameter names. BF_INPUT_INDEX marks every
+ * refractive index, fitted ones too (WNO's n, the specular models' n
+ * under --fresnel dielectric, ABC's ior), which is how the dispersion
+ * finds them (bf_dispersion_points): AS's and Lafortune's exponents are
+ * named n as well. */
 typedef enum {
     BF_INPUT_DEFAULT = 0, /* bf_param.value */
     BF_INPUT_INDEX,       /* the material's refractive index: the study's

@@ -1,8 +1,9 @@
 /* dispersion.c: a material's refractive index against wavelength, n(lambda)
- * (issue 17 item 7), read off a study's fits: the parameter n of a
- * specular model under --fresnel dielectric (SPEC §9.2, the dielectric
- * Fresnel factor of SPEC §4.1) fitted on each spectral channel, with its
- * profile interval (doc/methods.md "Dispersion"). */
+ * (issue 17 item 7), read off a study's fits: the refractive index of a
+ * specular model -- n under --fresnel dielectric (SPEC §9.2, the
+ * dielectric Fresnel factor of SPEC §4.1), ABC's ior -- fitted on each
+ * spectral channel, with its profile interval (doc/methods.md
+ * "Dispersion"). */
 #include <math.h>
 #include <string.h>
 
@@ -31,6 +32,27 @@ static int joint_range(const bf_study_spec *spec, size_t t, double *lo,
     return u > t;
 }
 
+/* The refractive index that type fits (bf_param.input BF_INPUT_INDEX,
+ * never a parameter's name: AS's and Lafortune's exponents are named n),
+ * of a specular model or composite only (SPEC §9.2); a composite's
+ * specular part's where its diffuse part has one too (FC's n, freed by
+ * the exact fit): S's parameters follow D's (SPEC §9.4). -1: none. */
+static int index_param(const bf_model_type *type)
+{
+    int found = -1;
+    size_t j;
+    if (type->kind != BF_MODEL_SPECULAR) {
+        return -1;
+    }
+    for (j = 0; j < type->p; j++) {
+        if (type->param[j].fitted &&
+            type->param[j].input == BF_INPUT_INDEX) {
+            found = (int)j;
+        }
+    }
+    return found;
+}
+
 /* Fills p (when not NULL) for row i of spec; 1 when the row gives a
  * point. */
 static int point(const bf_study_spec *spec, const bf_study_row *rows,
@@ -39,13 +61,12 @@ static int point(const bf_study_spec *spec, const bf_study_row *rows,
     const bf_study_row *r = &rows[i];
     const bf_target *tg = &spec->targets[r->target];
     const bf_fit_stats *s = stats != NULL ? &stats[i] : NULL;
-    int j = bf_model_param_index(r->type, "n");
+    int j = index_param(r->type);
     int analysed = s != NULL && s->done;
     double w = NAN;
     double lo = NAN;
     double hi = NAN;
-    if (r->status != BF_OK || j < 0 || !r->type->param[j].fitted ||
-        tg->channel == BF_CHANNEL_MEAN) {
+    if (r->status != BF_OK || j < 0 || tg->channel == BF_CHANNEL_MEAN) {
         return 0;
     }
     if (tg->joint) {

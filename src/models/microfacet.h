@@ -207,7 +207,8 @@ static inline int bf__mf_kvalues(const bf__prep *pm, const double *param,
      .max = 1.0, .value = 0.04, .fitted = 1}
 #define BF__PARAM_INDEX(nm)                                                \
     {.name = nm, .label = "refractive index " nm, .unit = "1",             \
-     .min = 1.01, .max = 4.0, .value = 1.5, .fitted = 1}
+     .min = 1.01, .max = 4.0, .value = 1.5, .fitted = 1,                   \
+     .input = BF_INPUT_INDEX}
 #define BF__PARAM_N BF__PARAM_INDEX("n")
 
 /* The names of the masking forms and Fresnel terms (bf_model_type). */

@@ -670,7 +670,7 @@ static const bf_param param_wnor[2] = {
     {.name = "n", .label = "refractive index n", .unit = "1", .min = 1.0,
      .max = 10.0, .value = BF_DEFAULT_N, .fitted = 1,
      .grid_lo = BF_FREE_N_LO, .grid_step = 0.1, .grid_n = 14,
-     .input = BF_INPUT_DEFAULT},
+     .input = BF_INPUT_INDEX},
 };
 
 /* At sigma = 0 the facets are level: WNO itself. */

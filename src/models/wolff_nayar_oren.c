@@ -97,7 +97,7 @@ static const bf_param param_wno[1] = {
     {.name = "n", .label = "refractive index n", .unit = "1", .min = 1.0,
      .max = 10.0, .value = BF_DEFAULT_N, .fitted = 1,
      .grid_lo = BF_FREE_N_LO, .grid_step = 0.01, .grid_n = 131,
-     .input = BF_INPUT_DEFAULT},
+     .input = BF_INPUT_INDEX},
 };
 
 static const bf_model_type wno_type = {

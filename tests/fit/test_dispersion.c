@@ -157,32 +157,45 @@ Test(dispersion, joint_gives_one_value, .timeout = 600)
               "joint n %g", n);
 }
 
+/* The paint at one configuration, 0.1 on every channel. */
+static bf_dataset *one_point_paint(void)
+{
+    static const double at[4] = {0.3, 3.14159265358979323846, 0.3, 0.0};
+    static const double value[N_CH] = {0.1, 0.1, 0.1};
+    return bf_test_channels_dataset(1, at, 1, paint, N_CH, ch_name,
+                                    lambda_nm, value);
+}
+
+/* A study of ds's target tg with the one model *t, and its fitted row on
+ * channel 1 (sample 1, parameters 0). */
+static void one_row(bf_dataset *ds, bf_target *tg, const bf_model_type **t,
+                    bf_study_spec *spec, bf_study_row *row)
+{
+    memset(spec, 0, sizeof *spec);
+    memset(row, 0, sizeof *row);
+    spec->data = ds;
+    spec->targets = tg;
+    spec->n_targets = 1;
+    spec->models = t;
+    spec->n_models = 1;
+    row->sample = 1;
+    row->channel = 1;
+    row->type = *t;
+    row->status = BF_OK;
+}
+
 Test(dispersion, no_n_no_points)
 {
     /* Schlick's F0 instead of n: no dispersion point, no file */
-    static const int sample = 1;
     const bf_model_type *schlick = bf_model_find("LAMBERT+GGX");
     const bf_model_type *diel = dielectric_type();
-    static const double at[4] = {0.3, 3.14159265358979323846, 0.3, 0.0};
-    static const double value[N_CH] = {0.1, 0.1, 0.1};
-    bf_dataset *ds = bf_test_channels_dataset(1, at, 1, paint, N_CH,
-                                              ch_name, lambda_nm, value);
+    bf_dataset *ds = one_point_paint();
     bf_target tg = {0, 1, 0};
     bf_study_spec spec;
     bf_study_row row;
     bf_dispersion_point pt;
     cr_assert_eq(bf_model_param_index(schlick, "n"), -1);
-    memset(&spec, 0, sizeof spec);
-    memset(&row, 0, sizeof row);
-    spec.data = ds;
-    spec.targets = &tg;
-    spec.n_targets = 1;
-    spec.models = &schlick;
-    spec.n_models = 1;
-    row.sample = sample;
-    row.channel = 1;
-    row.type = schlick;
-    row.status = BF_OK;
+    one_row(ds, &tg, &schlick, &spec, &row);
     cr_assert_eq(bf_dispersion_points(&spec, &row, NULL, NULL), 0);
     /* the same row with n: one point at 550 nm, n its value */
     row.type = diel;
@@ -195,6 +208,41 @@ Test(dispersion, no_n_no_points)
     /* the mean channel has no wavelength */
     tg.channel = BF_CHANNEL_MEAN;
     cr_assert_eq(bf_dispersion_points(&spec, &row, NULL, NULL), 0);
+    bf_dataset_free(ds);
+}
+
+/* Only a refractive index is one: AS's and LAMBERT+LAFORTUNE's fitted
+ * exponents are named n too and give no point (an AS fit on a channel put
+ * its exponent, 1549, into dispersion.csv as n); ABC's ior is an index
+ * (its Fresnel factor is the dielectric one) and gives one. */
+Test(dispersion, exponents_named_n_are_no_index)
+{
+    static const char *const names[3] = {"AS", "LAMBERT+LAFORTUNE",
+                                         "LAMBERT+ABC"};
+    static const int points[3] = {0, 0, 1};
+    bf_dataset *ds = one_point_paint();
+    bf_target tg = {0, 1, 0};
+    size_t i;
+    for (i = 0; i < 3; i++) {
+        const bf_model_type *t = bf_model_find(names[i]);
+        bf_study_spec spec;
+        bf_study_row row;
+        bf_dispersion_point pt;
+        size_t j;
+        cr_assert_not_null(t);
+        one_row(ds, &tg, &t, &spec, &row);
+        for (j = 0; j < t->p; j++) {
+            row.fit.param[j] = 1.0 + (double)j;
+        }
+        cr_assert_eq(bf_dispersion_points(&spec, &row, NULL, &pt),
+                     (size_t)points[i], "%s", names[i]);
+        if (points[i]) {
+            int k = bf_model_param_index(t, "ior");
+            cr_assert_geq(k, 0);
+            cr_assert_eq(pt.n, row.fit.param[k], "%s", names[i]);
+            cr_assert_eq(pt.wavelength, 550.0);
+        }
+    }
     bf_dataset_free(ds);
 }
 
