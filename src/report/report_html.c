@@ -528,7 +528,6 @@ static void calibration(FILE *fp, const bf_rep_study *st,
     }
 }
 
-/* The analysis beyond the paper: model selection and intervals. */
 /* The energy table (energy.h) when some fit is specular. */
 static void energy_table(FILE *fp, const bf_rep_study *st)
 {
@@ -542,8 +541,9 @@ static void energy_table(FILE *fp, const bf_rep_study *st)
     bf_tt_html_text(fp, BF_REP_ENERGY_TITLE);
     fprintf(fp, "</h3>\n<p>%zu of %zu specular fits exceed 1 somewhere: "
                 "the albedo a(theta_i) = ∫ f cos theta_o dω of the fitted "
-                "specular lobe alone (the diffuse part left out), by "
-                "quadrature (fits.csv's albedo columns).</p>\n",
+                "specular model (a composite's diffuse part left out; AS "
+                "with its own diffuse term, SPEC §9.3), by quadrature "
+                "(fits.csv's albedo columns).</p>\n",
             over, n);
     bf_tt_print_html(t, "energy-table", fp);
     bf_tt_free(t);
@@ -561,7 +561,8 @@ static void dispersion(FILE *fp, const bf_fig_set *figs)
     }
     fputs("<h3 id=\"dispersion-section\">Dispersion: n against "
           "wavelength</h3>\n<p>The refractive index of the dielectric "
-          "Fresnel factor fitted on each spectral channel, with its 95% "
+          "Fresnel factor (n under --fresnel dielectric, ABC's ior) fitted "
+          "on each spectral channel, with its 95% "
           "interval; the values are in <a href=\"dispersion.csv\">"
           "dispersion.csv</a>. It is the index of a smooth outermost "
           "interface seen through one specular lobe: read "
@@ -571,6 +572,7 @@ static void dispersion(FILE *fp, const bf_fig_set *figs)
     figures_of(fp, figs, BF_FIG_DISPERSION, SIZE_MAX);
 }
 
+/* The analysis beyond the paper: model selection and intervals. */
 static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
 {
     size_t m;
