@@ -135,8 +135,8 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
            fresnel=None, smith=None, calibrate=0):
     """Runs the study of `brdffit report` on dataset and writes its report
     into folder out (created, one level, if missing): fits.csv, table2.md,
-    table3.md, dispersion.csv (with fresnel="dielectric" on spectral
-    channels), report.html and figures/ -- the same files as the CLI with
+    table3.md, dispersion.csv (a fitted refractive index -- n with
+    fresnel="dielectric", ABC's ior -- on spectral channels), report.html and figures/ -- the same files as the CLI with
     the same options (the page's provenance names bf_report_write instead
     of a command line).
 

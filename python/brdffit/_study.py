@@ -555,8 +555,9 @@ class Study:
         return self._records(text_, columns, lines, n, value)
 
     def dispersion_records(self):
-        """dispersion.csv's lines (n against wavelength under fresnel=
-        "dielectric" on spectral channels) as Records from the library's
+        """dispersion.csv's lines (the refractive index against wavelength:
+        n under fresnel="dielectric", ABC's ior, on spectral channels) as
+        Records from the library's
         structs (bf_dispersion_points): numbers at full precision, empty
         fields None; .text the table (bf_dispersion_csv_write, as the CLI
         writes it; its header alone when there is no point)."""
