@@ -557,9 +557,8 @@ class Study:
     def dispersion_records(self):
         """dispersion.csv's lines (the refractive index against wavelength:
         n under fresnel="dielectric", ABC's ior, on spectral channels) as
-        Records from the library's
-        structs (bf_dispersion_points): numbers at full precision, empty
-        fields None; .text the table (bf_dispersion_csv_write, as the CLI
+        Records from the library's structs (bf_dispersion_points): numbers
+        at full precision, empty fields None; .text the table (bf_dispersion_csv_write, as the CLI
         writes it; its header alone when there is no point)."""
         spec = self.spec.spec
         stats = ffi.NULL if self.stats is None else self.stats
