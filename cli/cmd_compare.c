@@ -1,7 +1,8 @@
 /* cmd_compare.c: `brdffit compare` -- the study of SPEC §7 on any data:
  * fits every selected model to every selected sample, prints Table 2
- * (parameters) and Table 3 (LSE) in the paper's layout and writes fits.csv,
- * table2.md and table3.md atomically into the output folder. */
+ * (parameters) and Table 3 (the LSE, E or S of the objective) in the
+ * paper's layout and writes fits.csv, table2.md and table3.md atomically
+ * into the output folder. */
 #include <string.h>
 
 #include "setup.h"
@@ -16,8 +17,9 @@ static void usage(FILE *fp)
 "files: pbrt-v2/Cornell .brdf, ASTM E1392, MERL .binary, tidy CSV) with\n"
 "the protocol of Ragheb & Hancock (SPEC §7): max-normalised radiance over\n"
 "the used configurations (the specular ones left out), LSE as a sum,\n"
-"501-point grids. Prints Table 2 (fitted parameters) and Table 3 (LSE) and\n"
-"writes fits.csv, table2.md and table3.md into the output folder. With\n"
+"501-point grids. Prints Table 2 (fitted parameters) and Table 3 (the LSE;\n"
+"E under --objective ngan, S under the others) and writes fits.csv,\n"
+"table2.md and table3.md into the output folder. With\n"
 "specular models, the energy table after Table 3: each fit's albedo at\n"
 "theta_i 0, 30, 60, 80 deg, OVER 1 where it exceeds 1. With a fitted\n"
 "refractive index (--fresnel dielectric, or ABC's ior) on channels with a\n"

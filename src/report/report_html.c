@@ -421,12 +421,16 @@ static void conventions(FILE *fp, const bf_rep_study *st,
               "§7.3).</li>\n",
               fp);
     }
-    fputs("<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + 0.01 i, "
-          "Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 i, i = 0…500; ties "
-          "keep the smaller value; * marks an optimum on a grid bound. The "
-          "slopes of the Gaussian (G) and exponential (E) forms are different "
-          "quantities.</li>\n"
-          "<li>Fresnel reflectance with the factor ½ (SPEC §4.1); ", fp);
+    fprintf(fp, "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + "
+                "0.01 i, Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 i, i = "
+                "0…500; ties keep the smaller value; %s. The slopes of the "
+                "Gaussian (G) and exponential (E) forms are different "
+                "quantities.</li>\n"
+                "<li>Fresnel reflectance with the factor ½ (SPEC §4.1); ",
+            st->opts.exact ? "the exact fit refines each grid optimum, and "
+                             "* in Table 2 marks an optimum on a bound of "
+                             "the search range"
+                           : "* in Table 2 marks an optimum on a grid bound");
     if (st->opts.n_file != NULL) {
         fputs("refractive index per sample from <code>", fp);
         bf_tt_html_text(fp, st->opts.n_file);
