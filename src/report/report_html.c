@@ -358,24 +358,102 @@ static void data_section(FILE *fp, const bf_rep_study *st)
     fputs("</ul>\n", fp);
 }
 
-/* 1 when a model of st fits an input of kind `kind` that the paper's
- * protocol holds (bf_model_variant_exact: FC's n, ON's rho and sigma),
- * as the run's "Free parameters" line says (tables.c). */
-static int input_freed(const bf_rep_study *st, bf_input kind)
+/* How st's models use inputs of kind `kind` (bf_param.input): INPUT_HELD
+ * when one holds such a parameter (the study gives its value: --n,
+ * --n-file, --on-params), INPUT_FREED when one fits it though the
+ * paper's protocol holds it (bf_model_variant_exact: FC's n, ON's rho and
+ * sigma; the run's "Free parameters" line, tables.c), INPUT_OWN when one
+ * fits it as a parameter of its own (a specular model's n under
+ * --fresnel dielectric, ABC's ior, WNO's n). */
+enum { INPUT_HELD = 1, INPUT_FREED = 2, INPUT_OWN = 4 };
+static unsigned input_use(const bf_rep_study *st, bf_input kind)
 {
+    unsigned use = 0;
     size_t m;
     size_t j;
     for (m = 0; m < st->n_models; m++) {
         const bf_model_type *v = st->models[m];
         const bf_model_type *base = bf_model_find(v->name);
-        for (j = 0; base != NULL && j < v->p && j < base->p; j++) {
-            if (v->param[j].fitted && !base->param[j].fitted &&
-                base->param[j].input == kind) {
-                return 1;
+        for (j = 0; j < v->p; j++) {
+            int freed = base != NULL && j < base->p &&
+                        base->param[j].input == kind &&
+                        !base->param[j].fitted;
+            if (v->param[j].input != kind) {
+                continue; /* (a --fresnel variant's n is the base's F0) */
             }
+            use |= !v->param[j].fitted ? INPUT_HELD
+                   : freed             ? INPUT_FREED
+                                       : INPUT_OWN;
+        }
+    }
+    return use;
+}
+
+/* 1 when some model of st is one of the paper's kind, fitted on its grid
+ * (SPEC §7.4), not a specular model or composite. */
+static int any_gridded(const bf_rep_study *st)
+{
+    size_t m;
+    for (m = 0; m < st->n_models; m++) {
+        if (st->models[m]->kind != BF_MODEL_SPECULAR) {
+            return 1;
         }
     }
     return 0;
+}
+
+/* The conventions' Fresnel and Oren-Nayar lines, each only when a model
+ * of the run has such an input. */
+static void input_conventions(FILE *fp, const bf_rep_study *st)
+{
+    unsigned n_use = input_use(st, BF_INPUT_INDEX);
+    unsigned on_use = input_use(st, BF_INPUT_ON);
+    const char *sep = "";
+    if (n_use != 0) {
+        fputs("<li>Fresnel reflectance with the factor ½ (SPEC §4.1): ", fp);
+    }
+    if ((n_use & INPUT_HELD) && st->opts.n_file != NULL) {
+        fputs("refractive index per sample from <code>", fp);
+        bf_tt_html_text(fp, st->opts.n_file);
+        fputs("</code>", fp);
+        sep = "; ";
+    } else if (n_use & INPUT_HELD) {
+        fprintf(fp, "refractive index n = %g for every sample (SPEC §4.2)",
+                st->opts.n);
+        sep = "; ";
+    }
+    if (n_use & INPUT_FREED) {
+        fprintf(fp, "%sFC's refractive index n fitted per sample (the exact "
+                    "fit frees it, doc/methods.md §6: its range under \"Free "
+                    "parameters\" in the run's description)",
+                sep);
+        sep = "; ";
+    }
+    if (n_use & INPUT_OWN) {
+        fprintf(fp, "%sthe refractive index a model has as its own "
+                    "parameter (a specular model's n under --fresnel "
+                    "dielectric, ABC's ior, WNO's n) fitted per sample",
+                sep);
+    }
+    if (n_use != 0) {
+        fputs(".</li>\n", fp);
+    }
+    if (on_use & INPUT_FREED) {
+        fputs("<li>Oren–Nayar (ON): ρ and σ fitted per sample (the exact "
+              "fit frees them, doc/methods.md §6), not taken from a "
+              "table.</li>\n",
+              fp);
+    } else if (on_use != 0) {
+        fputs("<li>Oren–Nayar (ON) is evaluated, not fitted, at tabulated "
+              "ρ, σ (SPEC §5)",
+              fp);
+        if (st->opts.on_file != NULL) {
+            fputs(" from <code>", fp);
+            bf_tt_html_text(fp, st->opts.on_file);
+            fputs("</code>", fp);
+        }
+        fputs(".</li>\n", fp);
+    }
 }
 
 static void conventions(FILE *fp, const bf_rep_study *st,
@@ -421,49 +499,24 @@ static void conventions(FILE *fp, const bf_rep_study *st,
               "§7.3).</li>\n",
               fp);
     }
-    fprintf(fp, "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 + "
-                "0.01 i, Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 i, i = "
-                "0…500; ties keep the smaller value; %s. The slopes of the "
-                "Gaussian (G) and exponential (E) forms are different "
-                "quantities.</li>\n"
-                "<li>Fresnel reflectance with the factor ½ (SPEC §4.1); ",
-            st->opts.exact ? "the exact fit refines each grid optimum, and "
-                             "* in Table 2 marks an optimum on a bound of "
-                             "the search range"
-                           : "* in Table 2 marks an optimum on a grid bound");
-    if (st->opts.n_file != NULL) {
-        fputs("refractive index per sample from <code>", fp);
-        bf_tt_html_text(fp, st->opts.n_file);
-        fputs("</code>.</li>\n", fp);
-    } else if (input_freed(st, BF_INPUT_INDEX)) {
-        fputs("refractive index n fitted per sample (the exact fit frees "
-              "it, doc/methods.md §6: its range under \"Free parameters\" "
-              "in the run's description).</li>\n",
-              fp);
-    } else {
-        fprintf(fp, "refractive index n = %g for every sample (SPEC §4.2)."
-                    "</li>\n",
-                st->opts.n);
+    if (any_gridded(st)) {
+        fprintf(fp, "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 "
+                    "+ 0.01 i, Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 "
+                    "i, i = 0…500; ties keep the smaller value; %s. The "
+                    "slopes of the Gaussian (G) and exponential (E) forms "
+                    "are different quantities.</li>\n",
+                st->opts.exact ? "the exact fit refines each grid optimum, "
+                                 "and * in Table 2 marks an optimum on a "
+                                 "bound of the search range"
+                               : "* in Table 2 marks an optimum on a grid "
+                                 "bound");
     }
-    if (input_freed(st, BF_INPUT_ON)) {
-        fputs("<li>Oren–Nayar (ON): ρ and σ fitted per sample (the exact "
-              "fit frees them, doc/methods.md §6), not taken from a table",
-              fp);
-    } else {
-        fputs("<li>Oren–Nayar (ON) is evaluated, not fitted, at tabulated "
-              "ρ, σ (SPEC §5)",
-              fp);
-    }
-    if (st->opts.on_file != NULL && !input_freed(st, BF_INPUT_ON)) {
-        fputs(" from <code>", fp);
-        bf_tt_html_text(fp, st->opts.on_file);
-        fputs("</code>", fp);
-    }
+    input_conventions(fp, st);
     if (meta->fig->n_incidence == 0) {
-        fputs(".</li>\n<li>Plane-of-incidence figures: none, no measured "
+        fputs("<li>Plane-of-incidence figures: none, no measured "
               "configuration lies in its plane of incidence.</li>\n", fp);
     } else {
-        fputs(".</li>\n<li>Plane-of-incidence figures: incidence angles", fp);
+        fputs("<li>Plane-of-incidence figures: incidence angles", fp);
         for (a = 0; a < meta->fig->n_incidence; a++) {
             fprintf(fp, "%s %.2f°", a ? "," : "",
                     meta->fig->incidence[a] / DEG);

@@ -414,11 +414,13 @@ Test(report, draws_single_column_figures_on_request)
     free(page);
 }
 
-/* The page's conventions say what the run held and what it fitted: the
- * paper's protocol holds n = 1.7 and evaluates ON at tabulated rho,
- * sigma; --fit exact frees both (bf_model_variant_exact), and with --n
- * given n stays fixed. */
-Test(report, conventions_follow_the_exact_fits_freed_inputs)
+/* The page's conventions say what the run held and what it fitted, and
+ * only of the models it ran: the paper's protocol holds n = 1.7 and
+ * evaluates ON at tabulated rho, sigma; --fit exact frees both
+ * (bf_model_variant_exact), and with --n given n stays fixed; a
+ * specular model alone has no grid, FC or ON line, and under
+ * --fresnel dielectric its own n is fitted. */
+Test(report, conventions_follow_the_models_and_their_freed_inputs)
 {
     static const char *const paper[] = {"--models", "FC-E,ON", "--format",
                                         "svg", NULL};
@@ -427,23 +429,40 @@ Test(report, conventions_follow_the_exact_fits_freed_inputs)
     static const char *const given[] = {"--models", "FC-E,ON", "--fit",
                                         "exact", "--n", "1.5", "--format",
                                         "svg", NULL};
-    const char *const *runs[3] = {paper, exact, given};
-    const char *n_text[3] = {"refractive index n = 1.7 for every sample",
+    static const char *const glossy[] = {"--models", "LAMBERT+GGX", "--fit",
+                                         "exact", "--objective", "ngan",
+                                         "--format", "svg", NULL};
+    static const char *const dielectric[] = {
+        "--models", "LAMBERT+GGX", "--fit", "exact", "--objective", "ngan",
+        "--fresnel", "dielectric", "--format", "svg", NULL};
+    const char *const *runs[5] = {paper, exact, given, glossy, dielectric};
+    const char *n_text[5] = {"refractive index n = 1.7 for every sample",
                              "refractive index n fitted per sample",
-                             "refractive index n = 1.5 for every sample"};
-    int on_fitted[3] = {0, 1, 1};
+                             "refractive index n = 1.5 for every sample",
+                             NULL, "as its own parameter"};
+    /* ON's line: 0 none, 1 evaluated, 2 fitted */
+    const int on_line[5] = {1, 2, 2, 0, 0};
+    const int grids[5] = {1, 1, 1, 0, 0};
     int r;
-    for (r = 0; r < 3; r++) {
+    for (r = 0; r < 5; r++) {
         const char *dir = bf_test_tmpdir();
         char *page;
+        char *conv;
         cr_assert_eq(run_report(dir, "44", runs[r], NULL), 0, "run %d", r);
         page = page_of(dir);
-        cr_expect(strstr(page, n_text[r]) != NULL, "run %d", r);
-        cr_expect_eq(strstr(page, "Oren–Nayar (ON): ρ and σ fitted") != NULL,
-                     on_fitted[r], "run %d", r);
-        cr_expect_eq(strstr(page, "Oren–Nayar (ON) is evaluated, not "
+        conv = strstr(page, "<h2 id=\"conventions\">");
+        cr_assert_not_null(conv, "run %d", r);
+        cr_expect_eq(strstr(conv, "<li>Fresnel reflectance") != NULL,
+                     n_text[r] != NULL, "run %d", r);
+        cr_expect(n_text[r] == NULL || strstr(conv, n_text[r]) != NULL,
+                  "run %d", r);
+        cr_expect_eq(strstr(conv, "Oren–Nayar (ON): ρ and σ fitted") != NULL,
+                     on_line[r] == 2, "run %d", r);
+        cr_expect_eq(strstr(conv, "Oren–Nayar (ON) is evaluated, not "
                                   "fitted") != NULL,
-                     !on_fitted[r], "run %d", r);
+                     on_line[r] == 1, "run %d", r);
+        cr_expect_eq(strstr(conv, "<li>Exhaustive grids") != NULL, grids[r],
+                     "run %d", r);
         free(page);
     }
 }
