@@ -750,11 +750,23 @@ int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
             st->n_models, st->n_samples,
             st->in.curet ? "samples of the CURET database"
                          : (st->n_samples == 1 ? "sample" : "samples"));
-    fputs("<p>Rough-surface reflectance models fitted to measured BRDF data "
-          "with the protocol of Ragheb &amp; Hancock, “Comparing Variants of "
-          "the Beckmann Model” (tables and figures numbered as in the "
-          "paper), and the analysis beyond it when it ran.</p>\n",
-          fp);
+    if (bf_objective_keeps_scale(st->opts.objective)) {
+        fprintf(fp, "<p>Reflectance models fitted to measured BRDF data in "
+                    "absolute units under the %s objective (SPEC §10: "
+                    "nothing normalised, each model's scales fitted), laid "
+                    "out as in Ragheb &amp; Hancock, “Comparing Variants of "
+                    "the Beckmann Model” (tables and figures numbered as in "
+                    "that paper), and the analysis beyond it when it "
+                    "ran.</p>\n",
+                bf_objective_name(st->opts.objective));
+    } else {
+        fputs("<p>Rough-surface reflectance models fitted to measured BRDF "
+              "data with the protocol of Ragheb &amp; Hancock, “Comparing "
+              "Variants of the Beckmann Model” (tables and figures numbered "
+              "as in the paper), and the analysis beyond it when it "
+              "ran.</p>\n",
+              fp);
+    }
     contents(fp, st);
     data_section(fp, st);
     fputs("<h2 id=\"tables\">Tables 2 and 3</h2>\n", fp);

@@ -297,6 +297,11 @@ Test(plane_abs, description_under_ngan)
               copy);
     cr_assert(strstr(copy, "divided by its maximum") == NULL, "%s", copy);
     cr_assert(strstr(html, "Normalisation: none (SPEC §10)") != NULL);
+    /* the page's first sentence names the objective, not the paper's
+     * protocol */
+    cr_assert(strstr(html, "in absolute units under the ngan objective") !=
+              NULL);
+    cr_assert(strstr(html, "with the protocol of Ragheb") == NULL);
     cr_assert(strstr(html, "Normalisation: radiance") == NULL);
     cr_assert(strstr(html, "Every figure shows radiance normalised") ==
               NULL);
