@@ -320,7 +320,8 @@ static void data_section(FILE *fp, const bf_rep_study *st)
             st->n_samples == 1 ? "" : "s");
     bf_tt_html_text(fp, st->opts.channel != NULL ? st->opts.channel
                                                  : "mean of the channels");
-    fprintf(fp, "), %zu models (", st->n_models);
+    fprintf(fp, "), %zu model%s (", st->n_models,
+            st->n_models == 1 ? "" : "s");
     for (m = 0; m < st->n_models; m++) {
         fputs(m ? ", " : "", fp);
         bf_tt_html_text(fp, st->models[m]->name);
@@ -746,10 +747,12 @@ int bf_report_html(const bf_rep_study *st, const bf_fig_set *figs,
     fputs("</style>\n<script>", fp);
     fputs(script, fp);
     fputs("</script>\n</head>\n<body>\n", fp);
-    fprintf(fp, "<h1>brdffit report: %zu models fitted to %zu %s</h1>\n",
-            st->n_models, st->n_samples,
-            st->in.curet ? "samples of the CURET database"
-                         : (st->n_samples == 1 ? "sample" : "samples"));
+    fprintf(fp, "<h1>brdffit report: %zu model%s fitted to %zu %s</h1>\n",
+            st->n_models, st->n_models == 1 ? "" : "s", st->n_samples,
+            st->n_samples == 1
+                ? (st->in.curet ? "sample of the CURET database" : "sample")
+                : (st->in.curet ? "samples of the CURET database"
+                                : "samples"));
     if (bf_objective_keeps_scale(st->opts.objective)) {
         fprintf(fp, "<p>Reflectance models fitted to measured BRDF data in "
                     "absolute units under the %s objective (SPEC §10: "
