@@ -201,6 +201,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     double *v = bf_fig_alloc(d, 8 * N * nj * sizeof *v);
     unsigned *open = bf_fig_alloc(d, N * nj * sizeof *open);
     char (*xl)[128] = bf_fig_alloc(d, nj * sizeof *xl);
+    char each[48];
     int boot = st->opts.n_boot >= 2;
     size_t j;
     size_t q = 0;
@@ -314,7 +315,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->title, sizeof e->title,
              "%s: fitted parameters and their 95%% intervals", t->name);
     snprintf(e->caption, sizeof e->caption,
-             "For each of the %zu samples, %s's exact optimum (points; the "
+             "For %s, %s's exact optimum (points; the "
              "objective \"%s\" minimised by refinement of the grid optimum, "
              "doc/methods.md §2) and its 95%% profile interval (solid: the "
              "noise model's likelihood profile, doc/methods.md §3), which "
@@ -324,15 +325,16 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "optimum, and the interval need not hold the optimum%s. An "
              "interval that reaches the search range is cut there and drawn "
              "without an end tick.",
-             N, t->name, bf_objective_name(st->opts.objective),
+             bf_fig_each_sample(N, each, sizeof each), t->name,
+             bf_objective_name(st->opts.objective),
              boot ? "; dotted below it, the residual bootstrap's "
                     "percentile interval (residuals resampled under the "
                     "noise model and refitted, doc/methods.md §3)"
                   : "");
     snprintf(e->alt, sizeof e->alt,
              "Forest plot: %s's fitted parameter%s with 95%% intervals for "
-             "%zu samples.",
-             t->name, nj == 1 ? "" : "s", N);
+             "%zu sample%s.",
+             t->name, nj == 1 ? "" : "s", N, N == 1 ? "" : "s");
     return BF_OK;
 }
 
@@ -443,9 +445,9 @@ int bf_fig_delta_bic(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "strong, > 10 very strong); \xe2\x80\x93: not evaluated.",
              bf_objective_name(st->opts.objective));
     snprintf(e->alt, sizeof e->alt,
-             "Heat map: delta BIC of %zu models for %zu samples, darker for "
-             "models closer to the best.",
-             M, N);
+             "Heat map: delta BIC of %zu model%s for %zu sample%s, darker "
+             "for models closer to the best.",
+             M, M == 1 ? "" : "s", N, N == 1 ? "" : "s");
     return BF_OK;
 }
 

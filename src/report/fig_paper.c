@@ -101,6 +101,7 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     char *ylabel = bf_fig_alloc(d, 32);
     char models[512];
     char ktext[48];
+    char each[48];
     double lo = HUGE_VAL;
     double hi = 0.0;
     size_t i;
@@ -182,13 +183,14 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "%s of the %s objective (SPEC §10: over each sample's used "
                  "configurations with \xce\xb8i, \xce\xb8o \xe2\x89\xa4 "
                  "80\xc2\xb0, \xcf\x81 = BRDF cos \xce\xb8i as measured, "
-                 "nothing normalised) of %s for each of the %zu samples; the "
+                 "nothing normalised) of %s for %s; the "
                  "x axis lists the sample numbers %s%s.",
                  st->opts.objective == BF_OBJ_NGAN
                      ? "E = \xe2\x88\x9a(\xce\xa3 (\xcf\x81 \xe2\x88\x92 "
                        "\xcf\x81\xcc\x82)\xc2\xb2 / K)"
                      : "The sum S",
-                 bf_objective_name(st->opts.objective), models, N,
+                 bf_objective_name(st->opts.objective), models,
+                 bf_fig_each_sample(N, each, sizeof each),
                  by_slope ? "in order of increasing fitted FC-E slope m"
                           : "in increasing order (FC-E is not in the run)",
                  p->logy ? "; logarithmic axis" : "");
@@ -196,10 +198,11 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         snprintf(e->caption, sizeof e->caption,
                  "The sum S of the %s objective (doc/methods.md §1) over the "
                  "%s used configurations, data and models normalised as "
-                 "that objective asks (SPEC §2, §7), of %s for each of the "
-                 "%zu samples; the x axis lists the sample numbers %s%s.",
+                 "that objective asks (SPEC §2, §7), of %s for %s; the x "
+                 "axis lists the sample numbers %s%s.",
                  bf_objective_name(st->opts.objective),
-                 bf_fig_k_text(st, ktext, sizeof ktext), models, N,
+                 bf_fig_k_text(st, ktext, sizeof ktext), models,
+                 bf_fig_each_sample(N, each, sizeof each),
                  by_slope ? "in order of increasing fitted FC-E slope m"
                           : "in increasing order (FC-E is not in the run)",
                  p->logy ? "; logarithmic axis" : "");
@@ -208,18 +211,20 @@ int bf_fig_lse(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "LSE (the sum over the %s used configurations of the "
              "squared difference between the model's and the measured "
              "radiance, each divided by its maximum over those "
-             "configurations) of %s for each of the %zu samples; the x axis "
+             "configurations) of %s for %s; the x axis "
              "lists the sample numbers %s%s.",
-             bf_fig_k_text(st, ktext, sizeof ktext), models, N,
+             bf_fig_k_text(st, ktext, sizeof ktext), models,
+             bf_fig_each_sample(N, each, sizeof each),
              by_slope ? "in order of increasing fitted FC-E slope m, as in "
                         "the paper's Figure 2(b)"
                       : "in increasing order (FC-E is not in the run)",
              p->logy ? "; logarithmic LSE axis" : "");
     }
     snprintf(e->alt, sizeof e->alt,
-             "Line chart: %s of %zu models (%.400s) for %zu samples%s.",
-             bf_fig_value_name(st->opts.objective), M,
-             models, N, by_slope ? " sorted by FC-E slope" : "");
+             "Line chart: %s of %zu model%s (%.400s) for %zu sample%s%s.",
+             bf_fig_value_name(st->opts.objective), M, M == 1 ? "" : "s",
+             models, N, N == 1 ? "" : "s",
+             by_slope ? " sorted by FC-E slope" : "");
     return BF_OK;
 }
 
@@ -300,14 +305,14 @@ int bf_fig_wins(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     snprintf(e->base, sizeof e->base, "wins");
     snprintf(e->title, sizeof e->title, "Samples fitted best by each model");
     snprintf(e->caption, sizeof e->caption,
-             "For each model, the number of the %zu samples on which it has "
-             "the lowest %s (Table 3) among the models evaluated for that "
-             "sample (a tie counts for every tied model).",
+             "For each model, the number of samples (of %zu) on which it "
+             "has the lowest %s (Table 3) among the models evaluated for "
+             "that sample (a tie counts for every tied model).",
              st->n_samples, bf_fig_value_name(st->opts.objective));
     snprintf(e->alt, sizeof e->alt,
-             "Bar chart: number of samples each of %zu models fits with the "
-             "lowest %s.",
-             M, bf_fig_value_name(st->opts.objective));
+             "Bar chart: the number of samples each of %zu model%s fits "
+             "with the lowest %s.",
+             M, M == 1 ? "" : "s", bf_fig_value_name(st->opts.objective));
     return BF_OK;
 }
 

@@ -183,6 +183,16 @@ const char *bf_fig_k_text(const bf_rep_study *st, char *buf, size_t len)
     return buf;
 }
 
+const char *bf_fig_each_sample(size_t n, char *buf, size_t len)
+{
+    if (n == 1) {
+        snprintf(buf, len, "the one sample");
+    } else {
+        snprintf(buf, len, "each of the %zu samples", n);
+    }
+    return buf;
+}
+
 const bf_study_row *bf_fig_row(const bf_rep_study *st, size_t s, size_t m)
 {
     return &st->rows[s * st->n_models + m];

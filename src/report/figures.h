@@ -146,6 +146,8 @@ const char *bf_fig_target_key(const bf_rep_study *st, size_t s, char *buf,
                               size_t len);
 /* "K = 198" when every sample has the same K, else "K (per sample)". */
 const char *bf_fig_k_text(const bf_rep_study *st, char *buf, size_t len);
+/* The captions' "each of the 24 samples", or "the one sample". */
+const char *bf_fig_each_sample(size_t n, char *buf, size_t len);
 
 
 #endif

@@ -300,8 +300,8 @@ int bf_rep_rank_summary(const bf_rep_study *st, int c, FILE *fp)
     fprintf(fp, "%s:", bf_rep_crit_names[c]);
     for (i = 0; i < n; i++) {
         if (i == 0) {
-            fprintf(fp, " %s best for %zu of %zu samples", names[i], wins[i],
-                    st->n_samples);
+            fprintf(fp, " %s best for %zu of %zu sample%s", names[i],
+                    wins[i], st->n_samples, st->n_samples == 1 ? "" : "s");
         } else {
             fprintf(fp, ", %s %zu", names[i], wins[i]);
         }

@@ -516,8 +516,9 @@ static void report_missing(const bf_study_spec *spec,
             missing += rows[s * spec->n_models + m].status != BF_OK;
         }
         if (missing > 0) {
-            bf_rep_note("note: %s not evaluated for %zu of %zu samples (%s)",
+            bf_rep_note("note: %s not evaluated for %zu of %zu sample%s (%s)",
                         spec->models[m]->name, missing, spec->n_targets,
+                        spec->n_targets == 1 ? "" : "s",
                         needs_input(spec->models[m], BF_INPUT_ON)
                             ? "no rho, sigma given: use --on-params"
                             : "missing per-sample input");

@@ -182,7 +182,7 @@ Test(cli_analysis, a_fit_that_reduces_to_lambert_is_no_win_of_oren_nayar)
     snprintf(path, sizeof path, "%s/ranking.md", dir);
     md = bf_test_slurp(path, NULL);
     cr_assert_not_null(md);
-    cr_assert_not_null(strstr(md, "- BIC: LAMBERT best for 1 of 1 samples"),
+    cr_assert_not_null(strstr(md, "- BIC: LAMBERT best for 1 of 1 sample"),
                        "%s", md);
 }
 

@@ -415,7 +415,7 @@ Test(report, draws_single_column_figures_on_request)
 }
 
 /* The page's conventions say what the run held and what it fitted, and
- * only of the models it ran: the paper's protocol holds n = 1.7 and
+ * only of the models it ran (and the page counts one sample as one): the paper's protocol holds n = 1.7 and
  * evaluates ON at tabulated rho, sigma; --fit exact frees both
  * (bf_model_variant_exact), and with --n given n stays fixed; a
  * specular model alone has no grid, FC or ON line, and under
@@ -463,6 +463,9 @@ Test(report, conventions_follow_the_models_and_their_freed_inputs)
                      on_line[r] == 1, "run %d", r);
         cr_expect_eq(strstr(conv, "<li>Exhaustive grids") != NULL, grids[r],
                      "run %d", r);
+        /* one sample, one or two models: no "1 samples", "1 models" */
+        cr_expect(strstr(page, " 1 samples") == NULL, "run %d", r);
+        cr_expect(strstr(page, " 1 models") == NULL, "run %d", r);
         free(page);
     }
 }
