@@ -390,19 +390,6 @@ static unsigned input_use(const bf_rep_study *st, bf_input kind)
     return use;
 }
 
-/* 1 when some model of st is one of the paper's kind, fitted on its grid
- * (SPEC §7.4), not a specular model or composite. */
-static int any_gridded(const bf_rep_study *st)
-{
-    size_t m;
-    for (m = 0; m < st->n_models; m++) {
-        if (st->models[m]->kind != BF_MODEL_SPECULAR) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* The conventions' Fresnel and Oren-Nayar lines, each only when a model
  * of the run has such an input. */
 static void input_conventions(FILE *fp, const bf_rep_study *st)
@@ -500,7 +487,7 @@ static void conventions(FILE *fp, const bf_rep_study *st,
               "§7.3).</li>\n",
               fp);
     }
-    if (any_gridded(st)) {
+    if (bf_rep_n_specular(st) < st->n_models) { /* a gridded model */
         fprintf(fp, "<li>Exhaustive grids (SPEC §7.4): slope m = σ/T = 0.1 "
                     "+ 0.01 i, Lafortune exponent n<sub>d</sub> = 0.1 + 0.04 "
                     "i, i = 0…500; ties keep the smaller value; %s. The "

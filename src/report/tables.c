@@ -192,8 +192,7 @@ static void describe_freed(const bf_rep_study *st, FILE *fp)
     fputc('\n', fp);
 }
 
-/* How many of st's models are specular or composites D+S (SPEC §9). */
-static size_t n_specular(const bf_rep_study *st)
+size_t bf_rep_n_specular(const bf_rep_study *st)
 {
     size_t m;
     size_t n = 0;
@@ -208,7 +207,7 @@ static void describe_separable(const bf_rep_study *st, FILE *fp)
 {
     size_t m;
     const char *sep = "";
-    if (n_specular(st) == 0) {
+    if (bf_rep_n_specular(st) == 0) {
         return;
     }
     fputs("Specular models (SPEC §9.2: NDF, masking, Fresnel):", fp);
@@ -312,7 +311,7 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
         fprintf(fp, "Fit: exact -- %sgrid optimum, then GSL Brent (1 "
                     "parameter) or Nelder-Mead (2+) within one grid step, "
                     "|d param| < %g (doc/methods.md §2)\n",
-                n_specular(st) > 0 ? "diffuse models: " : "",
+                bf_rep_n_specular(st) > 0 ? "diffuse models: " : "",
                 BF_REFINE_TOL);
         describe_separable(st, fp);
         describe_freed(st, fp);

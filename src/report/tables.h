@@ -35,6 +35,10 @@ void bf_rep_table2_title(const bf_rep_study *st, int grid_beside, char *buf,
 void bf_rep_table3_title(const bf_rep_study *st, int file, char *buf,
                          size_t len);
 
+/* How many of st's models are specular or composites D+S (SPEC §9); the
+ * others are the paper's kind, fitted on its grids (SPEC §7.4). */
+size_t bf_rep_n_specular(const bf_rep_study *st);
+
 /* Prints what was run: data, configurations used, conventions, the fit,
  * its free parameters and the analysis. Returns BF_REPORT_OK, or
  * BF_REPORT_SOFTWARE after the message when out of memory. */
