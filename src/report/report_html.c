@@ -374,17 +374,13 @@ static unsigned input_use(const bf_rep_study *st, bf_input kind)
     size_t j;
     for (m = 0; m < st->n_models; m++) {
         const bf_model_type *v = st->models[m];
-        const bf_model_type *base = bf_model_find(v->name);
         for (j = 0; j < v->p; j++) {
-            int freed = base != NULL && j < base->p &&
-                        base->param[j].input == kind &&
-                        !base->param[j].fitted;
             if (v->param[j].input != kind) {
-                continue; /* (a --fresnel variant's n is the base's F0) */
+                continue;
             }
-            use |= !v->param[j].fitted ? INPUT_HELD
-                   : freed             ? INPUT_FREED
-                                       : INPUT_OWN;
+            use |= !v->param[j].fitted        ? INPUT_HELD
+                   : bf_rep_param_freed(v, j) ? INPUT_FREED
+                                              : INPUT_OWN;
         }
     }
     return use;

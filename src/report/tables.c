@@ -157,6 +157,13 @@ static int describe_configs(const bf_rep_study *st, FILE *fp)
     return 0;
 }
 
+int bf_rep_param_freed(const bf_model_type *v, size_t j)
+{
+    const bf_model_type *base = bf_model_find(v->name);
+    return base != NULL && j < v->p && j < base->p && v->param[j].fitted &&
+           !base->param[j].fitted;
+}
+
 /* The "Free parameters" line of the exact fit: each model's parameters
  * the variant fits that the registry's model holds fixed, with their
  * ranges (bf_model_variant_exact). */
@@ -168,11 +175,10 @@ static void describe_freed(const bf_rep_study *st, FILE *fp)
     fputs("Free parameters (besides the paper's):", fp);
     for (m = 0; m < st->n_models; m++) {
         const bf_model_type *v = st->models[m];
-        const bf_model_type *base = bf_model_find(v->name);
         int first = 1;
-        for (j = 0; base != NULL && j < v->p && j < base->p; j++) {
+        for (j = 0; j < v->p; j++) {
             const bf_param *pj = &v->param[j];
-            if (!pj->fitted || base->param[j].fitted) {
+            if (!bf_rep_param_freed(v, j)) {
                 continue;
             }
             if (first) {

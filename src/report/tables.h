@@ -39,6 +39,11 @@ void bf_rep_table3_title(const bf_rep_study *st, int file, char *buf,
  * others are the paper's kind, fitted on its grids (SPEC §7.4). */
 size_t bf_rep_n_specular(const bf_rep_study *st);
 
+/* 1 when the study's model v (a variant: bf_model_variant_exact) fits its
+ * parameter j though the registry's model of that name holds it (FC's n,
+ * ON's rho and sigma under --fit exact): the run's "Free parameters". */
+int bf_rep_param_freed(const bf_model_type *v, size_t j);
+
 /* Prints what was run: data, configurations used, conventions, the fit,
  * its free parameters and the analysis. Returns BF_REPORT_OK, or
  * BF_REPORT_SOFTWARE after the message when out of memory. */
