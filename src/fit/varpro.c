@@ -43,14 +43,13 @@
  * ngan solution starts Nelder-Mead over every free parameter, scales
  * included.
  */
-#include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
-#include <gsl/gsl_multifit_nlinear.h>
 #include <gsl/gsl_multimin.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "fit/lmq.h"
 #include "fit/varpro.h"
 
 /* A fold's descent merges into a known minimum within MERGE_NEAR of a
@@ -256,8 +255,9 @@ static int nelder_mead(bf__vp_space *sp, double *x, const double *step,
 
 /* ==== Levenberg-Marquardt on the projected residuals ===================== */
 
-/* r_k = sqrt(w_k) (rho_hat_k - rho_k) at u, the scales solved (ngan). */
-static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
+/* r_k = sqrt(w_k) (rho_hat_k - rho_k) at u, the scales solved (ngan);
+ * nonzero where not defined. */
+static int f_lm(const double *u, double *r, void *arg)
 {
     const bf__vp_space *sp = arg;
     double x[BF_MAX_PARAMS];
@@ -265,32 +265,28 @@ static int f_lm(const gsl_vector *u, void *arg, gsl_vector *f)
     size_t a;
     memcpy(x, sp->base, sizeof x);
     for (a = 0; a < sp->m; a++) {
-        x[sp->idx[a]] = from_u(sp, a, gsl_vector_get(u, a));
+        x[sp->idx[a]] = from_u(sp, a, u[a]);
     }
     v = bf__vp_grid_value(sp, x, NULL); /* fc->curve at x */
     if (!(v < BF__VP_UNDEFINED)) {
-        return GSL_EDOM;
+        return 1;
     }
-    bf__vp_residuals(sp->fc, sp->sw, f->data, f->stride);
-    return GSL_SUCCESS;
+    bf__vp_residuals(sp->fc, sp->sw, r, 1);
+    return 0;
 }
 
-/* 1 when LM's iterate (cost c) lies within sp->near of a known minimum
+/* 1 when the iterate u (cost c) lies within sp->near of a known minimum
  * whose value is no higher than c (bf__vp_space.known_u). */
-static int joins_known(const bf__vp_space *sp,
-                       gsl_multifit_nlinear_workspace *w)
+static int joins_known(const double *u, double c, void *arg)
 {
-    const gsl_vector *u = gsl_multifit_nlinear_position(w);
-    double c;
+    const bf__vp_space *sp = arg;
     size_t e;
-    gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
-                  gsl_multifit_nlinear_residual(w), &c);
     for (e = 0; e < sp->n_known; e++) {
         size_t a;
         int in = c >= sp->known_f[e];
         for (a = 0; in && a < sp->m; a++) {
             /* the iterate's coordinate clamped into the domain */
-            double ua = to_u(sp, a, from_u(sp, a, gsl_vector_get(u, a)));
+            double ua = to_u(sp, a, from_u(sp, a, u[a]));
             in = fabs(ua - sp->known_u[e][a]) <= sp->near[a];
         }
         if (in) {
@@ -300,63 +296,14 @@ static int joins_known(const bf__vp_space *sp,
     return 0;
 }
 
-/* The loop of GSL's gsl_multifit_nlinear_driver (LM_ITER iterations,
- * tolerances LM_TOL; the same iterates and status), and with stall > 0 a
- * stop at the first iteration that lowers the cost by less than stall of
- * it (fitctx.stall); with sp->merge a stop, sp->merged, at the first
- * iterate that joins a known minimum (joins_known). */
-static int drive(bf__vp_space *sp, gsl_multifit_nlinear_workspace *w,
-                 int *info)
-{
-    double stall = sp->fc->stall;
-    double c0 = 0.0;
-    size_t iter = 0;
-    int st;
-    if (stall > 0.0) {
-        gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
-                      gsl_multifit_nlinear_residual(w), &c0);
-    }
-    do {
-        st = gsl_multifit_nlinear_iterate(w);
-        if (st == GSL_ENOPROG && iter == 0) {
-            *info = st;
-            return GSL_EMAXITER;
-        }
-        iter++;
-        st = gsl_multifit_nlinear_test(LM_TOL, LM_TOL, LM_TOL, info, w);
-        if (st == GSL_CONTINUE && stall > 0.0) {
-            double c;
-            gsl_blas_ddot(gsl_multifit_nlinear_residual(w),
-                          gsl_multifit_nlinear_residual(w), &c);
-            if (c0 - c < stall * c) {
-                return GSL_SUCCESS;
-            }
-            c0 = c;
-        }
-        if (st == GSL_CONTINUE && sp->merge && joins_known(sp, w)) {
-            sp->merged = 1;
-            return GSL_SUCCESS;
-        }
-    } while (st == GSL_CONTINUE && iter < LM_ITER);
-    if (st == GSL_ETOLF || st == GSL_ETOLX || st == GSL_ETOLG) {
-        *info = st; /* converged to rounding */
-        return GSL_SUCCESS;
-    }
-    return iter >= LM_ITER && st != GSL_SUCCESS ? GSL_EMAXITER : st;
-}
-
-/* GSL's workspace for n residuals and p parameters (default parameters)
- * and n doubles for the weights' square roots, kept in fc between runs;
- * NULL when out of memory. */
-static gsl_multifit_nlinear_workspace *lm_workspace(bf__fitctx *fc,
-                                                    size_t n, size_t p)
+/* The least-squares workspace for n residuals and p parameters and n
+ * doubles for the weights' square roots, kept in fc between runs; NULL
+ * when out of memory. */
+static bf__lmq *lm_workspace(bf__fitctx *fc, size_t n, size_t p)
 {
     if (fc->lm == NULL || fc->lm_n != n || fc->lm_p != p) {
-        gsl_multifit_nlinear_parameters prm =
-            gsl_multifit_nlinear_default_parameters();
         bf__varpro_free(fc);
-        fc->lm = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust,
-                                            &prm, n, p);
+        fc->lm = bf__lmq_alloc(n, p);
         fc->lm_sw = malloc(n * sizeof *fc->lm_sw);
         if (fc->lm == NULL || fc->lm_sw == NULL) {
             bf__varpro_free(fc);
@@ -370,7 +317,7 @@ static gsl_multifit_nlinear_workspace *lm_workspace(bf__fitctx *fc,
 
 void bf__varpro_free(bf__fitctx *fc)
 {
-    gsl_multifit_nlinear_free(fc->lm);
+    bf__lmq_free(fc->lm);
     free(fc->lm_sw);
     fc->lm = NULL;
     fc->lm_sw = NULL;
@@ -378,18 +325,22 @@ void bf__varpro_free(bf__fitctx *fc)
     fc->lm_p = 0;
 }
 
-/* Levenberg-Marquardt (GSL's trust region, finite-difference Jacobian)
- * from x in the search coordinates; x is replaced when it ends lower.
- * *done (when not NULL): 1 when the driver met its tolerances. */
+/* Levenberg-Marquardt with its quasi-Newton turn (lmq.c; LM_ITER
+ * steps, tolerances LM_TOL, fitctx.stall; with sp->merge a stop,
+ * sp->merged, at the first iterate that joins a known minimum) from x in
+ * the search coordinates; x is replaced when it ends lower. *done (when
+ * not NULL): 1 when the run met a tolerance or stopped as asked. */
 static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
 {
-    gsl_multifit_nlinear_workspace *w;
-    gsl_multifit_nlinear_fdf fdf;
-    gsl_vector *u;
-    double *sw;
+    bf__lmq *w;
+    bf__lmq_opts o;
+    double u[BF_MAX_PARAMS];
+    double typ[BF_MAX_PARAMS];
     double y[BF_MAX_PARAMS];
+    double *sw;
+    double c;
     double fy;
-    int info;
+    int st;
     size_t a;
     size_t n_res = sp->fc->pb->n * sp->fc->blocks;
     if (done != NULL) {
@@ -399,9 +350,7 @@ static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
         return BF_OK;
     }
     w = lm_workspace(sp->fc, n_res, sp->m);
-    u = gsl_vector_alloc(sp->m);
-    if (w == NULL || u == NULL) {
-        gsl_vector_free(u);
+    if (w == NULL) {
         return BF_ENOMEM;
     }
     sw = sp->fc->pb->weight != NULL ? sp->fc->lm_sw : NULL;
@@ -417,24 +366,25 @@ static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
         double lo = to_u(sp, a, sp->lo[a]);
         double hi = to_u(sp, a, sp->hi[a]);
         double in = 0.01 * (hi - lo);
-        ua = ua < lo + in ? lo + in : (ua > hi - in ? hi - in : ua);
-        gsl_vector_set(u, a, ua);
+        u[a] = ua < lo + in ? lo + in : (ua > hi - in ? hi - in : ua);
+        /* the finite differences' scale: ln x's unit, the domain */
+        typ[a] = sp->lg[a] ? 1.0 : hi - lo;
     }
-    memset(&fdf, 0, sizeof fdf);
-    fdf.f = f_lm;
-    fdf.n = n_res;
-    fdf.p = sp->m;
-    fdf.params = sp;
-    if (gsl_multifit_nlinear_init(u, &fdf, w) == GSL_SUCCESS) {
-        int st = drive(sp, w, &info);
+    memset(&o, 0, sizeof o);
+    o.max_iter = LM_ITER;
+    o.tol = LM_TOL;
+    o.stall = sp->fc->stall;
+    o.check = sp->merge ? joins_known : NULL;
+    o.typ = typ;
+    st = bf__lmq_run(w, u, &c, f_lm, sp, &o);
+    if (st != BF__LMQ_UNDEFINED) {
         if (done != NULL) {
-            *done = st == GSL_SUCCESS;
+            *done = st == BF__LMQ_CONVERGED || st == BF__LMQ_JOINED;
         }
+        sp->merged = st == BF__LMQ_JOINED;
         memcpy(y, x, sizeof y);
         for (a = 0; a < sp->m; a++) {
-            y[sp->idx[a]] =
-                from_u(sp, a, gsl_vector_get(gsl_multifit_nlinear_position(w),
-                                             a));
+            y[sp->idx[a]] = from_u(sp, a, u[a]);
         }
         fy = bf__vp_grid_value(sp, y, NULL);
         if (fy < *f) {
@@ -442,7 +392,6 @@ static int levenberg(bf__vp_space *sp, double *x, double *f, int *done)
             *f = fy;
         }
     }
-    gsl_vector_free(u);
     sp->sw = NULL;
     return BF_OK;
 }

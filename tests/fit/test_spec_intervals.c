@@ -593,30 +593,42 @@ Test(spec_intervals, the_library_intervals_hold_the_ml_estimate_on_cornell,
     bf__solo_free(&so);
 }
 
-/* mystique under LAMBERT+LAFORTUNE: the fit's lobe is at n's bound (1e4)
- * and its intervals' thresholds are widened some 3000-fold (the robust
- * factors of a lobe that misses the peak), so the profile of Cxy walks out
- * to where the lobe (|Cxy| sin^2 + Cz cos^2)^n overflows a double from
- * every start the inner fits take (Cxy = 2, 1.52, ... 1.11). The walk
- * stays inside such points and finds the end short of them (1.058, the
- * lower end open at -2: not identified) instead of failing: before
- * profile.c bounded its walk there, bf_fit_intervals returned BF_EDOM and
+/* mystique under LAMBERT+LAFORTUNE: the ngan fit's lobe is at n's bound
+ * (1e4). A profile of Cxy under a wide threshold (a robust factor of some
+ * 3000 times chi2_1, as the likelihood's had when its fit stopped short of
+ * its minimum) walks out to where the lobe (|Cxy| sin^2 + Cz cos^2)^n
+ * overflows a double from every start the inner fits take (Cxy = 2,
+ * 1.52, ... 1.11). The walk stays inside such points and finds the end
+ * short of them, open (not identified), instead of failing: before
+ * profile.c bounded its walk there, the profile returned BF_EDOM and
  * fits.csv had no interval for Cxy, Cz or n. */
 Test(spec_intervals, a_profile_stays_inside_where_the_model_overflows,
      .timeout = 300)
 {
+    static bf_geom geom[MAX_CONF];
+    static double rho[MAX_CONF];
     bf__solo so;
     bf_problem pb;
-    bf_interval iv;
+    bf_fit_result fit;
     double x[BF_MAX_PARAMS];
-    double v;
-    paint_intervals("mystique.brdf", "LAMBERT+LAFORTUNE", &so, &pb, &iv);
+    double lo, hi, v;
+    unsigned open;
+    paint_problem("mystique.brdf", "LAMBERT+LAFORTUNE", geom, rho, &pb);
+    pb.free_mask &= ~(1u << 3); /* n held at its bound */
+    pb.fixed[3] = pb.hi[3];
+    cr_assert_eq(bf__solo_init(&so, &pb), BF_OK);
+    cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, NULL), BF_OK);
+    cr_assert_eq(bf__profile_ci_thr(&so.fc, &fit, 1, 1e6,
+                                    bf__profile_step(&pb, 1, fit.param[1]),
+                                    &lo, &hi, &open),
+                 BF_OK);
     /* Cxy's upper end short of its bound 2, where the lobe is still a
-     * double; its lower end open */
-    cr_assert(iv.high[1] < pb.hi[1], "Cxy's end %g", iv.high[1]);
-    cr_assert(iv.not_identified & 2u, "Cxy flagged not identified");
-    memcpy(x, iv.ml.param, sizeof x);
-    x[1] = iv.high[1];
+     * double, and open */
+    cr_assert(lo <= fit.param[1] && fit.param[1] < hi, "[%g, %g]", lo, hi);
+    cr_assert(hi < pb.hi[1], "Cxy's end %g", hi);
+    cr_assert(open & 2u, "Cxy's upper end open");
+    memcpy(x, fit.param, sizeof x);
+    x[1] = hi;
     cr_assert_eq(bf__fit_value(&so.fc, x, &v), BF_OK,
                  "the lobe at the end is defined");
     bf__solo_free(&so);
