@@ -359,61 +359,34 @@ static void data_section(FILE *fp, const bf_rep_study *st)
     fputs("</ul>\n", fp);
 }
 
-/* How st's models use inputs of kind `kind` (bf_param.input): INPUT_HELD
- * when one holds such a parameter (the study gives its value: --n,
- * --n-file, --on-params), INPUT_FREED when one fits it though the
- * paper's protocol holds it (bf_model_variant_exact: FC's n, ON's rho and
- * sigma; the run's "Free parameters" line, tables.c), INPUT_OWN when one
- * fits it as a parameter of its own (a specular model's n under
- * --fresnel dielectric, ABC's ior, WNO's n). */
-enum { INPUT_HELD = 1, INPUT_FREED = 2, INPUT_OWN = 4 };
-static unsigned input_use(const bf_rep_study *st, bf_input kind)
-{
-    unsigned use = 0;
-    size_t m;
-    size_t j;
-    for (m = 0; m < st->n_models; m++) {
-        const bf_model_type *v = st->models[m];
-        for (j = 0; j < v->p; j++) {
-            if (v->param[j].input != kind) {
-                continue;
-            }
-            use |= !v->param[j].fitted        ? INPUT_HELD
-                   : bf_rep_param_freed(v, j) ? INPUT_FREED
-                                              : INPUT_OWN;
-        }
-    }
-    return use;
-}
-
 /* The conventions' Fresnel and Oren-Nayar lines, each only when a model
  * of the run has such an input. */
 static void input_conventions(FILE *fp, const bf_rep_study *st)
 {
-    unsigned n_use = input_use(st, BF_INPUT_INDEX);
-    unsigned on_use = input_use(st, BF_INPUT_ON);
+    unsigned n_use = bf_rep_input_use(st, BF_INPUT_INDEX);
+    unsigned on_use = bf_rep_input_use(st, BF_INPUT_ON);
     const char *sep = "";
     if (n_use != 0) {
         fputs("<li>Fresnel reflectance with the factor ½ (SPEC §4.1): ", fp);
     }
-    if ((n_use & INPUT_HELD) && st->opts.n_file != NULL) {
+    if ((n_use & BF_REP_INPUT_HELD) && st->opts.n_file != NULL) {
         fputs("refractive index per sample from <code>", fp);
         bf_tt_html_text(fp, st->opts.n_file);
         fputs("</code>", fp);
         sep = "; ";
-    } else if (n_use & INPUT_HELD) {
+    } else if (n_use & BF_REP_INPUT_HELD) {
         fprintf(fp, "refractive index n = %g for every sample (SPEC §4.2)",
                 st->opts.n);
         sep = "; ";
     }
-    if (n_use & INPUT_FREED) {
+    if (n_use & BF_REP_INPUT_FREED) {
         fprintf(fp, "%sFC's refractive index n fitted per sample (the exact "
                     "fit frees it, doc/methods.md §6: its range under \"Free "
                     "parameters\" in the run's description)",
                 sep);
         sep = "; ";
     }
-    if (n_use & INPUT_OWN) {
+    if (n_use & BF_REP_INPUT_OWN) {
         fprintf(fp, "%sthe refractive index a model has as its own "
                     "parameter (a specular model's n under --fresnel "
                     "dielectric, ABC's ior, WNO's n) fitted per sample",
@@ -422,7 +395,7 @@ static void input_conventions(FILE *fp, const bf_rep_study *st)
     if (n_use != 0) {
         fputs(".</li>\n", fp);
     }
-    if (on_use & INPUT_FREED) {
+    if (on_use & BF_REP_INPUT_FREED) {
         fputs("<li>Oren–Nayar (ON): ρ and σ fitted per sample (the exact "
               "fit frees them, doc/methods.md §6), not taken from a "
               "table.</li>\n",

@@ -164,6 +164,25 @@ int bf_rep_param_freed(const bf_model_type *v, size_t j)
            !base->param[j].fitted;
 }
 
+unsigned bf_rep_input_use(const bf_rep_study *st, bf_input kind)
+{
+    unsigned use = 0;
+    size_t m;
+    size_t j;
+    for (m = 0; m < st->n_models; m++) {
+        const bf_model_type *v = st->models[m];
+        for (j = 0; j < v->p; j++) {
+            if (v->param[j].input != kind) {
+                continue;
+            }
+            use |= !v->param[j].fitted        ? BF_REP_INPUT_HELD
+                   : bf_rep_param_freed(v, j) ? BF_REP_INPUT_FREED
+                                              : BF_REP_INPUT_OWN;
+        }
+    }
+    return use;
+}
+
 /* The "Free parameters" line of the exact fit: each model's parameters
  * the variant fits that the registry's model holds fixed, with their
  * ranges (bf_model_variant_exact). */
@@ -313,13 +332,17 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
 {
     const bf_report_options *o = &st->opts;
     size_t r;
-    if (o->exact) {
+    size_t n_spec = bf_rep_n_specular(st);
+    if (o->exact && n_spec < st->n_models) { /* a gridded model */
         fprintf(fp, "Fit: exact -- %sgrid optimum, then GSL Brent (1 "
                     "parameter) or Nelder-Mead (2+) within one grid step, "
                     "|d param| < %g (doc/methods.md §2)\n",
-                bf_rep_n_specular(st) > 0 ? "diffuse models: " : "",
-                BF_REFINE_TOL);
+                n_spec > 0 ? "diffuse models: " : "", BF_REFINE_TOL);
+    }
+    if (o->exact) {
         describe_separable(st, fp);
+    }
+    if (o->exact && n_spec < st->n_models) {
         describe_freed(st, fp);
     }
     for (r = 0; r < o->n_range; r++) {
@@ -372,6 +395,8 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
 int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
 {
     const bf_report_options *o = &st->opts;
+    unsigned n_use = bf_rep_input_use(st, BF_INPUT_INDEX);
+    unsigned on_use = bf_rep_input_use(st, BF_INPUT_ON);
     bf_rep_describe_data(st, fp);
     if (describe_configs(st, fp) != 0) {
         bf_rep_err("out of memory");
@@ -400,15 +425,17 @@ int bf_rep_study_describe(const bf_rep_study *st, FILE *fp)
                     "of squared differences\n");
     }
     describe_fit(st, fp);
-    if (o->n_file != NULL) {
+    /* the inputs of the models that ran (bf_rep_input_use) */
+    if ((n_use & BF_REP_INPUT_HELD) && o->n_file != NULL) {
         fprintf(fp, "Refractive index (FC): per sample from %s\n", o->n_file);
-    } else if (!o->exact || o->n_given) {
+    } else if (n_use & BF_REP_INPUT_HELD) {
         fprintf(fp, "Refractive index (FC): n = %g\n", o->n);
     }
-    if (o->on_file != NULL) {
+    if (on_use != 0 && o->on_file != NULL) {
         fprintf(fp, "Oren-Nayar: rho, sigma %s %s\n",
-                o->exact ? "fitted; tabulated values (compared) from"
-                         : "from",
+                (on_use & BF_REP_INPUT_FREED)
+                    ? "fitted; tabulated values (compared) from"
+                    : "from",
                 o->on_file);
     }
     fputc('\n', fp);

@@ -44,6 +44,17 @@ size_t bf_rep_n_specular(const bf_rep_study *st);
  * ON's rho and sigma under --fit exact): the run's "Free parameters". */
 int bf_rep_param_freed(const bf_model_type *v, size_t j);
 
+/* How st's models use inputs of kind `kind` (bf_param.input), a set of
+ * BF_REP_INPUT_*: HELD when one holds such a parameter (the study gives
+ * its value: --n, --n-file, --on-params), FREED when one fits it though
+ * the paper's protocol holds it (bf_rep_param_freed: FC's n, ON's rho
+ * and sigma under --fit exact), OWN when one fits it as a parameter of
+ * its own (a specular model's n under --fresnel dielectric, ABC's ior,
+ * WNO's n). The description's and the page's Fresnel and Oren-Nayar
+ * lines follow it. */
+enum { BF_REP_INPUT_HELD = 1, BF_REP_INPUT_FREED = 2, BF_REP_INPUT_OWN = 4 };
+unsigned bf_rep_input_use(const bf_rep_study *st, bf_input kind);
+
 /* Prints what was run: data, configurations used, conventions, the fit,
  * its free parameters and the analysis. Returns BF_REPORT_OK, or
  * BF_REPORT_SOFTWARE after the message when out of memory. */

@@ -414,12 +414,13 @@ Test(report, draws_single_column_figures_on_request)
     free(page);
 }
 
-/* The page's conventions say what the run held and what it fitted, and
- * only of the models it ran (and the page counts one sample as one): the paper's protocol holds n = 1.7 and
- * evaluates ON at tabulated rho, sigma; --fit exact frees both
- * (bf_model_variant_exact), and with --n given n stays fixed; a
- * specular model alone has no grid, FC or ON line, and under
- * --fresnel dielectric its own n is fitted. */
+/* The page's conventions and the run's description under them (as
+ * brdffit prints it) say what the run held and what it fitted, and only
+ * of the models it ran (and the page counts one sample as one): the
+ * paper's protocol holds n = 1.7 and evaluates ON at tabulated rho,
+ * sigma; --fit exact frees both (bf_model_variant_exact), and with --n
+ * given n stays fixed; a specular model alone has no grid, FC or ON
+ * line, and under --fresnel dielectric its own n is fitted. */
 Test(report, conventions_follow_the_models_and_their_freed_inputs)
 {
     static const char *const paper[] = {"--models", "FC-E,ON", "--format",
@@ -448,6 +449,7 @@ Test(report, conventions_follow_the_models_and_their_freed_inputs)
         const char *dir = bf_test_tmpdir();
         char *page;
         char *conv;
+        char *desc;
         cr_assert_eq(run_report(dir, "44", runs[r], NULL), 0, "run %d", r);
         page = page_of(dir);
         conv = strstr(page, "<h2 id=\"conventions\">");
@@ -463,6 +465,20 @@ Test(report, conventions_follow_the_models_and_their_freed_inputs)
                      on_line[r] == 1, "run %d", r);
         cr_expect_eq(strstr(conv, "<li>Exhaustive grids") != NULL, grids[r],
                      "run %d", r);
+        /* the description: the same lines */
+        desc = strstr(conv, "<pre>");
+        cr_assert_not_null(desc, "run %d", r);
+        cr_expect_eq(strstr(desc, "Refractive index (FC): n = ") != NULL,
+                     r == 0 || r == 2, "run %d", r);
+        cr_expect_eq(strstr(desc, "Oren-Nayar: rho, sigma fitted") != NULL,
+                     on_line[r] == 2, "run %d", r);
+        cr_expect_eq(strstr(desc, "Oren-Nayar: rho, sigma from") != NULL,
+                     on_line[r] == 1, "run %d", r);
+        cr_expect_eq(strstr(desc, "grid optimum, then GSL Brent") != NULL ||
+                         strstr(desc, "Fit: exhaustive") != NULL,
+                     grids[r], "run %d", r);
+        cr_expect_eq(strstr(desc, "Free parameters") != NULL,
+                     r == 1 || r == 2, "run %d", r);
         /* one sample, one or two models: no "1 samples", "1 models" */
         cr_expect(strstr(page, " 1 samples") == NULL, "run %d", r);
         cr_expect(strstr(page, " 1 models") == NULL, "run %d", r);
