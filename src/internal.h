@@ -4,6 +4,7 @@
 #define BF_INTERNAL_H
 
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "brdffit.h"
 
@@ -12,6 +13,24 @@
 #else
 #define BF__PRINTF(fmt, args)
 #endif
+
+/* ======================================================================
+ * --- memory ---
+ * ====================================================================== */
+
+/* bytes rounded up to whole 64-byte cache lines (a workspace's parts
+ * apart, so no two threads' writes share a line). */
+static inline size_t bf__line_bytes(size_t bytes)
+{
+    return (bytes + 63) / 64 * 64;
+}
+
+/* A 64-byte-aligned block of at least bytes (aligned_alloc wants a size
+ * that is a multiple of the alignment); free() releases it. */
+static inline void *bf__alloc_lines(size_t bytes)
+{
+    return aligned_alloc(64, bf__line_bytes(bytes));
+}
 
 /* ======================================================================
  * --- error reports (src/error.c) ---

@@ -65,7 +65,7 @@ bf_fit_workspace *bf_fit_alloc(size_t n)
     w->curve = malloc(n * sizeof *w->curve);
     w->work_bytes = registry_work_bytes();
     if (w->work_bytes > 0) {
-        w->work = aligned_alloc(64, (w->work_bytes + 63) / 64 * 64);
+        w->work = bf__alloc_lines(w->work_bytes);
     }
     if (w->curve == NULL || (w->work_bytes > 0 && w->work == NULL)) {
         bf_fit_free(w);
@@ -93,7 +93,7 @@ static int eval_work(bf_fit_workspace *w, const bf_model_type *type,
     *own = NULL;
     *work = w->work;
     if (type->work_size > w->work_bytes) {
-        *own = aligned_alloc(64, (type->work_size + 63) / 64 * 64);
+        *own = bf__alloc_lines(type->work_size);
         *work = *own;
         if (*own == NULL) {
             return BF_ENOMEM;

@@ -81,8 +81,8 @@ static void block_state_release(bf__block *blk)
 void *bf__block_state(bf__block *blk, size_t head, size_t n_doubles,
                       double **arrays)
 {
-    size_t off = (head + 63) / 64 * 64;
-    size_t len = off + (n_doubles * sizeof(double) + 63) / 64 * 64;
+    size_t off = bf__line_bytes(head);
+    size_t len = off + bf__line_bytes(n_doubles * sizeof(double));
     unsigned char *mem;
     memset(blk, 0, sizeof *blk);
     if (n_doubles > (SIZE_MAX - 128 - off) / sizeof(double)) {

@@ -260,7 +260,7 @@ int bf_model_albedo(const bf_model_type *type, const double *param,
     a.theta_o = 0.0;
     a.failed = 0;
     a.work = (type->work_size > 0)
-                 ? aligned_alloc(64, (type->work_size + 63) / 64 * 64)
+                 ? bf__alloc_lines(type->work_size)
                  : NULL;
     a.inner = gsl_integration_workspace_alloc(ALB_LIMIT);
     outer = gsl_integration_workspace_alloc(ALB_LIMIT);

@@ -36,16 +36,10 @@ BF_REGISTRY(BF_REGISTRY_DECLARE)
 #define GRAZING_EPS 1e-7
 #define NAME_MAX_LEN 48
 
-/* bytes rounded up to whole 64-byte lines (the workspace's parts apart). */
-static size_t line_bytes(size_t bytes)
-{
-    return (bytes + 63) / 64 * 64;
-}
-
 /* Workspace: CHUNK values and geometries of D, then D's and S's own. */
 static size_t chunk_bytes(void)
 {
-    return line_bytes(CHUNK * (sizeof(double) + sizeof(bf_geom)));
+    return bf__line_bytes(CHUNK * (sizeof(double) + sizeof(bf_geom)));
 }
 
 static int composite_eval(const bf_model_type *d, const bf_model_type *s,
@@ -218,13 +212,13 @@ typedef struct {
 
 static size_t part_work(const bf_kernel *kr, size_t n)
 {
-    return kr->work_bytes != NULL ? line_bytes(kr->work_bytes(kr, n)) : 0;
+    return kr->work_bytes != NULL ? bf__line_bytes(kr->work_bytes(kr, n)) : 0;
 }
 
 /* The memo, dv and ce: the head of the workspace. */
 static size_t head_bytes(size_t n)
 {
-    return line_bytes(sizeof(diff_memo)) + 2 * line_bytes(n * sizeof(double));
+    return bf__line_bytes(sizeof(diff_memo)) + 2 * bf__line_bytes(n * sizeof(double));
 }
 
 static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
@@ -240,13 +234,13 @@ static size_t comp_work_bytes(const bf_kernel *kr, size_t n)
  * workspace: FC's Fresnel factor). */
 static double *dv_of(void *work)
 {
-    return (double *)((char *)work + line_bytes(sizeof(diff_memo)));
+    return (double *)((char *)work + bf__line_bytes(sizeof(diff_memo)));
 }
 
 static double *ce_of(const bf__prep *pm, void *work)
 {
     return (double *)((char *)dv_of(work)
-                      + line_bytes(pm->n * sizeof(double)));
+                      + bf__line_bytes(pm->n * sizeof(double)));
 }
 
 static char *d_work(const bf__prep *pm, void *work)

@@ -170,7 +170,7 @@ int bf_model_eval(const bf_model_type *type, const double *param, size_t n,
     size_t k;
     int rc;
     if ((type != NULL) && (type->work_size > 0)) {
-        work = aligned_alloc(64, (type->work_size + 63) / 64 * 64);
+        work = bf__alloc_lines(type->work_size);
         if (work == NULL) {
             for (k = 0; (out != NULL) && (k < n); k++) {
                 out[k] = NAN;
