@@ -29,7 +29,8 @@
  *     S = sum_c sum_k w (rho_hat^(c) - rho^(c))^2, E = sqrt(S / (K C))
  * The other free parameters: a product grid over their domains (log-spaced
  * where the domain is positive and spans a factor 50 or more: alpha in
- * [1e-3, 2], the exponents), then Levenberg-Marquardt from the grid's
+ * [1e-3, 2], the exponents), then Levenberg-Marquardt (lmq.c: turning to
+ * quasi-Newton steps near a large-residual minimum) from the grid's
  * best local minima in the same coordinates (ln x where the grid is
  * log-spaced), Nelder-Mead where it ends on a bound short of a KKT point,
  * the scales re-solved at every trial point; every trial point clamped

@@ -256,7 +256,8 @@ static void describe_separable(const bf_rep_study *st, FILE *fp)
     fprintf(fp, ": separable least squares -- the scales solved exactly "
                 "(non-negative least squares) at every point, a product "
                 "grid over the other parameters, then Levenberg-Marquardt "
-                "from the grid's lowest local minima%s (doc/methods.md §1, "
+                "(turning quasi-Newton near a large-residual minimum) from "
+                "the grid's lowest local minima%s (doc/methods.md §1, "
                 "\"The specular models and the composites: separable least "
                 "squares\")\n",
             st->opts.objective == BF_OBJ_NGAN
