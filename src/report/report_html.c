@@ -144,7 +144,9 @@ static void provenance(FILE *fp, const bf_report_meta *meta)
 static const char *style =
     "body{font-family:sans-serif;max-width:1100px;margin:1em auto;"
     "padding:0 1em;color:#111;line-height:1.4}"
-    "table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:90%}"
+    /* a table wider than the page scrolls in its own box */
+    "table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:90%;"
+    "display:block;max-width:100%;overflow-x:auto}"
     "th,td{border:1px solid #bbb;padding:2px 6px}th{background:#f2f2f2}"
     "td.n{text-align:right;font-variant-numeric:tabular-nums}"
     "td.best{font-weight:bold;background:#e6f0fa}"
