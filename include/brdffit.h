@@ -1707,8 +1707,9 @@ int bf_study_wins(const bf_study_spec *spec, const bf_fit_stats *stats,
 /* The profile of pb's objective along free parameter j as a curve
  * (doc/methods.md §3): dev[i] = n ln(S_p(theta[i]) / S_min) at the n
  * increasing values theta[i] within the search range [lo_j, hi_j], S_p
- * minimised over the other free parameters (warm-started outward from the
- * optimum), S_min the objective at best (the exact optimum,
+ * minimised over the other free parameters as the profile intervals do
+ * (the refinement warm-started outward from the optimum and the grid
+ * fit, the lower), S_min the objective at best (the exact optimum,
  * bf_fit_refine), n the sum of the weights. The profile interval is where
  * dev <= chi2_1(level) (3.841 at 95%). dev[i] is NaN where the model is
  * undefined. BF_EINVAL on bad arguments or theta out of range or not

@@ -577,6 +577,14 @@ int bf__profile_steps(bf__fitctx *fc, const bf_fit_result *best, double thr,
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double d0, double *low, double *high,
                        unsigned *open);
+/* The curve of that criterion, dev[k] = n ln(S_p(theta[k]) / S_min) (n
+ * values, increasing; NaN where the inner fit fails), with the inner fits
+ * the intervals take (profile.c) at every point: outward from best, the
+ * refinement warm-started from the inner neighbour and the thorough
+ * (grid) fit, the lower. BF_OK, BF_ENOMEM, or bf__fit_value's failure at
+ * best. */
+int bf__profile_curve(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                      size_t n, const double *theta, double *dev);
 /* The likelihood intervals' threshold n ln(1 + F_{1,nu}(level) / nu)
  * (intervals.c, [Bates & Watts §6.1.2]) for n the sum of the weights and
  * nu = n - k, finite at every nu >= 1. */

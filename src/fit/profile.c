@@ -654,6 +654,82 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                                             high, open);
 }
 
+/* The profile of fc->pb's parameter j about best under the threshold
+ * thr: p set up, fc switched to p->sub with the inner fits' stall stop
+ * (undone by profile_end). BF_OK, or bf__fit_value's failure at best. */
+static int profile_begin(profile_t *p, bf__fitctx *fc,
+                         const bf_fit_result *best, size_t j, double thr)
+{
+    const bf_problem *pb = fc->pb;
+    int rc;
+    memset(p, 0, sizeof *p);
+    p->fc = fc;
+    p->sub = *pb;
+    p->sub.free_mask &= ~(1u << j);
+    memcpy(p->sub.fixed, best->param, sizeof p->sub.fixed);
+    memcpy(p->start, best->param, sizeof p->start);
+    memcpy(p->est, best->param, sizeof p->est);
+    p->j = j;
+    p->n_w = bf__weight_sum(pb);
+    p->chi2 = thr;
+    rc = bf__fit_value(fc, best->param, &p->s_min);
+    if (rc == BF_OK) {
+        if (!(p->s_min > DBL_MIN)) {
+            p->s_min = DBL_MIN; /* an exact fit: the interval is a point */
+        }
+        bf__fitctx_use(fc, &p->sub);
+        fc->stall = fmax(CI_STALL_CRIT / p->n_w, CI_STALL_MIN);
+    }
+    return rc;
+}
+
+static void profile_end(bf__fitctx *fc, const bf_problem *pb)
+{
+    bf__fitctx_use(fc, pb);
+    fc->stall = 0.0;
+}
+
+int bf__profile_curve(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                      size_t n, const double *theta, double *dev)
+{
+    const bf_problem *pb = fc->pb;
+    profile_t p;
+    size_t mid = 0;
+    size_t k;
+    int side;
+    int rc = profile_begin(&p, fc, best, j, 0.0); /* crit_at: D itself */
+    for (k = 0; k < n; k++) {
+        dev[k] = NAN;
+    }
+    while (mid < n && theta[mid] < best->param[j]) {
+        mid++;
+    }
+    /* outward from the optimum, each point warm-started from its inner
+     * neighbour (the nuisance optimum moves smoothly with theta) */
+    for (side = 0; side < 2 && rc == BF_OK; side++) {
+        memcpy(p.start, best->param, sizeof p.start);
+        for (k = 0; (side == 0 ? k < n - mid : k < mid) && rc == BF_OK;
+             k++) {
+            size_t at = side == 0 ? mid + k : mid - 1 - k;
+            int improved;
+            /* the thorough fit at every point: a curve drawn inside the
+             * interval too, where a warm chain can follow a local
+             * minimum of the nuisance (FC-G's n) */
+            double c = crit_at(&p, theta[at], FIT_THOROUGH, &improved);
+            if (p.status == BF_ENOMEM) {
+                rc = BF_ENOMEM;
+            } else if (p.status != BF_OK) {
+                p.status = BF_OK; /* not defined there: left NaN */
+                memcpy(p.start, best->param, sizeof p.start);
+            } else { /* S_p >= S_min up to the inner fits' tolerance */
+                dev[at] = fmax(c, 0.0);
+            }
+        }
+    }
+    profile_end(fc, pb);
+    return rc;
+}
+
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double d0, double *low, double *high,
                        unsigned *open)
@@ -663,31 +739,13 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     double theta_hat = best->param[j];
     int at_lo = 0;
     int at_hi = 0;
-    int rc;
-
-    memset(&p, 0, sizeof p);
-    p.fc = fc;
-    p.sub = *pb;
-    p.sub.free_mask &= ~(1u << j);
-    memcpy(p.sub.fixed, best->param, sizeof p.sub.fixed);
-    memcpy(p.start, best->param, sizeof p.start);
-    memcpy(p.est, best->param, sizeof p.est);
-    p.j = j;
-    p.n_w = bf__weight_sum(pb);
-    p.chi2 = thr;
-    rc = bf__fit_value(fc, best->param, &p.s_min);
+    int rc = profile_begin(&p, fc, best, j, thr);
     if (rc == BF_OK) {
-        if (!(p.s_min > DBL_MIN)) {
-            p.s_min = DBL_MIN; /* an exact fit: the interval is a point */
-        }
-        bf__fitctx_use(fc, &p.sub);
-        fc->stall = fmax(CI_STALL_CRIT / p.n_w, CI_STALL_MIN);
         rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
         if (rc == BF_OK) {
             rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
         }
-        bf__fitctx_use(fc, pb);
-        fc->stall = 0.0;
+        profile_end(fc, pb);
     }
     *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u);
     return rc;

@@ -14,39 +14,10 @@
  *   objective [1], { theta_j : D <= n ln(1 + F_{1,nu}(0.95) / nu) } under
  *   the likelihood, nu = n - k [2].
  */
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "fit/engine.h"
-
-/* S_p at theta: pb with parameter j held there (sub has j fixed), the other
- * free parameters minimised from start, which gets their optimum. */
-static int profile_value(bf_problem *sub, size_t j, double theta,
-                         double *start, double *work, bf__fitctx *fc,
-                         double *s)
-{
-    bf_fit_result r;
-    int rc;
-    sub->fixed[j] = theta;
-    start[j] = theta;
-    if (sub->free_mask == 0) {
-        return bf_problem_value(sub, sub->fixed, work, s);
-    }
-    if (fc != NULL) { /* a specular model: its scales solved (varpro.c) */
-        bf__fitctx_use(fc, sub);
-        rc = bf__varpro_refine(fc, start, &r);
-    } else {
-        rc = bf_fit_minimise(sub, start, &r);
-    }
-    if (rc != BF_OK && rc != BF_ENOCONV) {
-        return rc;
-    }
-    memcpy(start, r.param, BF_MAX_PARAMS * sizeof *start);
-    *s = r.lse;
-    return BF_OK;
-}
 
 /* The valid arguments of a profile curve of pb along j. */
 static int curve_args(const bf_problem *pb, const bf_fit_result *best,
@@ -68,71 +39,15 @@ static int curve_args(const bf_problem *pb, const bf_fit_result *best,
     return 1;
 }
 
-/* bf_fit_profile_curve for valid arguments. */
+/* bf_fit_profile_curve for valid arguments: the intervals' inner fits
+ * (bf__profile_curve, profile.c) on one engine for the whole curve. */
 static int curve(const bf_problem *pb, const bf_fit_result *best, size_t j,
                  size_t n, const double *theta, double *dev)
 {
-    bf_problem sub;
     bf__solo so;
-    double start[BF_MAX_PARAMS];
-    double *work;
-    int spec;
-    double s_min;
-    double n_w = 0.0;
-    size_t mid = 0;
-    size_t k;
-    int side;
-    int rc;
-
-    work = malloc(2 * pb->n * sizeof *work + 1);
-    if (work == NULL) {
-        return BF_ENOMEM;
-    }
-    /* a specular model under ngan (SPEC §9, §10): as its intervals, the
-     * scales solved exactly at every point (profile.c) */
-    spec = pb->type->kind == BF_MODEL_SPECULAR &&
-           pb->objective == BF_OBJ_NGAN;
-    if (spec && (rc = bf__solo_init(&so, pb)) != BF_OK) {
-        free(work);
-        return rc;
-    }
-    for (k = 0; k < pb->n; k++) {
-        n_w += pb->weight != NULL ? pb->weight[k] : 1.0;
-    }
-    rc = bf_problem_value(pb, best->param, work, &s_min);
-    if (rc != BF_OK) {
-        free(work);
-        if (spec) {
-            bf__solo_free(&so);
-        }
-        return rc;
-    }
-    s_min = fmax(s_min, DBL_MIN); /* an exact fit */
-    sub = *pb;
-    sub.free_mask &= ~(1u << j);
-    while (mid < n && theta[mid] < best->param[j]) {
-        mid++;
-    }
-    /* outward from the optimum, each point warm-started from its inner
-     * neighbour (the nuisance optimum moves smoothly with theta) */
-    for (side = 0; side < 2 && rc == BF_OK; side++) {
-        memcpy(sub.fixed, best->param, sizeof sub.fixed);
-        memcpy(start, best->param, sizeof start);
-        for (k = 0; side == 0 ? k < n - mid : k < mid; k++) {
-            size_t at = side == 0 ? mid + k : mid - 1 - k;
-            double s;
-            int e = profile_value(&sub, j, theta[at], start, work,
-                                  spec ? &so.fc : NULL, &s);
-            if (e == BF_ENOMEM) {
-                rc = e;
-                break;
-            }
-            /* S_p >= S_min up to the minimiser's tolerance: D >= 0 */
-            dev[at] = e == BF_OK ? n_w * log(fmax(s, s_min) / s_min) : NAN;
-        }
-    }
-    free(work);
-    if (spec) {
+    int rc = bf__solo_init(&so, pb);
+    if (rc == BF_OK) {
+        rc = bf__profile_curve(&so.fc, best, j, n, theta, dev);
         bf__solo_free(&so);
     }
     return rc;
