@@ -633,3 +633,53 @@ Test(profile, has_no_incidence_angle_without_in_plane_views)
     cr_assert_eq(bf_geom_plane_incidences(1, &g, -1.0, 4, th, &n), BF_EINVAL);
     cr_assert_eq(bf_geom_plane_incidences(1, &g, NAN, 4, th, &n), BF_EINVAL);
 }
+
+/* The curve's inner fits find the profile itself, not a local minimum
+ * of the other parameters: on sample 16 FC-G's n has two basins for a
+ * range of its sigma/T (the report's figure drew bumps inside the
+ * interval when each point only refined from its neighbour's optimum).
+ * At every point the curve lies no higher than an independent whole-
+ * range minimisation over n (bf_fit_minimise from the optimum's n). */
+Test(profile, curve_is_the_profile_where_the_nuisance_has_two_basins)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    double work[2 * BF_CURET_NCONF];
+    double theta[41];
+    double dev[41];
+    size_t n = curet_sample(16, geom, data);
+    bf_model_variant v;
+    bf_problem pb;
+    bf_problem sub;
+    bf_fit_result best;
+    double s_min;
+    size_t i;
+    bf_model_variant_init(&v, bf_model_fc_g);
+    cr_assert_eq(bf_model_variant_fit(&v, "n", BF_FREE_N_LO, BF_FREE_N_HI,
+                                      BF_FREE_N_STEP),
+                 BF_OK);
+    cr_assert_eq(bf_problem_init(&pb, &v.type, NULL, n, geom, data), BF_OK);
+    optimum(&pb, &best);
+    cr_assert_eq(bf_problem_value(&pb, best.param, work, &s_min), BF_OK);
+    for (i = 0; i < 41; i++) {
+        theta[i] = fmax(pb.lo[0], best.param[0] - 0.4 + 0.02 * (double)i);
+    }
+    for (i = 1; i < 41; i++) {
+        cr_assert(theta[i] > theta[i - 1]);
+    }
+    cr_assert_eq(bf_fit_profile_curve(&pb, &best, 0, 41, theta, dev), BF_OK);
+    sub = pb;
+    sub.free_mask &= ~1u;
+    for (i = 0; i < 41; i++) {
+        double start[BF_MAX_PARAMS];
+        bf_fit_result r;
+        double direct;
+        memcpy(start, best.param, sizeof start);
+        start[0] = theta[i];
+        sub.fixed[0] = theta[i];
+        cr_assert_eq(bf_fit_minimise(&sub, start, &r), BF_OK);
+        direct = (double)n * log(fmax(r.lse, s_min) / s_min);
+        cr_assert(dev[i] <= direct + 1e-6, "sigma/T %g: curve %.9g above "
+                  "the profile %.9g", theta[i], dev[i], direct);
+    }
+}
