@@ -77,16 +77,6 @@ void bf__lmq_free(bf__lmq *w)
     }
 }
 
-size_t bf__lmq_n(const bf__lmq *w)
-{
-    return w->n;
-}
-
-size_t bf__lmq_m(const bf__lmq *w)
-{
-    return w->m;
-}
-
 static double dot(const double *a, const double *b, size_t n)
 {
     double s = 0.0;
@@ -266,6 +256,24 @@ static void bfgs(size_t m, double *B, const double *h, const double *y)
     }
 }
 
+/* GSL's xtol and gtol tests after an accepted step h to u (gradient g,
+ * cost c): every |h_j| <= tol (|u_j| + tol), or max_j |g_j| max(|u_j|, 1)
+ * <= tol max(c / 2, 1). */
+static int tolerances_met(size_t m, const double *u, const double *h,
+                          const double *g, double c, double tol)
+{
+    int small = 1;
+    double gs = 0.0;
+    size_t k;
+    for (k = 0; k < m; k++) {
+        double au = fabs(u[k]);
+        double gk = fabs(g[k]) * (au > 1.0 ? au : 1.0);
+        small = small && fabs(h[k]) <= tol * (au + tol);
+        gs = gk > gs ? gk : gs;
+    }
+    return small || gs <= tol * (0.5 * c > 1.0 ? 0.5 * c : 1.0);
+}
+
 static void swap(double **a, double **b)
 {
     double *t = *a;
@@ -292,7 +300,6 @@ int bf__lmq_run(bf__lmq *w, double *u, double *c, bf__lmq_fn fn, void *arg,
     int qn_fails = 0;
     int near = 0;
     size_t i;
-    size_t k;
     if (fn(u, w->r, arg)) {
         return BF__LMQ_UNDEFINED;
     }
@@ -311,6 +318,7 @@ int bf__lmq_run(bf__lmq *w, double *u, double *c, bf__lmq_fn fn, void *arg,
     while (iter < o->max_iter) {
         double pred;
         double ct;
+        double c0;
         double F = 0.5 * *c;
         double rho;
         int ok;
@@ -407,26 +415,14 @@ int bf__lmq_run(bf__lmq *w, double *u, double *c, bf__lmq_fn fn, void *arg,
         swap(&w->J, &w->Jt);
         fails = 0;
         iter++;
-        {
-            double c0 = *c;
-            int small = 1;
-            double gs = 0.0;
-            *c = ct;
-            if (o->check != NULL && o->check(u, ct, arg)) {
-                return BF__LMQ_JOINED;
-            }
-            if (o->stall > 0.0 && c0 - ct < o->stall * ct) {
-                return BF__LMQ_CONVERGED;
-            }
-            for (k = 0; k < m; k++) {
-                double au = fabs(u[k]);
-                double gk = fabs(g[k]) * (au > 1.0 ? au : 1.0);
-                small = small && fabs(h[k]) <= o->tol * (au + o->tol);
-                gs = gk > gs ? gk : gs;
-            }
-            if (small || gs <= o->tol * (0.5 * ct > 1.0 ? 0.5 * ct : 1.0)) {
-                return BF__LMQ_CONVERGED;
-            }
+        c0 = *c;
+        *c = ct;
+        if (o->check != NULL && o->check(u, ct, arg)) {
+            return BF__LMQ_JOINED;
+        }
+        if ((o->stall > 0.0 && c0 - ct < o->stall * ct) ||
+            tolerances_met(m, u, h, g, ct, o->tol)) {
+            return BF__LMQ_CONVERGED;
         }
     }
     return BF__LMQ_MAXITER;

@@ -37,11 +37,9 @@ enum {
 };
 
 /* A workspace for n residuals and m <= BF_MAX_PARAMS parameters; NULL
- * when out of memory. Its n and m: bf__lmq_n, bf__lmq_m. */
+ * when out of memory. */
 bf__lmq *bf__lmq_alloc(size_t n, size_t m);
 void bf__lmq_free(bf__lmq *w);
-size_t bf__lmq_n(const bf__lmq *w);
-size_t bf__lmq_m(const bf__lmq *w);
 
 /* Minimises |r(u)|² from u (replaced by the last accepted iterate);
  * *c its cost. One of BF__LMQ_*. */

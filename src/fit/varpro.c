@@ -272,7 +272,7 @@ static int f_lm(const double *u, double *r, void *arg)
     if (!(v < BF__VP_UNDEFINED)) {
         return 1;
     }
-    bf__vp_residuals(sp->fc, sp->sw, r, 1);
+    bf__vp_residuals(sp->fc, sp->sw, r);
     return 0;
 }
 

@@ -23,10 +23,9 @@ typedef struct {
 } bf__vp_normal;
 
 /* The residuals sw_k (curve_k - R_k) of fc's last evaluation (fc->curve,
- * every block's; sw NULL: 1) into f at stride: Levenberg-Marquardt's
- * vector (varpro.c). */
-void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f,
-                      size_t stride);
+ * every block's, block after block; sw NULL: 1) into f: Levenberg-
+ * Marquardt's vector (varpro.c, lmq.c). */
+void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f);
 
 /* NNLS from the normal equations ne (two columns when two): 1 with t the
  * unconstrained optimum when it is inside [0, hi]; else 0 with t the two

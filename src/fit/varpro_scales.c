@@ -249,23 +249,22 @@ int bf__varpro_magnitude(bf__fitctx *fc, const double *param, double *mag,
 }
 
 BF__CLONES
-void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f,
-                      size_t stride)
+void bf__vp_residuals(const bf__fitctx *fc, const double *sw, double *f)
 {
     const size_t n = fc->pb->n;
     const double *c = fc->curve;
     const double *d = fc->pb->data;
     size_t b;
     size_t k;
-    for (b = 0; b < fc->blocks; b++, c += n, d += n, f += n * stride) {
-        if (sw == NULL && stride == 1) { /* the common case, vectorised */
+    for (b = 0; b < fc->blocks; b++, c += n, d += n, f += n) {
+        if (sw == NULL) {
             for (k = 0; k < n; k++) {
                 f[k] = c[k] - d[k];
             }
             continue;
         }
         for (k = 0; k < n; k++) {
-            f[k * stride] = (sw != NULL ? sw[k] : 1.0) * (c[k] - d[k]);
+            f[k] = sw[k] * (c[k] - d[k]);
         }
     }
 }
