@@ -75,6 +75,7 @@ int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
     size_t j;
     size_t k;
     size_t q = 0;
+    int engine = 0;
     int rc = BF_OK;
     for (j = 0; j < pb->type->p; j++) {
         if (!((mask >> j) & 1u)) {
@@ -94,11 +95,14 @@ int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
     }
     if (rc == BF_OK) {
         rc = w == NULL ? BF_ENOMEM : bf__solo_init(&so, pb);
+        engine = rc == BF_OK;
     }
     if (rc == BF_OK) {
         rc = bf__interval_problem(&so.fc, best, noise, level, w, iv, &lik,
                                   &t);
-        bf__solo_free(&so);
+    }
+    if (rc == BF_OK) { /* one engine for every curve, as bf__intervals */
+        bf__fitctx_use(&so.fc, &lik);
     }
     for (j = 0; j < pb->type->p; j++) {
         if (!((mask >> j) & 1u)) {
@@ -108,9 +112,13 @@ int bf__interval_curves(const bf_problem *pb, const bf_fit_result *best,
         thr[q] = rc == BF_OK && isfinite(iv->robust[j]) ? t * iv->robust[j]
                                                          : t;
         if (rc == BF_OK) { /* around the estimate the intervals are about */
-            rc = curve(&lik, &iv->ml, j, n, theta + q * n, dev + q * n);
+            rc = bf__profile_curve(&so.fc, &iv->ml, j, n, theta + q * n,
+                                   dev + q * n);
         }
         q++;
+    }
+    if (engine) {
+        bf__solo_free(&so);
     }
     free(w);
     return rc;
