@@ -212,13 +212,15 @@ typedef struct {
 
 static size_t part_work(const bf_kernel *kr, size_t n)
 {
-    return kr->work_bytes != NULL ? bf__line_bytes(kr->work_bytes(kr, n)) : 0;
+    return kr->work_bytes != NULL ? bf__line_bytes(kr->work_bytes(kr, n))
+                                   : 0;
 }
 
 /* The memo, dv and ce: the head of the workspace. */
 static size_t head_bytes(size_t n)
 {
-    return bf__line_bytes(sizeof(diff_memo)) + 2 * bf__line_bytes(n * sizeof(double));
+    return bf__line_bytes(sizeof(diff_memo)) +
+           2 * bf__line_bytes(n * sizeof(double));
 }
 
 static size_t comp_work_bytes(const bf_kernel *kr, size_t n)

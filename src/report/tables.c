@@ -164,21 +164,28 @@ int bf_rep_param_freed(const bf_model_type *v, size_t j)
            !base->param[j].fitted;
 }
 
+/* bf_rep_input_use of one model. */
+static unsigned model_input_use(const bf_model_type *v, bf_input kind)
+{
+    unsigned use = 0;
+    size_t j;
+    for (j = 0; j < v->p; j++) {
+        if (v->param[j].input != kind) {
+            continue;
+        }
+        use |= !v->param[j].fitted        ? BF_REP_INPUT_HELD
+               : bf_rep_param_freed(v, j) ? BF_REP_INPUT_FREED
+                                          : BF_REP_INPUT_OWN;
+    }
+    return use;
+}
+
 unsigned bf_rep_input_use(const bf_rep_study *st, bf_input kind)
 {
     unsigned use = 0;
     size_t m;
-    size_t j;
     for (m = 0; m < st->n_models; m++) {
-        const bf_model_type *v = st->models[m];
-        for (j = 0; j < v->p; j++) {
-            if (v->param[j].input != kind) {
-                continue;
-            }
-            use |= !v->param[j].fitted        ? BF_REP_INPUT_HELD
-                   : bf_rep_param_freed(v, j) ? BF_REP_INPUT_FREED
-                                              : BF_REP_INPUT_OWN;
-        }
+        use |= model_input_use(st->models[m], kind);
     }
     return use;
 }
@@ -334,17 +341,18 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
     const bf_report_options *o = &st->opts;
     size_t r;
     size_t n_spec = bf_rep_n_specular(st);
-    if (o->exact && n_spec < st->n_models) { /* a gridded model */
-        fprintf(fp, "Fit: exact -- %sgrid optimum, then GSL Brent (1 "
-                    "parameter) or Nelder-Mead (2+) within one grid step, "
-                    "|d param| < %g (doc/methods.md §2)\n",
-                n_spec > 0 ? "diffuse models: " : "", BF_REFINE_TOL);
-    }
+    int gridded = n_spec < st->n_models; /* a model of the paper's kind */
     if (o->exact) {
+        if (gridded) {
+            fprintf(fp, "Fit: exact -- %sgrid optimum, then GSL Brent (1 "
+                        "parameter) or Nelder-Mead (2+) within one grid "
+                        "step, |d param| < %g (doc/methods.md §2)\n",
+                    n_spec > 0 ? "diffuse models: " : "", BF_REFINE_TOL);
+        }
         describe_separable(st, fp);
-    }
-    if (o->exact && n_spec < st->n_models) {
-        describe_freed(st, fp);
+        if (gridded) {
+            describe_freed(st, fp);
+        }
     }
     for (r = 0; r < o->n_range; r++) {
         fprintf(fp, "Search range: %s\n", o->range[r]);
@@ -526,18 +534,6 @@ static int build_tables(const bf_rep_study *st, bf_tt **t2, bf_tt **t3)
     return bf_tt_failed(*t2) || bf_tt_failed(*t3) ? -1 : 0;
 }
 
-/* 1 when type takes a fixed input of kind `kind`. */
-static int needs_input(const bf_model_type *type, bf_input kind)
-{
-    size_t j;
-    for (j = 0; j < type->p; j++) {
-        if (!type->param[j].fitted && type->param[j].input == kind) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 static void report_missing(const bf_study_spec *spec,
                            const bf_study_row *rows)
 {
@@ -552,7 +548,8 @@ static void report_missing(const bf_study_spec *spec,
             bf_rep_note("note: %s not evaluated for %zu of %zu sample%s (%s)",
                         spec->models[m]->name, missing, spec->n_targets,
                         spec->n_targets == 1 ? "" : "s",
-                        needs_input(spec->models[m], BF_INPUT_ON)
+                        (model_input_use(spec->models[m], BF_INPUT_ON) &
+                         BF_REP_INPUT_HELD)
                             ? "no rho, sigma given: use --on-params"
                             : "missing per-sample input");
         }
