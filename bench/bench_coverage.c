@@ -8,20 +8,23 @@
  * measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
- * [B [CORNELL_FILE [GEOMETRY]]]]]]]]]
+ * [B [CORNELL_FILE [GEOMETRY [TRUTHS]]]]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
  * or names separated by commas; SEED = 1000, the simulations' seed is
  * SEED + 10 geometry + noise; B = 0, else the bootstrap's replicates: two
  * more columns, the bootstrap's coverage and width over the spread;
- * GEOMETRY = all, or one geometry's name: CURET, Cornell or random).
+ * GEOMETRY = all, or one geometry's name: CURET, Cornell or random;
+ * TRUTHS = default, or name=value pairs separated by commas: a diffuse
+ * model's parameters simulated at value instead of 37 % of their range,
+ * and "at=f" for every other at f of its range).
  * Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
  * (2 z sd; 1 is calibrated), the sd of the objective's estimates over
  * that of the ML ones, and the share of intervals flagged not identified
- * (open to a bound the estimate is not on). Never part of the tests.
+ * (open to a bound the estimate is not on, or split in two regions). Never part of the tests.
  *
  * The specular family (SPEC §9; issue 17 item 6): MODELS may name
  * the composites LAMBERT+X of every specular model X and AS alone (the
@@ -93,6 +96,21 @@ static size_t random_geom(bf_geom *geom, size_t n, unsigned long seed,
     }
     gsl_rng_free(rng);
     return n;
+}
+
+/* The truth of parameter name from truths ("name=value,..."), or dflt
+ * when truths does not name it. */
+static double truth_of(const char *truths, const char *name, double dflt)
+{
+    size_t len = strlen(name);
+    const char *p = truths;
+    while ((p = strstr(p, name)) != NULL) {
+        if ((p == truths || p[-1] == ',') && p[len] == '=') {
+            return strtod(p + len + 1, NULL);
+        }
+        p += len;
+    }
+    return dflt;
 }
 
 /* 1 when name is in the comma-separated list (or the list is "all"). */
@@ -253,6 +271,7 @@ int main(int argc, char **argv)
         argc > 8 ? argv[8]
                  : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
     const char *geometry = argc > 9 ? argv[9] : "all";
+    const char *truths = argc > 10 ? argv[10] : "default";
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -300,7 +319,10 @@ int main(int argc, char **argv)
                     for (j = 0; j < v.type.p; j++) {
                         truth[j] = pb.fixed[j];
                         if ((pb.free_mask >> j) & 1u) {
-                            truth[j] = pb.lo[j] + 0.3731 * (pb.hi[j] - pb.lo[j]);
+                            double f = truth_of(truths, "at", 0.3731);
+                            truth[j] = truth_of(
+                                truths, v.type.param[j].name,
+                                pb.lo[j] + f * (pb.hi[j] - pb.lo[j]));
                         }
                         pb.fixed[j] = truth[j];
                     }
