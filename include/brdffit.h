@@ -1263,7 +1263,10 @@ int bf_study_row_albedo_over_1(const bf_study_row *row);
  * objective minimised over the other free parameters and n the sum of the
  * weights. best is the exact optimum (bf_fit_refine). The interval is
  * clipped to [lo_j, hi_j]; *open gets bit 0 (low end) and bit 1 (high end)
- * when it reaches the search range there. */
+ * when it reaches the search range there, and bit 2 when that set is
+ * split: besides the optimum's region the profile is below the threshold
+ * in another (found by a scan of the search range), and the interval is
+ * the hull of them all (doc/methods.md §3). */
 int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
                       size_t j, double level, double *low, double *high,
                       unsigned *open);
@@ -1341,7 +1344,10 @@ typedef struct {
     unsigned not_identified;  /* bit j: the profile stays below the
                                  threshold to a bound of the search range
                                  on a side where the estimate is not on
-                                 that bound (the end is the bound) */
+                                 that bound (the end is the bound), or is
+                                 below it in a region apart from the
+                                 estimate's too (the interval their hull;
+                                 bf_fit_profile_ci's split) */
     double robust[BF_MAX_PARAMS]; /* BF_CI_PROFILE_LIK: the factor >= 1
                                  parameter j's threshold was multiplied by,
                                  its variance from the residuals (sandwich)

@@ -412,3 +412,12 @@ void bf_test_write_glossy_csv(const char *path, size_t n,
     bf_test_write_model_csv(path, BF_TEST_GLOSSY_NCONF, at, n, mat);
     free(at);
 }
+
+double bf_test_truth_at(const bf_problem *pb, size_t j)
+{
+    double f = pb->type->kind != BF_MODEL_SPECULAR &&
+                       strcmp(pb->type->param[j].name, "n") == 0
+                   ? 0.15
+                   : 0.3731;
+    return pb->lo[j] + f * (pb->hi[j] - pb->lo[j]);
+}

@@ -163,6 +163,15 @@ const char *bf_test_fixture_path(const char *file);
 /* Loads CURET's table.txt and abrdf.dat, failing the test loudly. */
 bf_table *bf_test_load_table(void);
 
+/* Where the coverage tests put the truth of free parameter j of pb: 37 %
+ * of its search range (off every grid point); a diffuse model's
+ * refractive index n at 15 % (1.395 on [1.2, 2.5]), away from n ~ 1.7,
+ * where the normalised shapes of FC-E, FC-G, WNO and WNO-R fold over n:
+ * there the likelihood-ratio statistic is not chi2_1 and the intervals
+ * over-cover, while on either side a profile often has two minima
+ * (doc/methods.md §3, "Split sets"). */
+double bf_test_truth_at(const bf_problem *pb, size_t j);
+
 /* A study of models on targets of ds as the CLI poses it: the default
  * selection, n 1.7, one thread. */
 void bf_test_study_spec(bf_study_spec *spec, const bf_dataset *ds,

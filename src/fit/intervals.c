@@ -166,11 +166,12 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
             out->high[j] = NAN;
             return rc;
         }
-        out->open |= open << (2 * j);
+        out->open |= (open & 3u) << (2 * j);
         /* open where the estimate is not on the bound: the profile stays
-         * below the threshold all the way there */
+         * below the threshold all the way there; or split: below it in a
+         * region apart from the estimate's too (the interval their hull) */
         if (((open & 1u) && out->ml.param[j] > pb->lo[j]) ||
-            ((open & 2u) && out->ml.param[j] < pb->hi[j])) {
+            ((open & 2u) && out->ml.param[j] < pb->hi[j]) || (open & 4u)) {
             out->not_identified |= 1u << j;
         }
     }

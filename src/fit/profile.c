@@ -5,6 +5,8 @@
  *     likelihood intervals; Wilks' theorem).
  * [2] GSL manual, "One Dimensional Root-Finding" (Brent-Dekker,
  *     gsl_root_fsolver_brent).
+ * [3] GSL manual, "One Dimensional Minimization" (Brent,
+ *     gsl_min_fminimizer_brent).
  *
  * Equations (Gaussian errors of unknown variance, n configurations):
  *   -2 ln Lambda(theta_j) = n ln(S_p(theta_j) / S_min)       [1] §9.2
@@ -46,6 +48,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
+#include <gsl/gsl_min.h>
 #include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdlib.h>
@@ -79,6 +82,11 @@
 #define CI_BETTER 1e-12
 /* The local minima of the nuisance grid refined at a grid fit. */
 #define CI_STARTS 4
+/* Points of the scan for regions below the threshold apart from the
+ * optimum's (scan_side), evenly spaced over the search range. */
+#define SCAN_N 13
+/* A dip's minimisation stops at a bracket this share of its width. */
+#define SCAN_TOL 1e-3
 /* Dense data (more than BF__DENSE_K configurations): the bracket is
  * narrowed by at most CI_NARROW predicted points while its outside end's
  * -2 ln Lambda exceeds CI_NARROW_Q times the threshold; each predicted
@@ -406,17 +414,18 @@ static int narrow(profile_t *p, double theta_hat, double *x, double *cx,
     return BF_OK;
 }
 
-/* One end of the interval: walks from the optimum towards limit in steps
- * that double until the criterion (grid fits) turns positive, on dense data
- * narrows that bracket (narrow), finds the root, and re-checks it with a
- * grid fit (see the file comment). *at_limit
- * is set when the interval reaches limit. */
-static int one_side(profile_t *p, double theta_hat, double limit, double d0,
-                    double *end, int *at_limit)
+/* One end of the interval: walks from x0 (the optimum, or a point the
+ * scan found inside; its criterion c0, p->start its nuisance optimum)
+ * towards limit in steps that double until the criterion (grid fits)
+ * turns positive, on dense data narrows that bracket (narrow), finds the
+ * root, and re-checks it with a grid fit (see the file comment).
+ * *at_limit is set when the interval reaches limit. */
+static int one_side(profile_t *p, double theta_hat, double x0, double c0,
+                    double limit, double d0, double *end, int *at_limit)
 {
-    double x = theta_hat;
-    double cx = -p->chi2; /* the criterion at x: S_p = S_min there */
-    double co = 0.0;      /* and at out */
+    double x = x0;
+    double cx = c0;  /* the criterion at x */
+    double co = 0.0; /* and at out */
     double d = d0;
     double nuisance[BF_MAX_PARAMS];
     double inside[BF_MAX_PARAMS]; /* the nuisance optimum at x */
@@ -429,7 +438,7 @@ static int one_side(profile_t *p, double theta_hat, double limit, double d0,
     memcpy(nuisance, p->start, sizeof nuisance);
     memcpy(inside, p->start, sizeof inside);
     *at_limit = 0;
-    if (theta_hat == limit) { /* the optimum is on the search range */
+    if (x0 == limit) { /* the start is on the search range's bound */
         *end = limit;
         *at_limit = 1;
         return BF_OK;
@@ -730,6 +739,142 @@ int bf__profile_curve(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     return rc;
 }
 
+/* The least criterion between the scan's points a < b (their middle
+ * point m lower than both, cm > 0, p->anchor m's nuisance optimum):
+ * Brent's minimiser [3] on the warm criterion's signed root (the same
+ * order), until a point is inside or the bracket is SCAN_TOL of it.
+ * *x, *c get the lowest point found and its criterion, p->start its
+ * nuisance optimum. */
+static int dip(profile_t *p, double a, double m, double b, double ca,
+               double cm, double cb, double *x, double *c)
+{
+    gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    gsl_function fn;
+    double start[BF_MAX_PARAMS];
+    size_t iter = 0;
+    int status;
+    if (s == NULL) {
+        return BF_ENOMEM;
+    }
+    *x = m;
+    *c = cm;
+    memcpy(start, p->anchor, sizeof start);
+    fn.function = crit_warm;
+    fn.params = p;
+    p->n_known = 0;
+    status = gsl_min_fminimizer_set_with_values(
+        s, &fn, m, signed_root(p, cm), a, signed_root(p, ca), b,
+        signed_root(p, cb));
+    while (status == GSL_SUCCESS && iter++ < CI_MAXITER && *c > 0.0 &&
+           p->status == BF_OK) {
+        status = gsl_min_fminimizer_iterate(s);
+        if (p->last_c < *c) {
+            *x = p->last_x;
+            *c = p->last_c;
+            memcpy(start, p->start, sizeof start);
+        }
+        if (gsl_min_fminimizer_x_upper(s) - gsl_min_fminimizer_x_lower(s) <
+            SCAN_TOL * (b - a)) {
+            break;
+        }
+    }
+    gsl_min_fminimizer_free(s);
+    memcpy(p->start, start, sizeof start);
+    if (p->status == BF_ENOMEM) {
+        return BF_ENOMEM;
+    }
+    p->status = BF_OK; /* a point not defined: the dip is outside */
+    return BF_OK;
+}
+
+/* The scan beyond the end *end of the interval found from the optimum,
+ * towards limit: the thorough criterion at the points of SCAN_N evenly
+ * spaced over the search range that lie beyond it, from the nearest out,
+ * and the least criterion between neighbours about each scanned point
+ * lower than both (dip: a region narrower than the points' spacing).
+ * Where a point is inside (a region below the threshold apart from the
+ * optimum's: a profile with two minima, as the Fresnel index's of FC-E,
+ * FC-G, WNO and WNO-R, whose normalised shapes fold over n), the end is
+ * found again from the farthest (one_side) and *split set: the interval
+ * is the hull of the regions, which holds the whole set. p->start is the
+ * optimum's nuisance on return. */
+static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
+                     double *end, int *at_limit, int *split)
+{
+    const double lo = p->fc->pb->lo[p->j];
+    const double hi = p->fc->pb->hi[p->j];
+    double t[SCAN_N + 1];
+    double c[SCAN_N + 1];
+    double nu[SCAN_N + 1][BF_MAX_PARAMS];
+    double far_x = NAN;
+    double far_c = NAN;
+    double far_start[BF_MAX_PARAMS];
+    size_t m = 1;
+    size_t i;
+    int rc = BF_OK;
+    if (*at_limit) {
+        return BF_OK;
+    }
+    t[0] = *end; /* the end found: on the threshold */
+    c[0] = 0.0;
+    memcpy(nu[0], p->start, sizeof nu[0]);
+    for (i = 0; i < SCAN_N; i++) {
+        size_t at = limit > theta_hat ? i : SCAN_N - 1 - i;
+        double x = lo + (hi - lo) * (double)at / (double)(SCAN_N - 1);
+        int improved;
+        if (!(limit > theta_hat ? x > *end + CI_TOL : x < *end - CI_TOL)) {
+            continue;
+        }
+        c[m] = crit_at(p, x, FIT_THOROUGH, &improved);
+        if (p->status == BF_ENOMEM) {
+            return BF_ENOMEM;
+        }
+        if (p->status != BF_OK) { /* not defined there: outside */
+            p->status = BF_OK;
+            c[m] = HUGE_VAL;
+        }
+        t[m] = x;
+        memcpy(nu[m], p->start, sizeof nu[m]);
+        if (c[m] <= 0.0) {
+            far_x = x;
+            far_c = c[m];
+            memcpy(far_start, p->start, sizeof far_start);
+        }
+        m++;
+    }
+    for (i = m >= 2 ? m - 2 : 0; i >= 1; i--) { /* the farthest dip first */
+        double x;
+        double cx;
+        if (!isnan(far_x) && (t[i] - far_x) * (limit - theta_hat) <= 0.0) {
+            break; /* no farther than the farthest point inside */
+        }
+        if (!(c[i] > 0.0 && c[i] < c[i - 1] && c[i] < c[i + 1] &&
+              isfinite(c[i + 1]))) {
+            continue;
+        }
+        memcpy(p->anchor, nu[i], sizeof nu[i]);
+        rc = dip(p, fmin(t[i - 1], t[i + 1]), t[i], fmax(t[i - 1], t[i + 1]),
+                 t[i - 1] < t[i + 1] ? c[i - 1] : c[i + 1], c[i],
+                 t[i - 1] < t[i + 1] ? c[i + 1] : c[i - 1], &x, &cx);
+        if (rc != BF_OK) {
+            return rc;
+        }
+        if (cx <= 0.0) {
+            far_x = x;
+            far_c = cx;
+            memcpy(far_start, p->start, sizeof far_start);
+            break;
+        }
+    }
+    if (!isnan(far_x)) {
+        *split = 1;
+        memcpy(p->start, far_start, sizeof far_start);
+        rc = one_side(p, theta_hat, far_x, far_c, limit, d0, end, at_limit);
+    }
+    memcpy(p->start, p->est, sizeof p->start);
+    return rc;
+}
+
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double d0, double *low, double *high,
                        unsigned *open)
@@ -739,15 +884,26 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     double theta_hat = best->param[j];
     int at_lo = 0;
     int at_hi = 0;
+    int split = 0;
+    int scan = pb->type->kind != BF_MODEL_SPECULAR;
     int rc = profile_begin(&p, fc, best, j, thr);
     if (rc == BF_OK) {
-        rc = one_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo);
+        rc = one_side(&p, theta_hat, theta_hat, -thr, pb->lo[j], d0, low,
+                      &at_lo);
         if (rc == BF_OK) {
-            rc = one_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi);
+            rc = one_side(&p, theta_hat, theta_hat, -thr, pb->hi[j], d0,
+                          high, &at_hi);
+        }
+        if (rc == BF_OK && scan) {
+            rc = scan_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo, &split);
+        }
+        if (rc == BF_OK && scan) {
+            rc = scan_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi,
+                           &split);
         }
         profile_end(fc, pb);
     }
-    *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u);
+    *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u) | (split ? 4u : 0u);
     return rc;
 }
 

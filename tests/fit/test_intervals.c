@@ -10,10 +10,12 @@
  * truth Binomial(200, 0.95) times: sd 0.0154, band [0.90, 0.99] (-3.2 sd,
  * +2.6 sd; the seeds are fixed). The intervals before issue 18 (the
  * objective's S, the scale fixed by the noisy maximum: BF_NOISE_OBJECTIVE)
- * fail it: FC-E's n under max and 5% relative noise covers about a third
- * (checked below, so the test can tell the two apart). Width: the median
+ * fail it: FC-E's n under max and 5% relative noise covers about half
+ * (0.46; checked below, so the test can tell the two apart). Width: the median
  * width over 2 z sd of the estimates the intervals are about within
- * [1/1.3, 1.3] (issue 18's contract). */
+ * [1/1.3, 1.3] (issue 18's contract) where the parameter is identified.
+ * The truths: 37 % of each search range, FC-E's n at 15 % (off the fold
+ * of its profile, bf_test_truth_at). */
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
 #include <gsl/gsl_cdf.h>
@@ -49,7 +51,7 @@ TestSuite(intervals, .init = setup);
 
 
 /* pb for the exact fit's variant of base on geom, truth at 37% of each
- * search range. */
+ * search range (n at 15 %, bf_test_truth_at). */
 static void problem(bf_model_variant *v, const bf_model_type *base,
                     size_t n, const bf_geom *geom, bf_objective obj,
                     bf_problem *pb, double *truth)
@@ -62,7 +64,7 @@ static void problem(bf_model_variant *v, const bf_model_type *base,
     for (j = 0; j < v->type.p; j++) {
         truth[j] = pb->fixed[j];
         if ((pb->free_mask >> j) & 1u) {
-            truth[j] = pb->lo[j] + 0.3731 * (pb->hi[j] - pb->lo[j]);
+            truth[j] = bf_test_truth_at(pb, j);
         }
         pb->fixed[j] = truth[j];
     }
@@ -110,7 +112,15 @@ static void check(const bf_model_type *base, double p, double sd,
                   "%s %s (p = %g, %s): coverage %.3f", base->name,
                   v.type.param[j].name, p, bf_objective_name(obj),
                   cal.coverage[j]);
-        cr_expect(ratio <= WIDTH_TOL && ratio >= 1.0 / WIDTH_TOL,
+        /* the width where the parameter is identified: off the fold of
+         * the Fresnel index (bf_test_truth_at) the estimates fall on two
+         * branches, about half the intervals span both (flagged), and
+         * the estimates' sd is the branches' distance, no interval's
+         * width (doc/methods.md §3, "Split sets") */
+        cr_log_info("%s %s: not identified in %.3f", base->name,
+                    v.type.param[j].name, cal.not_identified[j]);
+        cr_expect(cal.not_identified[j] >= 0.05 ||
+                      (ratio <= WIDTH_TOL && ratio >= 1.0 / WIDTH_TOL),
                   "%s %s (p = %g, %s): width / spread %.2f", base->name,
                   v.type.param[j].name, p, bf_objective_name(obj), ratio);
     }

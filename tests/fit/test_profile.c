@@ -8,6 +8,8 @@
 #include <criterion/criterion.h>
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -164,6 +166,91 @@ Test(profile, crosses_the_threshold_at_the_profile_interval_ends)
         }
     }
     cr_assert_geq(closed, 3u, "m's two ends and at least one of n's");
+}
+
+/* WNO's normalised shape folds over n: at 198 random directions, data
+ * simulated at n = 1.395 with 5 % relative noise are fitted almost as well
+ * by n near 2.15 (noise-free, K ln(S(2.15) / S(1.395)) ~ 2.8 < 3.84), so
+ * the profile's set below the threshold is often two intervals. The
+ * reported interval is their hull, flagged split (bit 2 of open): here
+ * every n of a dense scan of the objective whose deviance is below the
+ * threshold lies inside it, on the first simulation whose scan finds two
+ * regions. Before the scan for regions apart from the optimum's
+ * (profile.c, scan_side) the interval held the optimum's region alone. */
+Test(profile, holds_every_region_of_a_profile_with_two_minima)
+{
+    enum { K = 198, SCAN = 1301 };
+    static bf_geom geom[K];
+    static double truth[K];
+    static double data[K];
+    static double dev[SCAN];
+    double work[2 * K];
+    double cmin = cos(80.0 * M_PI / 180.0);
+    double n0 = 1.395;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    unsigned long seed;
+    size_t k;
+    int tested = 0;
+    cr_assert_not_null(rng);
+    gsl_rng_set(rng, 7);
+    for (k = 0; k < K; k++) {
+        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+        geom[k].phi_i = M_PI;
+        geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
+        geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
+    }
+    cr_assert_eq(bf_model_eval(bf_model_wno, &n0, K, geom, truth), BF_OK);
+    for (seed = 1; seed <= 40 && !tested; seed++) {
+        bf_problem pb;
+        bf_fit_result best;
+        double top = 0.0;
+        double s_min;
+        double lo;
+        double hi;
+        double first = NAN; /* the lowest and highest n inside */
+        double last = NAN;
+        size_t runs = 0;
+        unsigned open;
+        size_t i;
+        gsl_rng_set(rng, seed);
+        for (k = 0; k < K; k++) {
+            data[k] = truth[k] * (1.0 + 0.05 * gsl_ran_gaussian(rng, 1.0));
+            top = data[k] > top ? data[k] : top;
+        }
+        for (k = 0; k < K; k++) {
+            data[k] /= top;
+        }
+        cr_assert_eq(bf_problem_init(&pb, bf_model_wno, NULL, K, geom, data),
+                     BF_OK);
+        optimum(&pb, &best);
+        cr_assert_eq(bf_problem_value(&pb, best.param, work, &s_min), BF_OK);
+        for (i = 0; i < SCAN; i++) { /* one free parameter: S_p = S */
+            double x = pb.lo[0] + (pb.hi[0] - pb.lo[0]) * (double)i /
+                                      (double)(SCAN - 1);
+            double s;
+            cr_assert_eq(bf_problem_value(&pb, &x, work, &s), BF_OK);
+            dev[i] = (double)K * log(s / s_min);
+            if (dev[i] <= CHI2_95) {
+                runs += i == 0 || dev[i - 1] > CHI2_95;
+                first = isnan(first) ? x : first;
+                last = x;
+            }
+        }
+        if (runs < 2) {
+            continue; /* one region: not the case tested */
+        }
+        cr_assert_eq(bf_fit_profile_ci(&pb, &best, 0, 0.95, &lo, &hi, &open),
+                     BF_OK);
+        cr_expect_leq(lo, first + 1e-6, "seed %lu: low end %g above %g",
+                      seed, lo, first);
+        cr_expect_geq(hi, last - 1e-6, "seed %lu: high end %g below %g",
+                      seed, hi, last);
+        cr_expect(open & 4u, "seed %lu: the interval is not flagged split",
+                  seed);
+        tested = 1;
+    }
+    gsl_rng_free(rng);
+    cr_assert(tested, "no simulation with two regions in 40");
 }
 
 /* bf_fit_interval_curve: the curve the reported intervals threshold.
