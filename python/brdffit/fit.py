@@ -71,7 +71,8 @@ class FitResult:
         not_identified: names of the parameters along which the objective
             is flat at the optimum (ON's rho at sigma = 0), or whose
             profile stays below the interval's threshold to a bound of the
-            search range (the interval ends there, open).
+            search range (the interval ends there, open), or is below it
+            in two separate regions (the interval spans both).
         clamped: on how many configurations the model's formula was
             clamped at 0 at the optimum (ON, doc/methods.md §8), else 0.
         not_converged: True when the refinement stopped at its iteration

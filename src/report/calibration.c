@@ -164,7 +164,7 @@ static void legend(const bf_rep_study *st, char *buf, size_t len)
              "those estimates (z the standard normal quantile of (1 + "
              "level)/2, 1.96 at 95%%; 1 is calibrated); not identified: "
              "share of the simulations whose interval reached a bound of "
-             "the search range.",
+             "the search range or spans two separate regions.",
              level, 100.0 * BF_CALIBRATION_BAND);
 }
 
