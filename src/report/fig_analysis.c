@@ -665,7 +665,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "95%% threshold n ln(1 + F_{1,nu}(0.95)/nu), nu = n minus "
                  "the estimated parameters (about 3.84); the thick segment, "
                  "where the curve lies below it, is the parameter's "
-                 "reported 95%% interval (fits.csv ci_low, ci_high).",
+                 "reported 95%% interval (fits.csv ci_low, ci_high); where "
+                 "the curve lies below it in separate regions, the segment "
+                 "spans them all, across the ridge between (flags "
+                 "not_identified).",
                  bf_noise_name(st->analysis.noise),
                  bf_noise_variance(st->analysis.noise),
                  bf_objective_keeps_scale(st->opts.objective)
@@ -680,7 +683,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "configurations; doc/methods.md §3) around the exact "
                  "optimum (point); the 95%% profile interval is where the "
                  "curve lies below the dashed threshold 3.84 (thick "
-                 "segment).",
+                 "segment; across the ridge between separate regions, "
+                 "flagged not_identified).",
                  bf_objective_name(st->opts.objective), D->smp[s].K);
     }
     snprintf(e->alt, sizeof e->alt,
