@@ -1265,8 +1265,8 @@ int bf_study_row_albedo_over_1(const bf_study_row *row);
  * clipped to [lo_j, hi_j]; *open gets bit 0 (low end) and bit 1 (high end)
  * when it reaches the search range there, and bit 2 when that set is
  * split: besides the optimum's region the profile is below the threshold
- * in another (found by a scan of the search range), and the interval is
- * the hull of them all (doc/methods.md §3). */
+ * in another (found by a scan of the search range; a diffuse model's
+ * only), and the interval is the hull of them all (doc/methods.md §3). */
 int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
                       size_t j, double level, double *low, double *high,
                       unsigned *open);
