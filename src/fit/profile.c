@@ -85,6 +85,11 @@
 /* Points of the scan for regions below the threshold apart from the
  * optimum's (scan_side), evenly spaced over the search range. */
 #define SCAN_N 13
+/* The scan's grid fits take every s-th point of a nuisance grid, at most
+ * this many (FC's 501 values of m: every 8th), then refine from its
+ * lowest local minima as every grid fit does: a region is found wherever
+ * the nuisance's basin is wider than s steps. */
+#define SCAN_GRID 64
 /* A dip's minimisation stops at a bracket this share of its width. */
 #define SCAN_TOL 1e-3
 /* Dense data (more than BF__DENSE_K configurations): the bracket is
@@ -122,6 +127,8 @@ typedef struct {
     double known_x[2];
     double known_c[2];
     size_t n_known;
+    int coarse;                  /* the scan's grid fits (scan_side): at
+                                    most SCAN_GRID points per nuisance */
 } profile_t;
 
 /* The grid fit of the nuisance parameters at sub's fixed values: their
@@ -143,6 +150,13 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
                                    &lay);
     if (rc != BF_OK) {
         return rc;
+    }
+    for (i = 0; p->coarse && i < lay.n_free; i++) { /* every s-th point */
+        size_t s = (lay.count[i] + SCAN_GRID - 1) / SCAN_GRID;
+        lay.points /= lay.count[i];
+        lay.step[i] *= (double)s;
+        lay.count[i] = (lay.count[i] - 1) / s + 1;
+        lay.points *= lay.count[i];
     }
     gr = bf__grid_make(p->fc->pm, &lay, &rc);
     if (gr == NULL) {
@@ -788,8 +802,9 @@ static int dip(profile_t *p, double a, double m, double b, double ca,
 }
 
 /* The scan beyond the end *end of the interval found from the optimum,
- * towards limit: the thorough criterion at the points of SCAN_N evenly
- * spaced over the search range that lie beyond it, from the nearest out,
+ * towards limit: the thorough criterion (its grid fit on a coarser grid,
+ * SCAN_GRID) at the points of SCAN_N evenly spaced over the search range
+ * that lie beyond it, from the nearest out,
  * and the least criterion between neighbours about each scanned point
  * lower than both (dip: a region narrower than the points' spacing).
  * Where a point is inside (a region below the threshold apart from the
@@ -825,7 +840,9 @@ static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
         if (!(limit > theta_hat ? x > *end + CI_TOL : x < *end - CI_TOL)) {
             continue;
         }
+        p->coarse = 1;
         c[m] = crit_at(p, x, FIT_THOROUGH, &improved);
+        p->coarse = 0;
         if (p->status == BF_ENOMEM) {
             return BF_ENOMEM;
         }
