@@ -185,20 +185,13 @@ Test(profile, holds_every_region_of_a_profile_with_two_minima)
     static double data[K];
     static double dev[SCAN];
     double work[2 * K];
-    double cmin = cos(80.0 * M_PI / 180.0);
     double n0 = 1.395;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     unsigned long seed;
     size_t k;
     int tested = 0;
     cr_assert_not_null(rng);
-    gsl_rng_set(rng, 7);
-    for (k = 0; k < K; k++) {
-        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_i = M_PI;
-        geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
-    }
+    bf_test_random_geometry(geom, K, 7, 0);
     cr_assert_eq(bf_model_eval(bf_model_wno, &n0, K, geom, truth), BF_OK);
     for (seed = 1; seed <= 40 && !tested; seed++) {
         bf_problem pb;

@@ -86,24 +86,7 @@ static size_t cornell_geom(size_t stride, bf_geom *geom)
 
 static size_t random_geom(bf_geom *geom)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    double cmin = cos(80.0 * M_PI / 180.0);
-    size_t k;
-    gsl_rng_set(rng, 11);
-    for (k = 0; k < N_RANDOM; k++) {
-        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_i = M_PI;
-        if (k % 2 == 0) {
-            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        } else { /* near the mirror direction (phi_s = 0, SPEC §1.2) */
-            double t = geom[k].theta_i +
-                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
-            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        }
-    }
-    gsl_rng_free(rng);
+    bf_test_random_geometry(geom, N_RANDOM, 11, 1);
     return N_RANDOM;
 }
 
