@@ -526,6 +526,10 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status);
 int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
                           unsigned mask, const double *lo, const double *hi,
                           bf__grid_layout_t *g);
+/* Thins g to every s-th point of each free parameter, s the least step
+ * multiple that leaves at most max points (max >= 1): the same first
+ * point, the step s times longer. */
+void bf__grid_layout_coarsen(bf__grid_layout_t *g, size_t max);
 
 /* ======================================================================
  * --- grid optima under weights (curves.c) ---

@@ -215,6 +215,18 @@ int bf__grid_layout_range(const bf_model_type *type, const double *fixed,
     return BF_OK;
 }
 
+void bf__grid_layout_coarsen(bf__grid_layout_t *g, size_t max)
+{
+    size_t i;
+    for (i = 0; i < g->n_free; i++) {
+        size_t s = (g->count[i] + max - 1) / max;
+        g->points /= g->count[i];
+        g->step[i] *= (double)s;
+        g->count[i] = (g->count[i] - 1) / s + 1;
+        g->points *= g->count[i];
+    }
+}
+
 unsigned bf__grid_point(const bf__grid_layout_t *g, size_t idx,
                         double *param)
 {

@@ -151,12 +151,8 @@ static int grid_fit(profile_t *p, bf_fit_result *r)
     if (rc != BF_OK) {
         return rc;
     }
-    for (i = 0; p->coarse && i < lay.n_free; i++) { /* every s-th point */
-        size_t s = (lay.count[i] + SCAN_GRID - 1) / SCAN_GRID;
-        lay.points /= lay.count[i];
-        lay.step[i] *= (double)s;
-        lay.count[i] = (lay.count[i] - 1) / s + 1;
-        lay.points *= lay.count[i];
+    if (p->coarse) {
+        bf__grid_layout_coarsen(&lay, SCAN_GRID);
     }
     gr = bf__grid_make(p->fc->pm, &lay, &rc);
     if (gr == NULL) {
