@@ -8,7 +8,7 @@
  * measured data are).
  *
  * Usage: bench_coverage [R [NOISE [OBJECTIVES [CURET_DIR [MODELS [SEED
- * [B [CORNELL_FILE [GEOMETRY [TRUTHS]]]]]]]]]]
+ * [B [CORNELL_FILE [GEOMETRY [TRUTHS [NEYMAN]]]]]]]]]]]
  * (R = 400, NOISE = auto, "objective" gives the intervals before issue 18;
  * OBJECTIVES = all, or one objective's name: the likelihood intervals do
  * not depend on the objective, which only starts their fit; MODELS = all,
@@ -18,7 +18,9 @@
  * GEOMETRY = all, or one geometry's name: CURET, Cornell or random;
  * TRUTHS = default, or name=value pairs separated by commas: a diffuse
  * model's parameters simulated at value instead of 37 % of their range,
- * and "at=f" for every other at f of its range).
+ * and "at=f" for every other at f of its range; NEYMAN = 0, else the
+ * Neyman construction's simulations per threshold: two more columns, its
+ * coverage and width over the spread, a diffuse model's only).
  * Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
@@ -133,7 +135,8 @@ static int listed(const char *list, const char *name)
 /* One row of the table: parameter j of cal. */
 static void print_row(const char *model, const char *param, const char *geom,
                       const char *noise, const char *obj,
-                      const bf_calibration *cal, size_t j, size_t n_boot)
+                      const bf_calibration *cal, size_t j, size_t n_boot,
+                      size_t n_ny)
 {
     double spread = 2.0 * 1.959964 * cal->ml_sd[j];
     printf("| %s | %s | %s | %s | %s | %.3f | %.2f | %.2f | %.3f |", model,
@@ -142,6 +145,10 @@ static void print_row(const char *model, const char *param, const char *geom,
     if (n_boot >= 2) {
         printf(" %.3f | %.2f |", cal->boot_coverage[j],
                cal->boot_width[j] / spread);
+    }
+    if (n_ny > 0) {
+        printf(" %.3f | %.2f |", cal->ny_coverage[j],
+               cal->ny_width[j] / spread);
     }
     printf("\n");
     fflush(stdout);
@@ -234,8 +241,8 @@ static void specular_rows(const char *models, const char *cornell,
                                 NULL);
                 pb.objective = BF_OBJ_NGAN;
                 rc = bf_fit_calibrate(&pb, spec[i].truth, npow[q], nsd[q], noise,
-                                  reps, n_boot, seed0 + 10 * g + q, 0.95,
-                                  &cal);
+                                  reps, n_boot, 0, seed0 + 10 * g + q,
+                                  0.95, &cal);
                 for (j = 0; j < t->p; j++) {
                     if (rc != BF_OK) {
                         printf("| %s | | %s | %s | ngan | error %d | | | |\n",
@@ -243,7 +250,7 @@ static void specular_rows(const char *models, const char *cornell,
                         break;
                     }
                     print_row(t->name, t->param[j].name, gname[g], nname[q],
-                              "ngan", &cal, j, n_boot);
+                              "ngan", &cal, j, n_boot, 0);
                 }
             }
         }
@@ -272,6 +279,7 @@ int main(int argc, char **argv)
                  : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
     const char *geometry = argc > 9 ? argv[9] : "all";
     const char *truths = argc > 10 ? argv[10] : "default";
+    size_t n_ny = argc > 11 ? (size_t)atol(argv[11]) : 0;
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -281,11 +289,12 @@ int main(int argc, char **argv)
     n_geom[0] = curet_geom(dir, geoms[0]);
     n_geom[1] = random_geom(geoms[1], NCONF, 7, 0);
     printf("| model | param | geometry | noise | objective | covered | "
-           "width / spread | sd obj / sd ML | not identified |%s\n"
-           "|---|---|---|---|---|---|---|---|---|%s\n",
+           "width / spread | sd obj / sd ML | not identified |%s%s\n"
+           "|---|---|---|---|---|---|---|---|---|%s%s\n",
            n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
                        : "",
-           n_boot >= 2 ? "---|---|" : "");
+           n_ny > 0 ? " neyman covered | neyman width / spread |" : "",
+           n_boot >= 2 ? "---|---|" : "", n_ny > 0 ? "---|---|" : "");
     specular_rows(models, cornell, geometry, reps, noise, seed0, n_boot);
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
@@ -327,7 +336,7 @@ int main(int argc, char **argv)
                         pb.fixed[j] = truth[j];
                     }
                     rc = bf_fit_calibrate(&pb, truth, npow[q], nsd[q], noise,
-                                          reps, n_boot, seed0 + 10 * g + q, 0.95, &cal);
+                                          reps, n_boot, n_ny, seed0 + 10 * g + q, 0.95, &cal);
                     if (rc != BF_OK) {
                         printf("| %s | | %s | %s | %s | error %d | | | |\n",
                                v.type.name, gname[g], nname[q],
@@ -341,7 +350,7 @@ int main(int argc, char **argv)
                         print_row(v.type.name, v.type.param[j].name,
                                   gname[g], nname[q],
                                   bf_objective_name(objs[o]), &cal, j,
-                                  n_boot);
+                                  n_boot, n_ny);
                     }
                 }
             }

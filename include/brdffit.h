@@ -1316,14 +1316,17 @@ typedef enum {
     BF_CI_PROFILE,    /* "profile": the objective's S (BF_NOISE_OBJECTIVE) */
     BF_CI_PROFILE_LIK, /* "profile-lik": the noise model's likelihood, scale
                           and noise level profiled, F threshold */
-    BF_CI_RESIDUAL_BOOTSTRAP /* "residual-bootstrap": percentiles of
+    BF_CI_RESIDUAL_BOOTSTRAP, /* "residual-bootstrap": percentiles of
                                 maximum-likelihood refits of the fitted
                                 curve plus resampled standardised
                                 residuals (bf_fit_bootstrap) */
+    BF_CI_NEYMAN /* "neyman": the likelihood's profile with each end's
+                    threshold calibrated by simulation there (the Neyman
+                    construction, bf_fit_neyman) */
 } bf_ci_method;
 
-/* "", "profile", "profile-lik", "residual-bootstrap" (static storage),
- * NULL for unknown. */
+/* "", "profile", "profile-lik", "residual-bootstrap", "neyman" (static
+ * storage), NULL for unknown. */
 const char *bf_ci_method_name(bf_ci_method m);
 
 /* The intervals of every free parameter of one fit. */
@@ -1382,10 +1385,17 @@ typedef struct {
                                             bootstrap's intervals (NaN
                                             without n_boot) */
     double boot_width[BF_MAX_PARAMS];    /* their median width */
+    double ny_coverage[BF_MAX_PARAMS];   /* the same share for the Neyman
+                                            construction's intervals (NaN
+                                            without n_neyman) */
+    double ny_width[BF_MAX_PARAMS];      /* their median width */
 } bf_calibration;
 
 /* Fewest simulations bf_fit_calibrate accepts. */
 #define BF_CALIBRATE_MIN_SIM 10
+/* Fewest simulations per threshold bf_fit_neyman accepts (its quantile at
+ * 95 % is then the 19th of 20). */
+#define BF_NEYMAN_MIN_SIM 20
 
 /* Simulates n_sim measurements of pb's model at truth on pb's
  * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
@@ -1398,13 +1408,16 @@ typedef struct {
  * width (NaN for the others); with n_boot >= 2 also the coverage and
  * median width of each simulation's bootstrap interval (bf_fit_bootstrap,
  * n_boot replicates, seed seed + 1 + the simulation's index; a simulation
- * whose bootstrap fails counts as failed). BF_EINVAL for bad arguments or n_sim < 10,
+ * whose bootstrap fails counts as failed); with n_neyman >= BF_NEYMAN_MIN_SIM
+ * those of each simulation's Neyman construction (bf_fit_neyman, n_neyman
+ * simulations per threshold, seed seed + 1 + n_sim + the simulation's
+ * index; a diffuse model's only, n_neyman 0 for a specular one). BF_EINVAL for bad arguments or n_sim < 10,
  * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
  * BF_ENOMEM. */
 int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      double noise_power, double sigma, bf_noise noise,
-                     size_t n_sim, size_t n_boot, unsigned long seed,
-                     double level, bf_calibration *out);
+                     size_t n_sim, size_t n_boot, size_t n_neyman,
+                     unsigned long seed, double level, bf_calibration *out);
 
 /* The band of bf_calibration_summarise: the central share of the
  * coverages that calibrated intervals give by chance. */
@@ -1457,6 +1470,26 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
                      size_t n_boot, unsigned long seed, double level,
                      double *low, double *high);
 
+/* The Neyman construction (doc/methods.md §3, ci_method "neyman";
+ * Feldman & Cousins 1998, the profile construction): iv from
+ * bf_fit_intervals(pb, ...) (BF_EDOM unless iv->method is
+ * BF_CI_PROFILE_LIK, or for a specular model); for every free parameter j
+ * the set { theta_j : D(theta_j) <= c(theta_j) }, D the profile criterion
+ * of iv's likelihood, c(theta_j) the level-quantile of D over n_sim
+ * measurements simulated under iv's noise model (power, sigma) at theta_j
+ * and the other parameters' constrained estimate there, each fitted as
+ * data are (grid optimum, refinement, maximum likelihood at iv's power;
+ * a GSL mt19937 seeded with seed, the same deviates at every theta_j).
+ * Each end is the fixed point of end -> the profile's end under the
+ * threshold c(end), from iv's end; low[j], high[j] get them (NaN for the
+ * parameters not free), *open bits 2j, 2j+1 when the low/high end is the
+ * search range's. It costs about 4 n_sim fits per free parameter.
+ * BF_EINVAL for n_sim < BF_NEYMAN_MIN_SIM or bad arguments, BF_EDOM,
+ * BF_ENOMEM. */
+int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
+                  unsigned long seed, double level, double *low,
+                  double *high, unsigned *open);
+
 /* ---- information criteria, cross-validation (doc/methods.md §4-5) ---- */
 
 /* Information criteria with Gaussian errors (doc/methods.md §4) for a
@@ -1508,6 +1541,11 @@ typedef struct {
                                noise_power stay NaN, ci_method
                                BF_CI_NONE); the fits, AIC, BIC and CV as
                                always. n_boot must then be 0. */
+    size_t n_neyman;        /* 0: none; else the intervals of a diffuse
+                               model's fits are the Neyman construction's
+                               with this many simulations per threshold
+                               (bf_fit_neyman, ci_method "neyman"; at least
+                               BF_NEYMAN_MIN_SIM; seeded with seed) */
 } bf_analysis_opts;
 
 /* Fills o with the defaults of the analysis (the CLI's): objective max
@@ -1516,7 +1554,9 @@ typedef struct {
 void bf_analysis_opts_init(bf_analysis_opts *o);
 
 /* BF_OK when o is an analysis bf_study_analyse can run (a known objective
- * and noise model, level in (0, 1), no bootstrap with no_intervals), else
+ * and noise model, level in (0, 1), no bootstrap nor Neyman construction
+ * with no_intervals, n_neyman 0 or at least BF_NEYMAN_MIN_SIM, and not
+ * with the objective's own noise model), else
  * BF_EINVAL with err (NULL allowed) saying which field is wrong. The
  * check bf_study_analyse makes first; a caller can make it before the
  * fits. */
@@ -2125,6 +2165,9 @@ typedef struct {
     const char *range[BF_REPORT_MAX_RANGES]; /* "NAME=LO:HI" */
     size_t n_range;
     size_t n_boot;         /* bootstrap replicates (0: none) */
+    size_t n_neyman;       /* the Neyman construction's simulations per
+                              threshold (bf_analysis_opts.n_neyman; 0:
+                              none) */
     size_t folds;          /* cross-validation folds (0: none) */
     unsigned long seed;
     int stats;             /* the analysis with the paper's fit */

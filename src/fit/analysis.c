@@ -180,6 +180,44 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
     }
 }
 
+/* The Neyman construction's intervals in place of iv's (bf__neyman): a
+ * parameter whose construction fails keeps iv's, and the fit is flagged
+ * BF_STAT_CI_FAIL; ci_method says "neyman" when every one succeeded. */
+static int neyman(bf__fitctx *fc, const bf_interval *iv,
+                  const bf_analysis_opts *opts, bf_fit_stats *st)
+{
+    const bf_problem *pb = fc->pb;
+    int failed = 0;
+    size_t j;
+    for (j = 0; j < pb->type->p; j++) {
+        double lo;
+        double hi;
+        unsigned op = 0;
+        int rc;
+        if (!((pb->free_mask >> j) & 1u)) {
+            continue;
+        }
+        rc = bf__neyman(fc, iv, j, opts->n_neyman, opts->seed, opts->level,
+                        &lo, &hi, &op);
+        if (rc == BF_ENOMEM) {
+            return rc;
+        }
+        if (rc != BF_OK) {
+            failed = 1;
+            continue;
+        }
+        st->ci_low[j] = lo;
+        st->ci_high[j] = hi;
+        st->ci_open = (st->ci_open & ~(3u << (2 * j))) | (op << (2 * j));
+    }
+    if (failed) {
+        st->flags |= BF_STAT_CI_FAIL;
+    } else {
+        st->ci_method = BF_CI_NEYMAN;
+    }
+    return BF_OK;
+}
+
 /* What every fit gets after its optimum st->refined (fc->pb = pb): the
  * intervals under the noise model (unless opts->no_intervals), the
  * bootstrap, AIC and BIC, the cross-validation (gr, fold_grid: the grid
@@ -217,6 +255,13 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         st->noise_power = iv.noise_power;
         st->noise_sigma = iv.sigma;
         st->not_identified = iv.not_identified;
+        if (rc == BF_OK && opts->n_neyman > 0 &&
+            pb->type->kind != BF_MODEL_SPECULAR) {
+            rc = neyman(fc, &iv, opts, st);
+            if (rc == BF_ENOMEM) {
+                return rc;
+            }
+        }
     }
     if (opts->n_boot >= 2 && pb->free_mask != 0) {
         unsigned split = 0;
@@ -654,6 +699,10 @@ int bf__analyse(const bf__job *job, bf_fit_stats *stats, int *unit_status)
     return rc;
 }
 
+/* A macro's value as a string literal. */
+#define NY_STR_(x) #x
+#define NY_STR(x) NY_STR_(x)
+
 int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err)
 {
     const char *why = NULL;
@@ -668,6 +717,15 @@ int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err)
     } else if (o->no_intervals && o->n_boot > 0) {
         why = "no_intervals is set: a bootstrap interval is an interval "
               "too; drop the bootstrap or keep the intervals";
+    } else if (o->no_intervals && o->n_neyman > 0) {
+        why = "no_intervals is set: the Neyman construction is an interval "
+              "too; drop it or keep the intervals";
+    } else if (o->n_neyman > 0 && o->n_neyman < BF_NEYMAN_MIN_SIM) {
+        why = "the Neyman construction needs at least " NY_STR(
+            BF_NEYMAN_MIN_SIM) " simulations per threshold";
+    } else if (o->n_neyman > 0 && o->noise == BF_NOISE_OBJECTIVE) {
+        why = "the Neyman construction simulates a noise model: not with "
+              "the objective's own (noise 'objective')";
     }
     if (why == NULL) {
         return BF_OK;

@@ -27,7 +27,7 @@
  * m > 0: a specular model's (SPEC §9), curve = rho_hat / m, the data
  * m (L + sigma max(L, f)^(p/2) eps) kept in sr^-1 (noise.c), never
  * normalised. */
-static int simulate(const bf_problem *pb, const double *curve, double m,
+int bf__simulate(const bf_problem *pb, const double *curve, double m,
                     double p, double sigma, gsl_rng *rng, double *d)
 {
     double top = -HUGE_VAL;
@@ -57,9 +57,11 @@ typedef struct {
     double *ml;
     double *width;
     double *boot_width; /* NULL without the bootstrap */
+    double *ny_width;   /* NULL without the Neyman construction */
     size_t *cover; /* BF_MAX_PARAMS */
     size_t *flag;
     size_t *boot_cover;
+    size_t *ny_cover;
 } tally_t;
 
 static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
@@ -87,6 +89,12 @@ static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
             gsl_sort(bw, 1, m);
             out->boot_width[j] = gsl_stats_median_from_sorted_data(bw, 1, m);
         }
+        if (t->ny_width != NULL) {
+            double *nw = t->ny_width + j * n_sim;
+            out->ny_coverage[j] = (double)t->ny_cover[j] / (double)m;
+            gsl_sort(nw, 1, m);
+            out->ny_width[j] = gsl_stats_median_from_sorted_data(nw, 1, m);
+        }
     }
 }
 
@@ -100,6 +108,7 @@ static void clear(bf_calibration *out, const double *truth, size_t p)
         out->ml_bias[j] = out->ml_sd[j] = out->width[j] = NAN;
         out->not_identified[j] = NAN;
         out->boot_coverage[j] = out->boot_width[j] = NAN;
+        out->ny_coverage[j] = out->ny_width[j] = NAN;
     }
 }
 
@@ -122,17 +131,17 @@ static void keep_estimates(const bf_problem *pb, const tally_t *t, size_t m,
 
 int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      double noise_power, double sigma, bf_noise noise,
-                     size_t n_sim, size_t n_boot, unsigned long seed,
-                     double level, bf_calibration *out)
+                     size_t n_sim, size_t n_boot, size_t n_neyman,
+                     unsigned long seed, double level, bf_calibration *out)
 {
     return bf__fit_calibrate(pb, truth, noise_power, sigma, noise, n_sim,
-                             n_boot, seed, level, NULL, NULL, out);
+                             n_boot, n_neyman, seed, level, NULL, NULL, out);
 }
 
 int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       double noise_power, double sigma, bf_noise noise,
-                      size_t n_sim, size_t n_boot, unsigned long seed,
-                      double level, double *ml_est,
+                      size_t n_sim, size_t n_boot, size_t n_neyman,
+                      unsigned long seed, double level, double *ml_est,
                       const bf__tick *tick, bf_calibration *out)
 {
     bf__solo so;
@@ -144,10 +153,12 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
     size_t cover[BF_MAX_PARAMS] = {0};
     size_t flag[BF_MAX_PARAMS] = {0};
     size_t boot_cover[BF_MAX_PARAMS] = {0};
+    size_t ny_cover[BF_MAX_PARAMS] = {0};
+    size_t n_arr = 3 + (n_boot >= 2) + (n_neyman > 0);
     double *curve = NULL;
     double *d = NULL;
     double top = 0.0; /* a specular model's maximum (simulate) */
-    int spec = pb->type->kind == BF_MODEL_SPECULAR;
+    int spec;
     size_t m = 0;
     size_t r;
     size_t j;
@@ -156,9 +167,13 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
     if (pb == NULL || truth == NULL || out == NULL || pb->type == NULL ||
         pb->weight != NULL || n_sim < BF_CALIBRATE_MIN_SIM || !(sigma >= 0.0) ||
         !(noise_power >= 0.0 && noise_power <= BF_NOISE_PMAX) ||
+        (n_neyman > 0 && (n_neyman < BF_NEYMAN_MIN_SIM ||
+                          pb->type->kind == BF_MODEL_SPECULAR ||
+                          noise == BF_NOISE_OBJECTIVE)) ||
         bf_noise_name(noise) == NULL || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
     }
+    spec = pb->type->kind == BF_MODEL_SPECULAR;
     clear(out, truth, pb->type->p);
     if (!((double)pb->n > (double)bf_problem_nfree(pb) + 1.0 +
                              (noise == BF_NOISE_AUTO ? 1.0 : 0.0))) {
@@ -170,8 +185,7 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
     if (rc != BF_OK) {
         return rc;
     }
-    t.est = malloc((n_boot >= 2 ? 4 : 3) * n_sim * BF_MAX_PARAMS *
-                   sizeof *t.est);
+    t.est = malloc(n_arr * n_sim * BF_MAX_PARAMS * sizeof *t.est);
     curve = malloc(2 * pb->n * sizeof *curve);
     rng = gsl_rng_alloc(gsl_rng_mt19937);
     rc = t.est == NULL || curve == NULL || rng == NULL ? BF_ENOMEM : BF_OK;
@@ -179,6 +193,9 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         t.ml = t.est + n_sim * BF_MAX_PARAMS;
         t.width = t.ml + n_sim * BF_MAX_PARAMS;
         t.boot_width = n_boot >= 2 ? t.width + n_sim * BF_MAX_PARAMS : NULL;
+        t.ny_width = n_neyman > 0 ? t.est + (n_arr - 1) * n_sim * BF_MAX_PARAMS
+                                  : NULL;
+        t.ny_cover = ny_cover;
         t.cover = cover;
         t.flag = flag;
         t.boot_cover = boot_cover;
@@ -209,11 +226,13 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         bf_interval iv;
         double blo[BF_MAX_PARAMS];
         double bhi[BF_MAX_PARAMS];
+        double nlo[BF_MAX_PARAMS];
+        double nhi[BF_MAX_PARAMS];
         int st;
         if (r > 0 && tick != NULL) {
             tick->fn(tick->ctx); /* the previous simulation's */
         }
-        if (!simulate(&sim, curve, top, noise_power, sigma, rng, d)) {
+        if (!bf__simulate(&sim, curve, top, noise_power, sigma, rng, d)) {
             out->n_failed++;
             continue;
         }
@@ -229,6 +248,13 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         }
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
+        }
+        for (j = 0; st == BF_OK && n_neyman > 0 && j < pb->type->p; j++) {
+            unsigned op;
+            if ((pb->free_mask >> j) & 1u) {
+                st = bf__neyman(&so.fc, &iv, j, n_neyman, seed + 1 + n_sim + r,
+                                level, &nlo[j], &nhi[j], &op);
+            }
         }
         if (st == BF_OK && n_boot >= 2) {
             st = bf__bootstrap(&so.fc, &iv, n_boot, seed + 1 + r, level, NULL,
@@ -254,6 +280,10 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
             if (t.boot_width != NULL) {
                 t.boot_width[j * n_sim + m] = bhi[j] - blo[j];
                 boot_cover[j] += blo[j] <= truth[j] && truth[j] <= bhi[j];
+            }
+            if (t.ny_width != NULL) {
+                t.ny_width[j * n_sim + m] = nhi[j] - nlo[j];
+                ny_cover[j] += nlo[j] <= truth[j] && truth[j] <= nhi[j];
             }
         }
         m++;

@@ -17,6 +17,7 @@
 #ifndef BF_FIT_ENGINE_H
 #define BF_FIT_ENGINE_H
 
+#include <gsl/gsl_rng.h>
 #include <stddef.h>
 
 #include "internal.h"
@@ -589,6 +590,22 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
  * best. */
 int bf__profile_curve(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                       size_t n, const double *theta, double *dev);
+/* One point of that curve: *dev = n ln(S_p(theta) / S_min) (at least 0)
+ * with the thorough inner fit alone, param (BF_MAX_PARAMS, may be NULL)
+ * its parameters (theta at j). BF_OK, BF_ENOMEM, BF_EDOM where the inner
+ * fit fails, or bf__fit_value's failure at best. */
+int bf__profile_point(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                      double theta, double *dev, double *param);
+/* The maximum-likelihood fit of fc->pb (a likelihood problem): the lower
+ * of the refinement from start and a minimisation over the whole range
+ * from it (intervals.c). */
+int bf__ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out);
+/* One simulated measurement of the normalised curve (pb->n values) into
+ * d: curve + sigma max(curve, f)^(p/2) eps, eps ~ N(0, 1) from rng,
+ * divided by its maximum (m > 0: a specular model's, multiplied by m and
+ * kept in sr^-1; calibrate.c). 0 when it cannot be normalised. */
+int bf__simulate(const bf_problem *pb, const double *curve, double m,
+                 double p, double sigma, gsl_rng *rng, double *d);
 /* The likelihood intervals' threshold n ln(1 + F_{1,nu}(level) / nu)
  * (intervals.c, [Bates & Watts §6.1.2]) for n the sum of the weights and
  * nu = n - k, finite at every nu >= 1. */
@@ -623,6 +640,15 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
 int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
+/* Parameter j's interval by the Neyman construction (neyman.c,
+ * doc/methods.md §3) around iv (bf__intervals of fc->pb, a diffuse
+ * model's likelihood): the threshold at each end the level-quantile of
+ * n_sim simulations (GSL mt19937 seeded with seed) at the constrained
+ * estimate there. *open: bit 0/1 when the low/high end is the range's.
+ * BF_EDOM when iv has no noise model or for a specular model; BF_ENOMEM. */
+int bf__neyman(bf__fitctx *fc, const bf_interval *iv, size_t j,
+               size_t n_sim, unsigned long seed, double level, double *low,
+               double *high, unsigned *open);
 /* A call after each unit of work (progress). */
 typedef struct {
     void (*fn)(void *ctx);
@@ -635,9 +661,9 @@ typedef struct {
  * is called after each simulation, fitted or not. */
 int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       double noise_power, double sigma, bf_noise noise,
-                      size_t n_sim, size_t n_boot, unsigned long seed,
-                      double level, double *ml_est, const bf__tick *tick,
-                      bf_calibration *out);
+                      size_t n_sim, size_t n_boot, size_t n_neyman,
+                      unsigned long seed, double level, double *ml_est,
+                      const bf__tick *tick, bf_calibration *out);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
  * bf__grid_optima_folds), or NULL to compute them; whole (NULL: none)

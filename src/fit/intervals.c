@@ -55,7 +55,7 @@ double bf__lik_threshold(double n, double nu, double level)
  * away; VH-E on sample 1 at m = 3.00, its interval [1.17, 3.05] reaching
  * down to the lower basin at 1.77); in 74 the old interval held the
  * lower basin's estimate (doc/methods.md §3). */
-static int ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out)
+int bf__ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out)
 {
     bf_fit_result s0;
     bf_fit_result whole;
@@ -328,7 +328,7 @@ static int interval_problem(bf__fitctx *fc, const bf_fit_result *best,
     for (pass = 0; rc == BF_OK && pass < NOISE_PASSES; pass++) {
         double p_new;
         lik->noise_power = p;
-        rc = ml_fit(fc, out->ml.param, &out->ml);
+        rc = bf__ml_fit(fc, out->ml.param, &out->ml);
         if (rc != BF_OK || noise != BF_NOISE_AUTO) {
             break;
         }

@@ -248,6 +248,6 @@ int bf_noise_find(const char *name, bf_noise *noise)
 const char *bf_ci_method_name(bf_ci_method m)
 {
     static const char *const names[] = {"", "profile", "profile-lik",
-                                        "residual-bootstrap"};
+                                        "residual-bootstrap", "neyman"};
     return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : NULL;
 }

@@ -749,6 +749,25 @@ int bf__profile_curve(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     return rc;
 }
 
+int bf__profile_point(bf__fitctx *fc, const bf_fit_result *best, size_t j,
+                      double theta, double *dev, double *param)
+{
+    const bf_problem *pb = fc->pb;
+    profile_t p;
+    int improved;
+    int rc = profile_begin(&p, fc, best, j, 0.0); /* crit_at: D itself */
+    if (rc == BF_OK) {
+        double c = crit_at(&p, theta, FIT_THOROUGH, &improved);
+        rc = p.status;
+        *dev = fmax(c, 0.0); /* S_p >= S_min up to the fits' tolerance */
+        if (param != NULL) {
+            memcpy(param, p.start, BF_MAX_PARAMS * sizeof *param);
+        }
+        profile_end(fc, pb);
+    }
+    return rc;
+}
+
 /* The least criterion between the scan's points a < b (their middle
  * point m lower than both, cm > 0, p->anchor m's nuisance optimum):
  * Brent's minimiser [3] on the warm criterion's signed root (the same

@@ -81,7 +81,11 @@ static int calibrate_pair(const bf_study_spec *spec,
             pb.objective = opts->objective;
             rc = bf__fit_calibrate(&pb, st->refined.param, st->noise_power,
                                    st->noise_sigma, opts->noise, n_sim,
-                                   opts->n_boot, seed, opts->level, ml_est,
+                                   opts->n_boot,
+                                   pb.type->kind == BF_MODEL_SPECULAR
+                                       ? 0
+                                       : opts->n_neyman,
+                                   seed, opts->level, ml_est,
                                    tick, out);
         }
         break;

@@ -1,0 +1,266 @@
+/* neyman.c: intervals whose threshold is calibrated by simulation at each
+ * value they test -- the Neyman construction with the likelihood-ratio
+ * ordering (doc/methods.md §3, ci_method "neyman").
+ *
+ * [1] G. J. Feldman, R. D. Cousins, "Unified approach to the classical
+ *     statistical analysis of small signals", Phys. Rev. D 57 (1998)
+ *     3873-3889 (the likelihood-ratio ordering; intervals that cover at
+ *     a boundary).
+ * [2] K. Cranmer, "Statistical challenges for searches for new physics at
+ *     the LHC", PHYSTAT 2005, §4 (the profile construction: nuisance
+ *     parameters held at their constrained estimates).
+ * [3] src/fit/intervals.c: the likelihood, its profile criterion
+ *     D(theta_j) = n ln(S_p(theta_j) / S_min) and its F threshold.
+ *
+ * Equations: theta_j is inside when D(theta_j) <= c(theta_j), c the
+ * level-quantile of D*_r(theta_j) over R measurements simulated at
+ * (theta_j, the other parameters' constrained estimate at theta_j) under
+ * the fitted noise model (power p, sigma) [2] and refitted as the data
+ * were (grid optimum, refinement, maximum likelihood at p); the same R
+ * normal deviates at every theta_j (common random numbers, so that c is
+ * smooth in theta_j). Where the likelihood is regular c is the F
+ * threshold [3] up to simulation error; at a fold of the model (the
+ * Fresnel index n near 1.7, where two values give one shape and D is
+ * half chi2_0, half chi2_1) it is lower, and where two basins compete
+ * (look-elsewhere) higher [1]. Each end of the interval is the fixed point
+ * of end -> the profile interval's end under the threshold c(end),
+ * started from the F threshold's end.
+ */
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sort.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit/engine.h"
+
+/* Passes of (threshold at the end, end under that threshold) per end. */
+#define NY_PASSES 4
+/* An end has converged when it moves less than this share of the
+ * parameter's range. */
+#define NY_TOL 1e-3
+
+typedef struct {
+    bf__fitctx *fc;
+    const bf_problem *pb;   /* the objective's problem (measured data) */
+    bf_problem lik;         /* the likelihood at the fitted power */
+    bf_problem sim;         /* pb on the simulated data */
+    bf_problem sim_lik;     /* lik on the simulated data */
+    const bf_interval *iv;
+    bf__grid *gr;           /* pb's grid: the simulations' first fits */
+    gsl_rng *rng;
+    double *curve;          /* n: the constrained fit's curve */
+    double *d;              /* n: a simulated measurement */
+    double *lr;             /* n_sim: the simulations' D* */
+    size_t n_sim;
+    size_t j;
+    unsigned long seed;
+    double level;
+} neyman_t;
+
+/* c(theta): the level-quantile of D*(theta) over the m simulations at
+ * theta's constrained estimate -- the order statistic of rank
+ * ceil(level (m + 1)), at most m, whose expected distribution function is
+ * level (ceil(level m) is biased low: the 95th of 100 has expectation
+ * 95/101 = 0.941) -- and *dev the measured D(theta). */
+static int threshold_at(neyman_t *t, double theta, double *c, double *dev)
+{
+    bf__fitctx *fc = t->fc;
+    double param[BF_MAX_PARAMS];
+    size_t m = 0;
+    size_t r;
+    int rc;
+    bf__fitctx_use(fc, &t->lik);
+    rc = bf__profile_point(fc, &t->iv->ml, t->j, theta, dev, param);
+    if (rc == BF_OK) {
+        rc = bf__curve(fc->pm, param, fc->work, t->curve);
+    }
+    gsl_rng_set(t->rng, t->seed); /* common random numbers */
+    for (r = 0; rc == BF_OK && r < t->n_sim; r++) {
+        const double *w[1] = {NULL};
+        bf_fit_result g;
+        bf_fit_result best;
+        bf_fit_result ml;
+        double d_r;
+        int st;
+        if (!bf__simulate(&t->sim, t->curve, 0.0, t->iv->noise_power,
+                          t->iv->sigma, t->rng, t->d)) {
+            continue;
+        }
+        bf__fitctx_use(fc, &t->sim);
+        rc = bf__grid_optima(t->gr, &t->sim, fc->pm->cs->cti, 1, w, &g);
+        if (rc != BF_OK) {
+            break;
+        }
+        st = isfinite(g.lse) ? bf__refine(fc, &g, &best) : BF_EDOM;
+        if (st == BF_OK || st == BF_ENOCONV) {
+            bf__fitctx_use(fc, &t->sim_lik);
+            st = bf__ml_fit(fc, best.param, &ml);
+        }
+        if (st == BF_OK) {
+            st = bf__profile_point(fc, &ml, t->j, theta, &d_r, NULL);
+        }
+        if (st == BF_ENOMEM) {
+            rc = st;
+        } else if (st == BF_OK) {
+            t->lr[m++] = d_r;
+        }
+    }
+    bf__fitctx_use(fc, t->pb);
+    if (rc == BF_OK && m < 2) {
+        rc = BF_EDOM;
+    }
+    if (rc == BF_OK) {
+        size_t k = (size_t)ceil(t->level * (double)(m + 1));
+        gsl_sort(t->lr, 1, m);
+        *c = t->lr[(k < m ? k : m) - 1];
+    }
+    return rc;
+}
+
+/* One end (side 0 low, 1 high) of parameter j's interval: from the F
+ * threshold's end x, x -> the profile interval's end under c(x). */
+static int one_end(neyman_t *t, int side, double d0, double *x,
+                   unsigned *open)
+{
+    const bf_problem *pb = t->pb;
+    double bound = side ? pb->hi[t->j] : pb->lo[t->j];
+    size_t pass;
+    int rc = BF_OK;
+    for (pass = 0; rc == BF_OK && pass < NY_PASSES; pass++) {
+        double c;
+        double dev;
+        double lo;
+        double hi;
+        unsigned op = 0;
+        double x_new;
+        rc = threshold_at(t, *x, &c, &dev);
+        if (rc != BF_OK) {
+            break;
+        }
+        if (*x == bound && dev <= c) {
+            break; /* open: inside at the bound */
+        }
+        bf__fitctx_use(t->fc, &t->lik);
+        rc = bf__profile_ci_thr(t->fc, &t->iv->ml, t->j, c, d0, &lo, &hi,
+                                &op);
+        bf__fitctx_use(t->fc, pb);
+        if (rc != BF_OK) {
+            break;
+        }
+        x_new = side ? hi : lo;
+        *open = side ? (op & 2u) : (op & 1u);
+        if (fabs(x_new - *x) < NY_TOL * (pb->hi[t->j] - pb->lo[t->j])) {
+            *x = x_new;
+            break;
+        }
+        if (pass + 1 == NY_PASSES) { /* not settled: the outer of the two */
+            x_new = side ? fmax(x_new, *x) : fmin(x_new, *x);
+        }
+        *x = x_new;
+    }
+    return rc;
+}
+
+int bf__neyman(bf__fitctx *fc, const bf_interval *iv, size_t j,
+               size_t n_sim, unsigned long seed, double level, double *low,
+               double *high, unsigned *open)
+{
+    const bf_problem *pb = fc->pb;
+    neyman_t t;
+    bf__grid_layout_t lay;
+    double d0[BF_MAX_PARAMS];
+    double n_w = bf__weight_sum(pb);
+    double nu = n_w - (double)bf_problem_nfree(pb) - 1.0 -
+                (iv->noise == BF_NOISE_AUTO ? 1.0 : 0.0);
+    double thr = bf__lik_threshold(n_w, nu, level);
+    unsigned op_lo = (iv->open >> (2 * j)) & 1u;
+    unsigned op_hi = (iv->open >> (2 * j)) & 2u;
+    int rc;
+
+    *low = iv->low[j];
+    *high = iv->high[j];
+    *open = op_lo | op_hi;
+    if (iv->method != BF_CI_PROFILE_LIK ||
+        pb->type->kind == BF_MODEL_SPECULAR || !isfinite(*low) ||
+        !isfinite(*high)) {
+        return BF_EDOM;
+    }
+    memset(&t, 0, sizeof t);
+    t.fc = fc;
+    t.pb = pb;
+    t.iv = iv;
+    t.j = j;
+    t.n_sim = n_sim;
+    t.seed = seed;
+    t.level = level;
+    t.lik = *pb;
+    t.lik.objective = BF__OBJ_LIK;
+    t.lik.noise_power = iv->noise_power;
+    t.curve = malloc((2 * pb->n + n_sim) * sizeof *t.curve);
+    t.rng = gsl_rng_alloc(gsl_rng_mt19937);
+    rc = t.curve == NULL || t.rng == NULL ? BF_ENOMEM : BF_OK;
+    if (rc == BF_OK) {
+        t.d = t.curve + pb->n;
+        t.lr = t.d + pb->n;
+        t.sim = *pb;
+        t.sim.data = t.d;
+        t.sim_lik = t.lik;
+        t.sim_lik.data = t.d;
+        rc = bf__grid_layout_range(pb->type, pb->fixed, pb->free_mask,
+                                   pb->lo, pb->hi, &lay);
+    }
+    if (rc == BF_OK) {
+        t.gr = bf__grid_make(fc->pm, &lay, &rc);
+    }
+    if (rc == BF_OK) {
+        bf__fitctx_use(fc, &t.lik);
+        rc = bf__profile_steps(fc, &iv->ml, thr, d0);
+        bf__fitctx_use(fc, pb);
+    }
+    if (rc == BF_OK) {
+        rc = one_end(&t, 0, d0[j], low, &op_lo);
+    }
+    if (rc == BF_OK) {
+        rc = one_end(&t, 1, d0[j], high, &op_hi);
+    }
+    *open = op_lo | op_hi;
+    bf__grid_free(t.gr);
+    gsl_rng_free(t.rng);
+    free(t.curve);
+    return rc;
+}
+
+int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
+                  unsigned long seed, double level, double *low,
+                  double *high, unsigned *open)
+{
+    bf__solo so;
+    size_t j;
+    int rc;
+    if (pb == NULL || iv == NULL || low == NULL || high == NULL ||
+        open == NULL || pb->type == NULL || pb->data == NULL ||
+        pb->weight != NULL || n_sim < BF_NEYMAN_MIN_SIM ||
+        !(level > 0.0 && level < 1.0)) {
+        return BF_EINVAL;
+    }
+    *open = 0;
+    for (j = 0; j < BF_MAX_PARAMS; j++) {
+        low[j] = NAN;
+        high[j] = NAN;
+    }
+    rc = bf__solo_init(&so, pb);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
+        unsigned op = 0;
+        if ((pb->free_mask >> j) & 1u) {
+            rc = bf__neyman(&so.fc, iv, j, n_sim, seed, level, &low[j],
+                            &high[j], &op);
+            *open |= op << (2 * j);
+        }
+    }
+    bf__solo_free(&so);
+    return rc;
+}
