@@ -131,13 +131,18 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --stats           with --fit paper, also the analysis beyond the paper:\n"
 "                    refined optima, 95% profile intervals, AIC, BIC, CV\n"
 "                    (the analysis columns of fits.csv; always on with\n"
-"                    --fit exact and --bootstrap)\n", fp);
+"                    --fit exact, --bootstrap and --neyman)\n", fp);
     }
     fputs(
 "  --bootstrap N     also a residual-bootstrap interval under the noise\n"
 "                    model, N refits (default 0: profile intervals only)\n"
+"  --neyman N        a diffuse model's intervals by the Neyman construction:\n"
+"                    each end's threshold the 95% quantile of N (>= 20)\n"
+"                    simulated refits there (ci_method neyman; about 4 N\n"
+"                    fits per parameter; default 0: the F threshold)\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
-"  --seed S          seed of the bootstrap and the folds (default 1)\n"
+"  --seed S          seed of the bootstrap, the Neyman construction and\n"
+"                    the folds (default 1)\n"
 "\n"
 "Output:\n"
 "  --out DIR         output folder (default out; created if missing)\n"
@@ -170,7 +175,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
 {
     enum { O_DATA = 256, O_BRDF, O_SAMPLES, O_MODELS, O_N, O_NFILE, O_ON,
            O_EXCLUDE, O_MAXTHETA, O_OUT, O_FIT, O_OBJECTIVE, O_RANGE,
-           O_BOOTSTRAP, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
+           O_BOOTSTRAP, O_NEYMAN, O_FOLDS, O_SEED, O_THREADS, O_STATS, O_INPUT,
            O_INFORMAT, O_CONFIGS, O_CHANNEL, O_CONE, O_NOISE, O_FRESNEL,
            O_SMITH, O_INTERVALS };
     static const struct option common[] = {
@@ -197,6 +202,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         {"noise", required_argument, NULL, O_NOISE},
         {"intervals", required_argument, NULL, O_INTERVALS},
         {"bootstrap", required_argument, NULL, O_BOOTSTRAP},
+        {"neyman", required_argument, NULL, O_NEYMAN},
         {"folds", required_argument, NULL, O_FOLDS},
         {"seed", required_argument, NULL, O_SEED},
         {"stats", no_argument, NULL, O_STATS},
@@ -364,6 +370,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             break;
         }
         case O_BOOTSTRAP:
+        case O_NEYMAN:
         case O_FOLDS:
         case O_SEED: {
             int *list = NULL;
@@ -386,6 +393,8 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             }
             if (c == O_BOOTSTRAP) {
                 o->n_boot = zero ? 0 : (size_t)list[0];
+            } else if (c == O_NEYMAN) {
+                o->n_neyman = zero ? 0 : (size_t)list[0];
             } else if (c == O_FOLDS) {
                 o->folds = zero ? 0 : (size_t)list[0];
             } else {
@@ -437,6 +446,16 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     if (o->n_boot == 1 || o->folds == 1) {
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--bootstrap and --folds need at "
                                   "least 2 (or 0 for none)");
+    }
+    if (o->n_neyman > 0 && o->noise == BF_NOISE_OBJECTIVE) {
+        return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
+                                 "--neyman simulates the noise model: not "
+                                 "with --noise objective");
+    }
+    if (o->n_neyman > 0 && o->n_neyman < BF_NEYMAN_MIN_SIM) {
+        return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
+                                 "--neyman needs at least %d simulations "
+                                 "(or 0 for none)", BF_NEYMAN_MIN_SIM);
     }
     return 0;
 }

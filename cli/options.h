@@ -41,6 +41,7 @@ typedef struct {
     const char *range[BF_CLI_MAX_RANGES]; /* --range NAME=LO:HI */
     size_t n_range;
     size_t n_boot;            /* --bootstrap N */
+    size_t n_neyman;          /* --neyman N */
     int no_intervals;         /* --intervals none */
     size_t folds;             /* --folds K (0: no cross-validation) */
     unsigned long seed;       /* --seed S */

@@ -85,6 +85,7 @@ void bf_cli_report_options(bf_cli_run *r, bf_report_options *ro,
         ro->range[i] = o->range[i];
     }
     ro->n_boot = o->n_boot;
+    ro->n_neyman = o->n_neyman;
     ro->no_intervals = o->no_intervals;
     ro->folds = o->folds;
     ro->seed = o->seed;

@@ -217,7 +217,7 @@ typedef enum { BF_NOISE_AUTO = 0, BF_NOISE_ABSOLUTE, BF_NOISE_RELATIVE,
 const char *bf_noise_name(bf_noise noise);
 int bf_noise_find(const char *name, bf_noise *noise);
 typedef enum { BF_CI_NONE = 0, BF_CI_PROFILE, BF_CI_PROFILE_LIK,
-               BF_CI_RESIDUAL_BOOTSTRAP } bf_ci_method;
+               BF_CI_RESIDUAL_BOOTSTRAP, BF_CI_NEYMAN } bf_ci_method;
 const char *bf_ci_method_name(bf_ci_method m);
 
 /* --- the study on a dataset --- */
@@ -270,6 +270,7 @@ typedef struct {
     void *progress_ctx;
     bf_noise noise;
     int no_intervals;
+    size_t n_neyman;
 } bf_analysis_opts;
 void bf_analysis_opts_init(bf_analysis_opts *o);
 int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err);
@@ -306,6 +307,7 @@ typedef struct {
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 #define BF_CALIBRATE_MIN_SIM 10
+#define BF_NEYMAN_MIN_SIM 20
 typedef struct {
     size_t n_sim;
     size_t n_failed;
@@ -319,6 +321,8 @@ typedef struct {
     double not_identified[8];
     double boot_coverage[8];
     double boot_width[8];
+    double ny_coverage[8];
+    double ny_width[8];
 } bf_calibration;
 typedef struct {
     size_t n;
@@ -535,6 +539,7 @@ typedef struct {
     const char *range[8];
     size_t n_range;
     size_t n_boot;
+    size_t n_neyman;
     size_t folds;
     unsigned long seed;
     int stats;

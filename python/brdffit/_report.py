@@ -132,7 +132,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
            on_params=None, exclude=None, max_theta=90.0,
            exclude_specular=None, ranges=None, threads=1, format="png,pdf",
            size="double", log=False, per_sample=False, incidence=None,
-           fresnel=None, smith=None, calibrate=0):
+           fresnel=None, smith=None, calibrate=0, neyman=0):
     """Runs the study of `brdffit report` on dataset and writes its report
     into folder out (created, one level, if missing): fits.csv, table2.md,
     table3.md, dispersion.csv (a fitted refractive index -- n with
@@ -148,7 +148,9 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         channel: a channel name, "mean", "each" or "joint" (--channel).
         fit: "paper" or "exact" (--fit); objective, noise: names
             (--objective, --noise); stats (--stats); bootstrap (--bootstrap
-            N); folds, seed (--folds, --seed); calibrate: N simulated
+            N); neyman (--neyman N: a diffuse model's intervals by the
+            Neyman construction, N >= 20 simulations per threshold, 0
+            none); folds, seed (--folds, --seed); calibrate: N simulated
             measurements of every fit checking its intervals, 0 none,
             else at least 10; runs the analysis (--calibrate N: the
             report's calibrate.csv, table and calibration_sampleN
@@ -216,6 +218,10 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         o.range[i] = c("%s=%r:%r" % (name, float(lo), float(hi)))
     o.n_range = len(rng)
     o.n_boot = int(bootstrap)
+    if int(neyman) < 0:
+        raise InvalidArgumentError("neyman: %r is not a number of "
+                                   "simulations (0: none)" % (neyman,), 1)
+    o.n_neyman = int(neyman)
     o.folds = int(folds)
     o.seed = int(seed)
     o.stats = bool(stats)

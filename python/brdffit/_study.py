@@ -358,10 +358,12 @@ class Spec:
         return rows
 
     def analysis_opts(self, objective, exact, level, bootstrap, folds,
-                      seed, noise="auto", intervals=True):
+                      seed, noise="auto", intervals=True, neyman=0):
         """A bf_analysis_opts: the library's defaults
         (bf_analysis_opts_init), with the arguments that are not None;
-        intervals=False: none (no_intervals, the CLI's --intervals none)."""
+        intervals=False: none (no_intervals, the CLI's --intervals none);
+        neyman: the Neyman construction's simulations per threshold (0:
+        none)."""
         opts = ffi.new("bf_analysis_opts *")
         lib.bf_analysis_opts_init(opts)
         opts.objective = _objective(objective)
@@ -377,6 +379,10 @@ class Spec:
             if int(bootstrap) < 0:
                 raise InvalidArgumentError("bootstrap must be >= 0", 1)
             opts.n_boot = int(bootstrap)
+        if neyman is not None:
+            if int(neyman) < 0:
+                raise InvalidArgumentError("neyman must be >= 0", 1)
+            opts.n_neyman = int(neyman)
         if folds is not None:
             if int(folds) < 0:
                 raise InvalidArgumentError("folds must be >= 0", 1)
@@ -488,15 +494,16 @@ class Study:
     """One run: the Spec, its rows (bf_study_row), the analysis (stats:
     bf_fit_stats, and its opts; None without the analysis) and the rows
     left out for lack of inputs (missing). Arguments as brdffit.compare's;
-    the analysis runs with fit="exact", stats or bootstrap, as in the
-    CLI."""
+    the analysis runs with fit="exact", stats, bootstrap or neyman, as in
+    the CLI."""
 
     def __init__(self, dataset, materials, models, channel="mean",
                  defaults="BF_MODELS_PAPER", fit="paper", objective="max", stats=False, bootstrap=0,
                  folds=None, seed=None, level=None, n=None, n_file=None,
                  on_params=None, exclude=(), max_theta=None, cone=None,
                  ranges=None, threads=1, progress=None, context="study",
-                 noise="auto", fresnel=None, smith=None, intervals=True):
+                 noise="auto", fresnel=None, smith=None, intervals=True,
+                 neyman=0):
         if fit not in FITS:
             raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
                                        "%r" % (fit,), 1)
@@ -520,10 +527,10 @@ class Study:
             self.rows = ffi.new("bf_study_row[]", self.spec.n_rows)
         else:
             self.rows = self.spec.run(context)
-        if exact or stats or bootstrap:
+        if exact or stats or bootstrap or neyman:
             self.opts = self.spec.analysis_opts(objective, exact, level,
                                                 bootstrap, folds, seed,
-                                                noise, intervals)
+                                                noise, intervals, neyman)
             self.stats = self.spec.analyse(self.rows, self.opts, progress,
                                            context)
         self.missing = self.spec.check_rows(self.rows, context)

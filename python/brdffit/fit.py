@@ -89,7 +89,8 @@ class FitResult:
             the normalised radiances of SPEC §2.
         ci_method: how intervals were computed, fits.csv's ci_method
             ("profile-lik": the noise model's likelihood; "profile": the
-            objective's own S, noise="objective").
+            objective's own S, noise="objective"; "neyman": the
+            likelihood's with each end's threshold simulated, neyman=N).
         noise_power: p of the noise model var ~ mu^p (0 absolute, 2
             relative; NaN for noise="objective").
         bootstrap_method: how bootstrap was computed ("residual-bootstrap";
@@ -293,7 +294,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective="max", stats=True, bootstrap=0, folds=None, seed=None,
         level=None, n=None, n_file=None, on_params=None, exclude=(),
         max_theta=None, cone=None, ranges=None, threads=1, progress=None,
-        noise="auto", fresnel=None, smith=None, intervals=True):
+        noise="auto", fresnel=None, smith=None, intervals=True, neyman=0):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -350,6 +351,12 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             intervals, intervals_open and ml_estimate empty, noise_power
             NaN -- the fit, AIC, BIC and CV in a fraction of the time (not
             with bootstrap).
+        neyman: N >= 20 (BF_NEYMAN_MIN_SIM) for a diffuse model's
+            intervals by the Neyman construction (the CLI's --neyman N):
+            each end's threshold the 95% quantile of the profile criterion
+            over N measurements simulated there and refitted
+            (ci_method "neyman"; about 4 N fits per parameter;
+            doc/methods.md §3); 0 (default): the F threshold.
         fresnel, smith: the specular models' options (SPEC §9.2, the CLI's
             --fresnel, --smith; None: each model's own, Schlick's F0 and
             height-correlated Smith): fresnel "schlick", "dielectric" (a
@@ -372,7 +379,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         seed=seed, level=level, n=n, n_file=n_file, on_params=on_params,
         exclude=exclude, max_theta=max_theta, cone=cone, ranges=ranges,
         threads=threads, progress=progress, noise=noise, fresnel=fresnel,
-        smith=smith, intervals=intervals))
+        smith=smith, intervals=intervals, neyman=neyman))
 
 
 def fit_study(dataset, model, material, **kw):

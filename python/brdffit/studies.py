@@ -58,7 +58,8 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
             objective="max", stats=False, bootstrap=0, folds=None,
             seed=None, level=None, n=None, n_file=None, on_params=None,
             exclude=(), max_theta=None, cone=None, ranges=None, threads=1,
-            progress=None, fresnel=None, smith=None, intervals=True):
+            progress=None, fresnel=None, smith=None, intervals=True,
+            neyman=0):
     """Fits every model to every sample, as `brdffit compare` does, and
     returns the rows of its fits.csv.
 
@@ -76,13 +77,13 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
             objective="ngan"; fits.csv's shape rows on channel "joint").
         fit, objective, stats, bootstrap, folds, seed, level, n, n_file,
         on_params, exclude, max_theta, cone, ranges, threads, progress,
-        fresnel, smith, intervals: as in brdffit.fit (the CLI's --fit,
-            --objective, --stats, --bootstrap, --folds, --seed, --n,
+        fresnel, smith, intervals, neyman: as in brdffit.fit (the CLI's
+            --fit, --objective, --stats, --bootstrap, --folds, --seed, --n,
             --n-file, --on-params, --exclude, --max-theta and
             --exclude-specular in radians, --range, --threads, --fresnel,
-            --smith, --intervals; the records'
+            --smith, --intervals, --neyman; the records'
             ndf, masking and fresnel name the variant fitted). The analysis (the columns after k) runs
-            with fit="exact", stats=True or bootstrap > 0; otherwise
+            with fit="exact", stats=True, bootstrap or neyman > 0; otherwise
             those columns are empty.
     Returns:
         Records: one dict per fits.csv row (sample, name, channel, model,
@@ -109,7 +110,7 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
          objective="max", bootstrap=0, folds=None, seed=None, level=None,
          n=None, n_file=None, on_params=None, exclude=(), max_theta=None,
          cone=None, ranges=None, threads=1, progress=None, fresnel=None,
-         smith=None, intervals=True):
+         smith=None, intervals=True, neyman=0):
     """Ranks models per sample by AIC, BIC and cross-validated error, as
     `brdffit rank` does, and returns the rows of its ranking.csv.
 

@@ -109,6 +109,22 @@ def test_with_noise_the_intervals_contain_the_truth(model, true):
     assert r.bootstrap_method == "residual-bootstrap"
 
 
+def test_neyman_intervals_are_named_and_hold_the_estimate():
+    # the Neyman construction (doc/methods.md §3): each end's threshold
+    # simulated at that end; the same seed, the same interval
+    data = synthetic("FC-E", {"m": 0.43217, "n": 1.83}, noise=0.01)
+    r = brdffit.fit(data, "FC-E", fit="exact", neyman=20, folds=0)
+    assert r.ci_method == "neyman"
+    for name, (lo, hi) in r.intervals.items():
+        assert lo <= r.ml_estimate[name] <= hi, (name, lo, hi)
+    again = brdffit.fit(data, "FC-E", fit="exact", neyman=20, folds=0)
+    assert again.intervals == r.intervals
+    with pytest.raises(brdffit.InvalidArgumentError):
+        brdffit.fit(data, "FC-E", fit="exact", neyman=19)
+    with pytest.raises(brdffit.InvalidArgumentError):
+        brdffit.fit(data, "FC-E", fit="exact", neyman=-1)
+
+
 def test_a_range_moves_the_search_and_flags_the_bound():
     r = brdffit.fit(synthetic("VH-G", {"m": 0.8}), "VH-G", fit="exact",
                     ranges={"m": (0.2, 0.5)})

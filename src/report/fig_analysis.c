@@ -318,7 +318,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "For %s, %s's exact optimum (points; the "
              "objective \"%s\" minimised by refinement of the grid optimum, "
              "doc/methods.md §2) and its 95%% profile interval (solid: the "
-             "noise model's likelihood profile, doc/methods.md §3), which "
+             "noise model's likelihood profile%s, doc/methods.md §3), which "
              "is about the noise model's maximum-likelihood estimate "
              "(black dots, fits.csv's ml_value): where the noise model "
              "weights the residuals that estimate can differ from the "
@@ -327,6 +327,10 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "without an end tick.",
              bf_fig_each_sample(N, each, sizeof each), t->name,
              bf_objective_name(st->opts.objective),
+             st->opts.n_neyman > 0 && t->kind != BF_MODEL_SPECULAR
+                 ? ", each end's threshold calibrated by simulation (the "
+                   "Neyman construction)"
+                 : "",
              boot ? "; dotted below it, the residual bootstrap's "
                     "percentile interval (residuals resampled under the "
                     "noise model and refitted, doc/methods.md §3)"

@@ -281,6 +281,11 @@ static int intervals_check(const char *hint, const bf_rep_study *st)
                                  "--intervals none: --bootstrap computes "
                                  "an interval too; drop one of them");
     }
+    if (o->n_neyman > 0) {
+        return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
+                                 "--intervals none: --neyman computes "
+                                 "the intervals; drop one of them");
+    }
     if (o->calibrate > 0 || strcmp(st->cmd, "calibrate") == 0) {
         return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
                                  "--intervals none: calibration checks "
@@ -492,6 +497,7 @@ static int run_analysis(bf_rep_study *st)
     st->analysis.noise = o->noise;
     st->analysis.exact = o->exact;
     st->analysis.n_boot = o->n_boot;
+    st->analysis.n_neyman = o->n_neyman;
     st->analysis.no_intervals = o->no_intervals;
     st->analysis.folds = o->folds;
     st->analysis.seed = o->seed;
@@ -512,12 +518,12 @@ static int run_analysis(bf_rep_study *st)
 
 int bf_rep_study_run_analysis(bf_rep_study *st)
 {
-    /* The analysis runs with --fit exact, --stats, --bootstrap or
-     * --calibrate: the paper's protocol alone stays the fast default of
+    /* The analysis runs with --fit exact, --stats, --bootstrap, --neyman
+     * or --calibrate: the paper's protocol alone stays the fast default of
      * compare and report. */
     int rc = BF_REPORT_OK;
     if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0 ||
-        st->opts.calibrate > 0) {
+        st->opts.n_neyman > 0 || st->opts.calibrate > 0) {
         rc = run_analysis(st);
     }
     if (rc == BF_REPORT_OK && st->opts.exact) {

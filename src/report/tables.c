@@ -388,6 +388,12 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
                 bf_noise_name(st->analysis.noise),
                 bf_noise_variance(st->analysis.noise));
     }
+    if (o->n_neyman > 0 && !st->analysis.no_intervals) {
+        fprintf(fp, "; a diffuse model's by the Neyman construction, each "
+                    "end's threshold from %zu simulations, seed %lu "
+                    "(fits.csv ci_method neyman)",
+                o->n_neyman, o->seed);
+    }
     if (o->n_boot >= 2) {
         fprintf(fp, "; residual bootstrap, %zu replicates, seed %lu",
                 o->n_boot, o->seed);

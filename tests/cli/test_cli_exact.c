@@ -117,6 +117,41 @@ Test(cli_exact, range_widens_the_search_beyond_the_paper_grid)
     cr_assert(isnan(num(r, "cv")), "--folds 0: no cross-validation");
 }
 
+/* --neyman N: a diffuse model's intervals by the Neyman construction,
+ * named in ci_method, about the same estimate as the F threshold's, and
+ * reproducible (the same seed, the same numbers). */
+Test(cli_exact, neyman_intervals_are_named_and_reproducible)
+{
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"compare", "--data", "DATA", "--samples", "1",
+                          "--models", "VH-E", "--fit", "exact", "--folds",
+                          "0", "--neyman", "20", "--out", dir, "-q", NULL};
+    char path[512];
+    const char *once;
+    char *first;
+    const char *again;
+    size_t r;
+    cr_assert_eq(run(argv), 0);
+    snprintf(path, sizeof path, "%s/fits.csv", dir);
+    once = bf_test_slurp(path, NULL);
+    cr_assert_not_null(once);
+    first = strdup(once); /* slurp's buffer is static */
+    load_csv(dir, "fits.csv");
+    for (r = 1; r < n_lines; r++) {
+        double lo = num(r, "ci_low");
+        double hi = num(r, "ci_high");
+        double ml = num(r, "ml_value");
+        cr_assert_str_eq(bf_test_csv_cell(r, "ci_method"), "neyman");
+        cr_assert(lo <= ml && ml <= hi, "row %zu: %g not in [%g, %g]", r, ml,
+                  lo, hi);
+    }
+    cr_assert_eq(run(argv), 0);
+    again = bf_test_slurp(path, NULL);
+    cr_assert_not_null(again);
+    cr_assert_str_eq(again, first, "the same command, the same numbers");
+    free(first);
+}
+
 Test(cli_exact, bad_options_are_usage_errors)
 {
     const char *a1[] = {"compare", "--objective", "log", NULL};
@@ -132,13 +167,21 @@ Test(cli_exact, bad_options_are_usage_errors)
     const char *a8[] = {"compare", "--bootstrap", "1", NULL};
     const char *a9[] = {"rank", "--folds", "x", NULL};
     const char *a10[] = {"rank", "--criterion", "r2", NULL};
-    const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10};
-    /* a1 combines options that exclude each other; the others give a value
-     * that is malformed or out of range (README: exit statuses). */
+    const char *a11[] = {"compare", "--neyman", "19", NULL};
+    const char *a12[] = {"compare", "--neyman", "50", "--intervals", "none",
+                         NULL};
+    const char *a13[] = {"compare", "--neyman", "50", "--noise", "objective",
+                         NULL};
+    const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12,
+                          a13};
+    /* a1, a12 and a13 combine options that exclude each other; the others
+     * give a value that is malformed or out of range (README: exit
+     * statuses). */
     static const int code[] = {EXIT_CONFLICT, EXIT_BADVALUE, EXIT_BADVALUE,
                                EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
                                EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
-                               EXIT_BADVALUE};
+                               EXIT_BADVALUE, EXIT_BADVALUE,
+                               EXIT_CONFLICT, EXIT_CONFLICT};
     size_t i;
     for (i = 0; i < sizeof all / sizeof *all; i++) {
         cr_assert_eq(run(all[i]), code[i], "case %zu", i + 1);
