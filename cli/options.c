@@ -137,7 +137,7 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --bootstrap N     also a residual-bootstrap interval under the noise\n"
 "                    model, N refits (default 0: profile intervals only)\n"
 "  --neyman N        a diffuse model's intervals by the Neyman construction:\n"
-"                    each end's threshold the 95% quantile of N (>= 20)\n"
+"                    each end's threshold the 95% quantile of N (>= 100)\n"
 "                    simulated refits there (ci_method neyman; about 4 N\n"
 "                    fits per parameter; default 0: the F threshold)\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"

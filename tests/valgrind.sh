@@ -135,9 +135,9 @@
 # predicted steps and the narrowed bracket of profile.c) has no smaller
 # case; ASan runs it.
 # neyman/covers_where_the_F_threshold_falls_short simulates 200
-# measurements, each with its Neyman construction (8,000 refits, 18 s
-# plain), and neyman/agrees_with_the_F_threshold... one with 200
-# simulations per threshold (4 s plain); the construction runs under
+# measurements, each with its Neyman construction (100 simulations per
+# threshold: 49 s plain), and neyman/agrees_with_the_F_threshold... one
+# with 200 per threshold (8 s plain); the construction runs under
 # valgrind in cli_exact/neyman_intervals_are_named_and_reproducible.
 # Set VALGRIND_SKIP= to run everything. tests/valgrind.supp suppresses only
 # leaks allocated inside the system libraries the report's figures load

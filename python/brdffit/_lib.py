@@ -307,7 +307,7 @@ typedef struct {
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 #define BF_CALIBRATE_MIN_SIM 10
-#define BF_NEYMAN_MIN_SIM 20
+#define BF_NEYMAN_MIN_SIM 100
 typedef struct {
     size_t n_sim;
     size_t n_failed;

@@ -149,7 +149,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         fit: "paper" or "exact" (--fit); objective, noise: names
             (--objective, --noise); stats (--stats); bootstrap (--bootstrap
             N); neyman (--neyman N: a diffuse model's intervals by the
-            Neyman construction, N >= 20 simulations per threshold, 0
+            Neyman construction, N >= 100 simulations per threshold, 0
             none); folds, seed (--folds, --seed); calibrate: N simulated
             measurements of every fit checking its intervals, 0 none,
             else at least 10; runs the analysis (--calibrate N: the

@@ -351,7 +351,7 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             intervals, intervals_open and ml_estimate empty, noise_power
             NaN -- the fit, AIC, BIC and CV in a fraction of the time (not
             with bootstrap).
-        neyman: N >= 20 (BF_NEYMAN_MIN_SIM) for a diffuse model's
+        neyman: N >= 100 (BF_NEYMAN_MIN_SIM) for a diffuse model's
             intervals by the Neyman construction (the CLI's --neyman N):
             each end's threshold the 95% quantile of the profile criterion
             over N measurements simulated there and refitted

@@ -55,12 +55,19 @@ def test_calibrate_is_deterministic_for_a_seed():
     for f in FIELDS:
         np.testing.assert_array_equal(getattr(a, f), getattr(b, f))
     assert np.isnan(a.boot_coverage).all()  # no bootstrap asked for
+    assert np.isnan(a.ny_coverage).all()  # nor the Neyman construction
 
 
 def test_calibrate_checks_the_bootstrap_when_asked():
     c = brdffit.calibrate(material(), "VH-E", n_sim=10, seed=3, bootstrap=20)
     assert 0.0 <= c.boot_coverage[0] <= 1.0 and c.boot_width[0] > 0.0
     assert c.fit.bootstrap_method == "residual-bootstrap"
+
+
+def test_calibrate_checks_the_neyman_construction_when_asked():
+    c = brdffit.calibrate(material(), "VH-E", n_sim=10, seed=3, neyman=100)
+    assert 0.0 <= c.ny_coverage[0] <= 1.0 and c.ny_width[0] > 0.0
+    assert c.fit.ci_method == "neyman"  # the fit's own intervals too
 
 
 def test_calibrate_with_fewer_than_ten_simulations_raises():

@@ -113,14 +113,14 @@ def test_neyman_intervals_are_named_and_hold_the_estimate():
     # the Neyman construction (doc/methods.md §3): each end's threshold
     # simulated at that end; the same seed, the same interval
     data = synthetic("FC-E", {"m": 0.43217, "n": 1.83}, noise=0.01)
-    r = brdffit.fit(data, "FC-E", fit="exact", neyman=20, folds=0)
+    r = brdffit.fit(data, "FC-E", fit="exact", neyman=100, folds=0)
     assert r.ci_method == "neyman"
     for name, (lo, hi) in r.intervals.items():
         assert lo <= r.ml_estimate[name] <= hi, (name, lo, hi)
-    again = brdffit.fit(data, "FC-E", fit="exact", neyman=20, folds=0)
+    again = brdffit.fit(data, "FC-E", fit="exact", neyman=100, folds=0)
     assert again.intervals == r.intervals
     with pytest.raises(brdffit.InvalidArgumentError):
-        brdffit.fit(data, "FC-E", fit="exact", neyman=19)
+        brdffit.fit(data, "FC-E", fit="exact", neyman=99)
     with pytest.raises(brdffit.InvalidArgumentError):
         brdffit.fit(data, "FC-E", fit="exact", neyman=-1)
 

@@ -40,7 +40,9 @@ static int check_pair(const bf_study_spec *spec, const bf_study_row *rows,
                          "calibrate: a --channel joint fit (SPEC §9.4) is "
                          "not simulated; calibrate one channel");
     }
-    if (st->ci_method != BF_CI_PROFILE_LIK || !isfinite(st->noise_sigma)) {
+    if ((st->ci_method != BF_CI_PROFILE_LIK &&
+         st->ci_method != BF_CI_NEYMAN) ||
+        !isfinite(st->noise_sigma)) {
         return STUDY_ERR(err, BF_EDOM,
                          "calibrate: %s on material %d: its noise cannot be "
                          "estimated (K = %zu configurations for %zu "

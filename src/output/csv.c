@@ -132,7 +132,7 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
     if (st->flags & BF_STAT_NOCONV) {
         word(buf, len, &at, "not_converged");
     }
-    if (st->ci_method == BF_CI_PROFILE_LIK) {
+    if (st->ci_method == BF_CI_PROFILE_LIK || st->ci_method == BF_CI_NEYMAN) {
         if (st->noise_power == 0.0) {
             word(buf, len, &at, "noise=absolute");
         } else if (st->noise_power == 2.0) {

@@ -264,7 +264,9 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[0].style = bf_report_model_style(t);
         sq[0].dash = BF_DASH_SOLID;
         sq[0].weight = 1.3;
-        sq[0].label = "profile 95% interval";
+        sq[0].label = st->opts.n_neyman > 0 && t->kind != BF_MODEL_SPECULAR
+                          ? "profile 95% interval (Neyman construction)"
+                          : "profile 95% interval";
         sq[1] = sq[0];
         sq[1].x = blo;
         sq[1].x2 = bhi;
@@ -672,13 +674,19 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "reported 95%% interval (fits.csv ci_low, ci_high); where "
                  "the curve lies below it in separate regions, the segment "
                  "spans them all, across the ridge between (flags "
-                 "not_identified).",
+                 "not_identified).%s",
                  bf_noise_name(st->analysis.noise),
                  bf_noise_variance(st->analysis.noise),
                  bf_objective_keeps_scale(st->opts.objective)
                      ? ""
                      : " and the scale",
-                 D->smp[s].K);
+                 D->smp[s].K,
+                 st->opts.n_neyman > 0
+                     ? " With --neyman, a diffuse model's segment ends "
+                       "where its curve reaches that end's simulated "
+                       "threshold (the Neyman construction, ci_method "
+                       "neyman), above or below the dashed line."
+                     : "");
     } else {
         snprintf(e->caption, sizeof e->caption,
                  "For each fitted parameter of each model, the profile "

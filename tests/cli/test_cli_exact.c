@@ -125,7 +125,7 @@ Test(cli_exact, neyman_intervals_are_named_and_reproducible)
     const char *dir = bf_test_tmpdir();
     const char *argv[] = {"compare", "--data", "DATA", "--samples", "1",
                           "--models", "VH-E", "--fit", "exact", "--folds",
-                          "0", "--neyman", "20", "--out", dir, "-q", NULL};
+                          "0", "--neyman", "100", "--out", dir, "-q", NULL};
     char path[512];
     const char *once;
     char *first;
@@ -167,7 +167,7 @@ Test(cli_exact, bad_options_are_usage_errors)
     const char *a8[] = {"compare", "--bootstrap", "1", NULL};
     const char *a9[] = {"rank", "--folds", "x", NULL};
     const char *a10[] = {"rank", "--criterion", "r2", NULL};
-    const char *a11[] = {"compare", "--neyman", "19", NULL};
+    const char *a11[] = {"compare", "--neyman", "99", NULL};
     const char *a12[] = {"compare", "--neyman", "50", "--intervals", "none",
                          NULL};
     const char *a13[] = {"compare", "--neyman", "50", "--noise", "objective",

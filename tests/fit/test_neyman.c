@@ -26,15 +26,15 @@
 #define SEED 20261206ul
 #if !BF_TEST_SANITIZED
 #define REPS 200
-#define NY 40
+#define NY 100
 #define NY_REGULAR 200
 #define COVER_LO 0.92
 #define COVER_HI 0.99
 #else
 /* The sanitizer build runs the same code on 10 simulations, no band. */
 #define REPS 10
-#define NY 20
-#define NY_REGULAR 200 /* the same check: one fit, 4 s plain */
+#define NY 100
+#define NY_REGULAR 200 /* the same check: one fit, 8 s plain */
 #define COVER_LO 0.0
 #define COVER_HI 1.0
 #endif
@@ -171,20 +171,22 @@ Test(neyman, refuses_what_it_cannot_do)
     cr_assert_eq(bf_fit_neyman(&pb, &iv, BF_NEYMAN_MIN_SIM - 1, SEED, LEVEL,
                                low, high, &open),
                  BF_EINVAL);
-    cr_assert_eq(bf_fit_neyman(&pb, NULL, 50, SEED, LEVEL, low, high, &open),
+    cr_assert_eq(bf_fit_neyman(&pb, NULL, BF_NEYMAN_MIN_SIM, SEED, LEVEL, low,
+                               high, &open),
                  BF_EINVAL);
     /* no noise model: nothing to simulate */
     iv.method = BF_CI_PROFILE;
     iv.low[0] = iv.low[1] = 0.0;
     iv.high[0] = iv.high[1] = 1.0;
-    cr_assert_eq(bf_fit_neyman(&pb, &iv, 50, SEED, LEVEL, low, high, &open),
+    cr_assert_eq(bf_fit_neyman(&pb, &iv, BF_NEYMAN_MIN_SIM, SEED, LEVEL, low,
+                               high, &open),
                  BF_EDOM);
     /* the analysis's options */
     bf_analysis_opts_init(&o);
     cr_assert_eq(o.n_neyman, 0u, "off by default");
     o.n_neyman = BF_NEYMAN_MIN_SIM - 1;
     cr_assert_eq(bf_analysis_opts_check(&o, NULL), BF_EINVAL);
-    o.n_neyman = 50;
+    o.n_neyman = BF_NEYMAN_MIN_SIM;
     cr_assert_eq(bf_analysis_opts_check(&o, NULL), BF_OK);
     o.no_intervals = 1;
     cr_assert_eq(bf_analysis_opts_check(&o, NULL), BF_EINVAL);
@@ -197,7 +199,8 @@ Test(neyman, refuses_what_it_cannot_do)
                                   &cal),
                  BF_EINVAL);
     cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_OBJECTIVE,
-                                  20, 0, 50, SEED, LEVEL, &cal),
+                                  20, 0, BF_NEYMAN_MIN_SIM, SEED, LEVEL,
+                                  &cal),
                  BF_EINVAL);
     cr_assert_str_eq(bf_ci_method_name(BF_CI_NEYMAN), "neyman");
 }
