@@ -127,6 +127,9 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
     double bound = side ? pb->hi[t->j] : pb->lo[t->j];
     size_t pass;
     int rc = BF_OK;
+    if (*x == bound && t->iv->ml.param[t->j] == bound) {
+        return BF_OK; /* the estimate's D = 0 is inside whatever c is */
+    }
     for (pass = 0; rc == BF_OK && pass < NY_PASSES; pass++) {
         double c;
         double dev;
