@@ -168,9 +168,9 @@ Test(cli_exact, bad_options_are_usage_errors)
     const char *a9[] = {"rank", "--folds", "x", NULL};
     const char *a10[] = {"rank", "--criterion", "r2", NULL};
     const char *a11[] = {"compare", "--neyman", "99", NULL};
-    const char *a12[] = {"compare", "--neyman", "50", "--intervals", "none",
+    const char *a12[] = {"compare", "--neyman", "100", "--intervals", "none",
                          NULL};
-    const char *a13[] = {"compare", "--neyman", "50", "--noise", "objective",
+    const char *a13[] = {"compare", "--neyman", "100", "--noise", "objective",
                          NULL};
     const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12,
                           a13};
