@@ -152,7 +152,6 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
             break;
         }
         x_new = side ? hi : lo;
-        *open = side ? (op & 2u) : (op & 1u);
         if (fabs(x_new - *x) < NY_TOL * (pb->hi[t->j] - pb->lo[t->j])) {
             *x = x_new;
             break;
@@ -161,6 +160,9 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
             x_new = side ? fmax(x_new, *x) : fmin(x_new, *x);
         }
         *x = x_new;
+    }
+    if (rc == BF_OK) { /* the end kept is the range's, or not */
+        *open = *x == bound ? (side ? 2u : 1u) : 0u;
     }
     return rc;
 }
