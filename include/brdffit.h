@@ -1485,9 +1485,10 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
  * Each end is the fixed point of end -> the profile's end under the
  * threshold c(end), from iv's end; low[j], high[j] get them (NaN for the
  * parameters not free), *open bits 2j, 2j+1 when the low/high end is the
- * search range's. It costs about 4 n_sim fits per free parameter.
- * BF_EINVAL for n_sim < BF_NEYMAN_MIN_SIM or bad arguments, BF_EDOM,
- * BF_ENOMEM. */
+ * search range's. It costs about 4 n_sim fits per free parameter. A
+ * parameter whose construction fails keeps iv's ends, and the first such
+ * failure's code is returned (BF_EDOM). BF_EINVAL for n_sim <
+ * BF_NEYMAN_MIN_SIM or bad arguments, BF_ENOMEM. */
 int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
                   unsigned long seed, double level, double *low,
                   double *high, unsigned *open);

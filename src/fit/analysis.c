@@ -180,37 +180,33 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
     }
 }
 
-/* The Neyman construction's intervals in place of iv's (bf__neyman): a
- * parameter whose construction fails keeps iv's, and the fit is flagged
- * BF_STAT_CI_FAIL; ci_method says "neyman" when every one succeeded. */
-static int neyman(bf__fitctx *fc, const bf_interval *iv,
+/* The Neyman construction's intervals in place of iv's (bf__neyman, on
+ * the grid gr): a parameter whose construction fails keeps iv's, and the
+ * fit is flagged BF_STAT_CI_FAIL; ci_method says "neyman" when every one
+ * succeeded. */
+static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                   const bf_analysis_opts *opts, bf_fit_stats *st)
 {
     const bf_problem *pb = fc->pb;
-    int failed = 0;
+    double lo[BF_MAX_PARAMS];
+    double hi[BF_MAX_PARAMS];
+    unsigned open = 0;
+    unsigned failed = 0;
     size_t j;
-    for (j = 0; j < pb->type->p; j++) {
-        double lo;
-        double hi;
-        unsigned op = 0;
-        int rc;
-        if (!((pb->free_mask >> j) & 1u)) {
-            continue;
-        }
-        rc = bf__neyman(fc, iv, j, opts->n_neyman, opts->seed, opts->level,
-                        &lo, &hi, &op);
-        if (rc == BF_ENOMEM) {
-            return rc;
-        }
-        if (rc != BF_OK) {
-            failed = 1;
-            continue;
-        }
-        st->ci_low[j] = lo;
-        st->ci_high[j] = hi;
-        st->ci_open = (st->ci_open & ~(3u << (2 * j))) | (op << (2 * j));
+    int rc = bf__neyman(fc, iv, gr, opts->n_neyman, opts->seed, opts->level,
+                        lo, hi, &open, &failed);
+    if (rc == BF_ENOMEM) {
+        return rc;
     }
-    if (failed) {
+    for (j = 0; j < pb->type->p; j++) {
+        if (((pb->free_mask & ~failed) >> j) & 1u) {
+            st->ci_low[j] = lo[j];
+            st->ci_high[j] = hi[j];
+            st->ci_open = (st->ci_open & ~(3u << (2 * j))) |
+                          (open & (3u << (2 * j)));
+        }
+    }
+    if (failed != 0) {
         st->flags |= BF_STAT_CI_FAIL;
     } else {
         st->ci_method = BF_CI_NEYMAN;
@@ -257,7 +253,7 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         st->not_identified = iv.not_identified;
         if (rc == BF_OK && opts->n_neyman > 0 &&
             pb->type->kind != BF_MODEL_SPECULAR) {
-            rc = neyman(fc, &iv, opts, st);
+            rc = neyman(fc, &iv, gr, opts, st);
             if (rc == BF_ENOMEM) {
                 return rc;
             }

@@ -220,8 +220,6 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         gr = bf__grid_make(&so.pm, &lay, &rc);
     }
     for (r = 0; rc == BF_OK && r < n_sim; r++) {
-        const double *w[1] = {NULL};
-        bf_fit_result g;
         bf_fit_result best;
         bf_interval iv;
         double blo[BF_MAX_PARAMS];
@@ -240,21 +238,16 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         if (spec) { /* the separable fit (varpro.c) */
             st = bf__varpro_fit(&so.fc, NULL, &best, NULL);
         } else {
-            rc = bf__grid_optima(gr, &sim, so.cs.cti, 1, w, &g);
-            if (rc != BF_OK) {
-                break;
-            }
-            st = isfinite(g.lse) ? bf__refine(&so.fc, &g, &best) : BF_EDOM;
+            st = bf__grid_refine(&so.fc, gr, &best);
         }
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
         }
-        for (j = 0; st == BF_OK && n_neyman > 0 && j < pb->type->p; j++) {
+        if (st == BF_OK && n_neyman > 0) {
             unsigned op;
-            if ((pb->free_mask >> j) & 1u) {
-                st = bf__neyman(&so.fc, &iv, j, n_neyman, seed + 1 + n_sim + r,
-                                level, &nlo[j], &nhi[j], &op);
-            }
+            unsigned failed;
+            st = bf__neyman(&so.fc, &iv, gr, n_neyman, seed + 1 + n_sim + r,
+                            level, nlo, nhi, &op, &failed);
         }
         if (st == BF_OK && n_boot >= 2) {
             st = bf__bootstrap(&so.fc, &iv, n_boot, seed + 1 + r, level, NULL,

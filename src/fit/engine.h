@@ -474,6 +474,12 @@ int bf__varpro_scales(bf__fitctx *fc, const double *param, double *out);
  * (checked by the callers). */
 int bf__refine(bf__fitctx *fc, const bf_fit_result *start,
                bf_fit_result *result);
+/* A simulated measurement's fit as the data's: fc->pb's optimum on the
+ * stored grid gr (bf__grid_optima), refined. BF_OK or BF_ENOCONV (*result
+ * the best point reached), BF_EDOM when no grid point is defined,
+ * BF_ENOMEM, or the refinement's error. */
+int bf__grid_refine(bf__fitctx *fc, const bf__grid *gr,
+                    bf_fit_result *result);
 int bf__minimise(bf__fitctx *fc, const double *start, bf_fit_result *result);
 
 /* ======================================================================
@@ -606,6 +612,10 @@ int bf__ml_fit(bf__fitctx *fc, const double *start, bf_fit_result *out);
  * kept in sr^-1; calibrate.c). 0 when it cannot be normalised. */
 int bf__simulate(const bf_problem *pb, const double *curve, double m,
                  double p, double sigma, gsl_rng *rng, double *d);
+/* The likelihood's residual degrees of freedom nu = n - k under noise
+ * (intervals.c): n the sum of pb's weights, k its free parameters, a
+ * diffuse model's scale and, under BF_NOISE_AUTO, the noise power. */
+double bf__lik_dof(const bf_problem *pb, bf_noise noise);
 /* The likelihood intervals' threshold n ln(1 + F_{1,nu}(level) / nu)
  * (intervals.c, [Bates & Watts §6.1.2]) for n the sum of the weights and
  * nu = n - k, finite at every nu >= 1. */
@@ -640,15 +650,16 @@ int bf__intervals(bf__fitctx *fc, const bf_fit_result *best, bf_noise noise,
 int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
-/* Parameter j's interval by the Neyman construction (neyman.c,
- * doc/methods.md §3) around iv (bf__intervals of fc->pb, a diffuse
- * model's likelihood): the threshold at each end the level-quantile of
- * n_sim simulations (GSL mt19937 seeded with seed) at the constrained
- * estimate there. *open: bit 0/1 when the low/high end is the range's.
- * BF_EDOM when iv has no noise model or for a specular model; BF_ENOMEM. */
-int bf__neyman(bf__fitctx *fc, const bf_interval *iv, size_t j,
+/* bf_fit_neyman on fc around iv (bf__intervals of fc->pb, a diffuse
+ * model's likelihood; neyman.c, doc/methods.md §3) for every free
+ * parameter at once; gr: fc->pb's grid (the simulations' first fits), or
+ * NULL to make one. low, high, *open start as iv's; *failed gets bit j when
+ * parameter j's construction failed (its ends left at iv's), and the
+ * first such failure's code is returned. BF_EDOM (every bit of *failed)
+ * when iv has no noise model or for a specular model; BF_ENOMEM. */
+int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                size_t n_sim, unsigned long seed, double level, double *low,
-               double *high, unsigned *open);
+               double *high, unsigned *open, unsigned *failed);
 /* A call after each unit of work (progress). */
 typedef struct {
     void (*fn)(void *ctx);

@@ -36,6 +36,15 @@
  * they standardise). */
 #define LEV_PASSES 3
 
+double bf__lik_dof(const bf_problem *pb, bf_noise noise)
+{
+    /* a diffuse model's free scale; the noise power under auto */
+    double k = (double)bf_problem_nfree(pb) +
+               (pb->type->kind == BF_MODEL_SPECULAR ? 0.0 : 1.0) +
+               (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
+    return bf__weight_sum(pb) - k;
+}
+
 double bf__lik_threshold(double n, double nu, double level)
 {
     /* F_{1,nu}(level) = t_nu((1 + level) / 2)^2: GSL's F quantile is NaN
@@ -217,8 +226,7 @@ static int spec_problem(bf__fitctx *fc, const bf_fit_result *best,
 {
     const bf_problem *pb = fc->pb;
     double n_w = bf__weight_sum(pb);
-    double nu = n_w - (double)bf_problem_nfree(pb) -
-                (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
+    double nu = bf__lik_dof(pb, noise);
     double p = noise == BF_NOISE_RELATIVE ? 2.0 : 0.0;
     double top = 0.0;
     double rss = 0.0;
@@ -294,9 +302,7 @@ static int interval_problem(bf__fitctx *fc, const bf_fit_result *best,
 {
     const bf_problem *pb = fc->pb;
     double n_w = bf__weight_sum(pb);
-    double k = (double)bf_problem_nfree(pb) + 1.0 +
-               (noise == BF_NOISE_AUTO ? 1.0 : 0.0);
-    double nu = n_w - k;
+    double nu = bf__lik_dof(pb, noise);
     double p = noise == BF_NOISE_RELATIVE ? 2.0 : 0.0;
     double sigma2 = NAN;
     size_t pass;

@@ -47,13 +47,13 @@ typedef struct {
     bf_problem sim;         /* pb on the simulated data */
     bf_problem sim_lik;     /* lik on the simulated data */
     const bf_interval *iv;
-    bf__grid *gr;           /* pb's grid: the simulations' first fits */
+    const bf__grid *gr;     /* pb's grid: the simulations' first fits */
     gsl_rng *rng;
     double *curve;          /* n: the constrained fit's curve */
     double *d;              /* n: a simulated measurement */
     double *lr;             /* n_sim: the simulations' D* */
     size_t n_sim;
-    size_t j;
+    size_t j;               /* the parameter whose interval is built */
     unsigned long seed;
     double level;
 } neyman_t;
@@ -77,8 +77,6 @@ static int threshold_at(neyman_t *t, double theta, double *c, double *dev)
     }
     gsl_rng_set(t->rng, t->seed); /* common random numbers */
     for (r = 0; rc == BF_OK && r < t->n_sim; r++) {
-        const double *w[1] = {NULL};
-        bf_fit_result g;
         bf_fit_result best;
         bf_fit_result ml;
         double d_r;
@@ -88,11 +86,7 @@ static int threshold_at(neyman_t *t, double theta, double *c, double *dev)
             continue;
         }
         bf__fitctx_use(fc, &t->sim);
-        rc = bf__grid_optima(t->gr, &t->sim, fc->pm->cs->cti, 1, w, &g);
-        if (rc != BF_OK) {
-            break;
-        }
-        st = isfinite(g.lse) ? bf__refine(fc, &g, &best) : BF_EDOM;
+        st = bf__grid_refine(fc, t->gr, &best);
         if (st == BF_OK || st == BF_ENOCONV) {
             bf__fitctx_use(fc, &t->sim_lik);
             st = bf__ml_fit(fc, best.param, &ml);
@@ -167,35 +161,62 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
     return rc;
 }
 
-int bf__neyman(bf__fitctx *fc, const bf_interval *iv, size_t j,
+
+/* Parameter t->j's two ends, from iv's (d0: its profile's first step);
+ * on failure they are iv's again. */
+static int one_param(neyman_t *t, double d0, double *low, double *high,
+                     unsigned *open)
+{
+    const bf_interval *iv = t->iv;
+    size_t j = t->j;
+    unsigned op_lo = (iv->open >> (2 * j)) & 1u;
+    unsigned op_hi = (iv->open >> (2 * j)) & 2u;
+    int rc = isfinite(iv->low[j]) && isfinite(iv->high[j]) ? BF_OK
+                                                           : BF_EDOM;
+    *low = iv->low[j];
+    *high = iv->high[j];
+    if (rc == BF_OK) {
+        rc = one_end(t, 0, d0, low, &op_lo);
+    }
+    if (rc == BF_OK) {
+        rc = one_end(t, 1, d0, high, &op_hi);
+    }
+    if (rc != BF_OK) {
+        *low = iv->low[j];
+        *high = iv->high[j];
+        return rc;
+    }
+    *open = (*open & ~(3u << (2 * j))) | ((op_lo | op_hi) << (2 * j));
+    return BF_OK;
+}
+
+int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                size_t n_sim, unsigned long seed, double level, double *low,
-               double *high, unsigned *open)
+               double *high, unsigned *open, unsigned *failed)
 {
     const bf_problem *pb = fc->pb;
     neyman_t t;
-    bf__grid_layout_t lay;
+    bf__grid *own = NULL;
     double d0[BF_MAX_PARAMS];
     double n_w = bf__weight_sum(pb);
-    double nu = n_w - (double)bf_problem_nfree(pb) - 1.0 -
-                (iv->noise == BF_NOISE_AUTO ? 1.0 : 0.0);
-    double thr = bf__lik_threshold(n_w, nu, level);
-    unsigned op_lo = (iv->open >> (2 * j)) & 1u;
-    unsigned op_hi = (iv->open >> (2 * j)) & 2u;
-    int rc;
+    double thr = bf__lik_threshold(n_w, bf__lik_dof(pb, iv->noise), level);
+    int first = BF_OK; /* the first parameter's failure */
+    size_t j;
+    int rc = BF_OK;
 
-    *low = iv->low[j];
-    *high = iv->high[j];
-    *open = op_lo | op_hi;
+    memcpy(low, iv->low, BF_MAX_PARAMS * sizeof *low);
+    memcpy(high, iv->high, BF_MAX_PARAMS * sizeof *high);
+    *open = iv->open;
+    *failed = pb->free_mask;
     if (iv->method != BF_CI_PROFILE_LIK ||
-        pb->type->kind == BF_MODEL_SPECULAR || !isfinite(*low) ||
-        !isfinite(*high)) {
+        pb->type->kind == BF_MODEL_SPECULAR) {
         return BF_EDOM;
     }
     memset(&t, 0, sizeof t);
     t.fc = fc;
     t.pb = pb;
     t.iv = iv;
-    t.j = j;
+    t.gr = gr;
     t.n_sim = n_sim;
     t.seed = seed;
     t.level = level;
@@ -212,28 +233,41 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, size_t j,
         t.sim.data = t.d;
         t.sim_lik = t.lik;
         t.sim_lik.data = t.d;
+    }
+    if (rc == BF_OK && gr == NULL) {
+        bf__grid_layout_t lay;
         rc = bf__grid_layout_range(pb->type, pb->fixed, pb->free_mask,
                                    pb->lo, pb->hi, &lay);
-    }
-    if (rc == BF_OK) {
-        t.gr = bf__grid_make(fc->pm, &lay, &rc);
+        if (rc == BF_OK) {
+            t.gr = own = bf__grid_make(fc->pm, &lay, &rc);
+        }
     }
     if (rc == BF_OK) {
         bf__fitctx_use(fc, &t.lik);
-        rc = bf__profile_steps(fc, &iv->ml, thr, d0);
+        rc = bf__profile_steps(fc, &iv->ml, thr, d0); /* one for all */
         bf__fitctx_use(fc, pb);
     }
     if (rc == BF_OK) {
-        rc = one_end(&t, 0, d0[j], low, &op_lo);
+        *failed = 0;
     }
-    if (rc == BF_OK) {
-        rc = one_end(&t, 1, d0[j], high, &op_hi);
+    for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
+        int st;
+        if (!((pb->free_mask >> j) & 1u)) {
+            continue;
+        }
+        t.j = j;
+        st = one_param(&t, d0[j], &low[j], &high[j], open);
+        if (st == BF_ENOMEM) {
+            rc = st;
+        } else if (st != BF_OK) {
+            *failed |= 1u << j;
+            first = first == BF_OK ? st : first;
+        }
     }
-    *open = op_lo | op_hi;
-    bf__grid_free(t.gr);
+    bf__grid_free(own);
     gsl_rng_free(t.rng);
     free(t.curve);
-    return rc;
+    return rc != BF_OK ? rc : first;
 }
 
 int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
@@ -241,7 +275,7 @@ int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
                   double *high, unsigned *open)
 {
     bf__solo so;
-    size_t j;
+    unsigned failed = 0;
     int rc;
     if (pb == NULL || iv == NULL || low == NULL || high == NULL ||
         open == NULL || pb->type == NULL || pb->data == NULL ||
@@ -249,23 +283,11 @@ int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
         !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
     }
-    *open = 0;
-    for (j = 0; j < BF_MAX_PARAMS; j++) {
-        low[j] = NAN;
-        high[j] = NAN;
-    }
     rc = bf__solo_init(&so, pb);
-    if (rc != BF_OK) {
-        return rc;
+    if (rc == BF_OK) {
+        rc = bf__neyman(&so.fc, iv, NULL, n_sim, seed, level, low, high,
+                        open, &failed);
+        bf__solo_free(&so);
     }
-    for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
-        unsigned op = 0;
-        if ((pb->free_mask >> j) & 1u) {
-            rc = bf__neyman(&so.fc, iv, j, n_sim, seed, level, &low[j],
-                            &high[j], &op);
-            *open |= op << (2 * j);
-        }
-    }
-    bf__solo_free(&so);
     return rc;
 }

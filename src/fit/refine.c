@@ -514,6 +514,18 @@ int bf__refine(bf__fitctx *fc, const bf_fit_result *start,
     return rc;
 }
 
+int bf__grid_refine(bf__fitctx *fc, const bf__grid *gr,
+                    bf_fit_result *result)
+{
+    const double *w[1] = {NULL};
+    bf_fit_result g;
+    int rc = bf__grid_optima(gr, fc->pb, fc->pm->cs->cti, 1, w, &g);
+    if (rc != BF_OK) {
+        return rc;
+    }
+    return isfinite(g.lse) ? bf__refine(fc, &g, result) : BF_EDOM;
+}
+
 int bf__minimise(bf__fitctx *fc, const double *start, bf_fit_result *result)
 {
     return minimise_box(fc, start, fc->pb->lo, fc->pb->hi, 1, result);
