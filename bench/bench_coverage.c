@@ -46,6 +46,7 @@
 #include "brdffit.h"
 #include "data/curet.h"
 #include "internal.h"
+#include "random_geometry.h"
 
 #define NCONF 198
 /* The objectives of the diffuse table (issue 18 item 2: max, scale, log,
@@ -71,33 +72,6 @@ static size_t curet_geom(const char *dir, bf_geom *geom)
     }
     bf_table_free(t);
     return k;
-}
-
-/* n directions uniform on the hemisphere up to 80 degrees (fixed seed
- * seed); with mirror every second within 10 degrees of the mirror
- * direction instead (where a lobe is measured). */
-static size_t random_geom(bf_geom *geom, size_t n, unsigned long seed,
-                          int mirror)
-{
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    double cmin = cos(80.0 * M_PI / 180.0);
-    size_t k;
-    gsl_rng_set(rng, seed);
-    for (k = 0; k < n; k++) {
-        geom[k].theta_i = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-        geom[k].phi_i = M_PI;
-        if (!mirror || k % 2 == 0) {
-            geom[k].theta_s = acos(cmin + (1.0 - cmin) * gsl_rng_uniform(rng));
-            geom[k].phi_s = M_PI * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        } else { /* phi_s = 0, theta_s = theta_i: the mirror (SPEC §1.2) */
-            double t = geom[k].theta_i +
-                       10.0 * M_PI / 180.0 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-            geom[k].theta_s = fmin(fabs(t), 80.0 * M_PI / 180.0);
-            geom[k].phi_s = 0.2 * (2.0 * gsl_rng_uniform(rng) - 1.0);
-        }
-    }
-    gsl_rng_free(rng);
-    return n;
 }
 
 /* The truth of parameter name from truths ("name=value,..."), or dflt
@@ -225,7 +199,7 @@ static void specular_rows(const char *models, const char *cornell,
         }
         if (n_geom[0] == 0) {
             n_geom[0] = cornell_geom(cornell, geoms[0]);
-            n_geom[1] = random_geom(geoms[1], N_SPEC_RANDOM, 11, 1);
+            n_geom[1] = bf_random_geometry(geoms[1], N_SPEC_RANDOM, 11, 1);
         }
         for (g = 0; g < 2; g++) {
             size_t q;
@@ -287,7 +261,7 @@ int main(int argc, char **argv)
         return 2;
     }
     n_geom[0] = curet_geom(dir, geoms[0]);
-    n_geom[1] = random_geom(geoms[1], NCONF, 7, 0);
+    n_geom[1] = bf_random_geometry(geoms[1], NCONF, 7, 0);
     printf("| model | param | geometry | noise | objective | covered | "
            "width / spread | sd obj / sd ML | not identified |%s%s\n"
            "|---|---|---|---|---|---|---|---|---|%s%s\n",

@@ -177,10 +177,7 @@ double bf_test_truth_at(const bf_problem *pb, size_t j);
 void bf_test_study_spec(bf_study_spec *spec, const bf_dataset *ds,
                         const bf_target *targets, size_t n_targets,
                         const bf_model_type *const *models, size_t n_models);
-/* n directions uniform on the hemisphere up to 80 degrees into geom
- * (GSL mt19937 seeded with seed; phi_i = pi); with mirror every second
- * within 10 degrees of the mirror direction instead (phi_s = 0, SPEC
- * §1.2: where a lobe is measured). */
+/* bf_random_geometry (random_geometry.h), asserted to succeed. */
 void bf_test_random_geometry(bf_geom *geom, size_t n, unsigned long seed,
                              int mirror);
 /* Every stride-th of the 198 non-specular CURET configurations into geom
