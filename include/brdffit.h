@@ -1356,7 +1356,20 @@ typedef struct {
                                  its variance from the residuals (sandwich)
                                  over the noise model's where larger
                                  (doc/methods.md §3); NaN otherwise */
+    double gap_low[BF_MAX_PARAMS]; /* a split set of two regions (bit j of
+                                 not_identified): [low, gap_low] and
+                                 [gap_high, high], the values between them
+                                 outside; NaN when the set is one region
+                                 (or more than two: the hull stands) */
+    double gap_high[BF_MAX_PARAMS];
 } bf_interval;
+
+/* 1 when x lies in parameter j's interval of iv: in [low, high] and not
+ * strictly inside its gap; 0 otherwise (NaN ends: 0). */
+int bf_interval_holds(const bf_interval *iv, size_t j, double x);
+/* The length of parameter j's interval of iv: high - low less its gap
+ * (NaN without an interval). */
+double bf_interval_length(const bf_interval *iv, size_t j);
 
 /* The intervals at level (e.g. 0.95) of pb's free parameters around the
  * fit best (bf_fit_refine under pb's objective) under the noise model
@@ -1373,13 +1386,17 @@ typedef struct {
     size_t n_sim;                    /* simulations fitted */
     size_t n_failed;                 /* simulations that could not be */
     double truth[BF_MAX_PARAMS];     /* the parameters simulated */
-    double coverage[BF_MAX_PARAMS];  /* share of intervals with the truth */
+    double coverage[BF_MAX_PARAMS];  /* share of intervals with the truth
+                                        (bf_interval_holds: a split one's
+                                        gap is outside) */
     double bias[BF_MAX_PARAMS];      /* mean estimate - truth (the
                                         objective's estimate) */
     double sd[BF_MAX_PARAMS];        /* sd of those estimates */
     double ml_bias[BF_MAX_PARAMS];   /* the same for the maximum-likelihood */
     double ml_sd[BF_MAX_PARAMS];     /*   estimates the intervals are about */
-    double width[BF_MAX_PARAMS];     /* median interval width */
+    double width[BF_MAX_PARAMS];     /* median interval width (less the
+                                        gap of a split one,
+                                        bf_interval_length) */
     double not_identified[BF_MAX_PARAMS]; /* share flagged not identified */
     double boot_coverage[BF_MAX_PARAMS]; /* the same share for the
                                             bootstrap's intervals (NaN
@@ -1483,15 +1500,16 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
  * data are (grid optimum, refinement, maximum likelihood at iv's power;
  * a GSL mt19937 seeded with seed, the same deviates at every theta_j).
  * Each end is the fixed point of end -> the profile's end under the
- * threshold c(end), from iv's end; low[j], high[j] get them (NaN for the
- * parameters not free), *open bits 2j, 2j+1 when the low/high end is the
- * search range's. It costs about 4 n_sim fits per free parameter. A
- * parameter whose construction fails keeps iv's ends, and the first such
- * failure's code is returned (BF_EDOM). BF_EINVAL for n_sim <
- * BF_NEYMAN_MIN_SIM or bad arguments, BF_ENOMEM. */
+ * threshold c(end), from iv's end. *out gets *iv with those ends (low,
+ * high; open bits 2j, 2j+1 when the low/high end is the search range's),
+ * the gap of a split set from the profile under its side's end's c
+ * (gap_low, gap_high; NaN: none), and method BF_CI_NEYMAN when every
+ * parameter's construction succeeded. It costs about 4 n_sim fits per
+ * free parameter. A parameter whose construction fails keeps iv's ends,
+ * and the first such failure's code is returned (BF_EDOM). BF_EINVAL for
+ * n_sim < BF_NEYMAN_MIN_SIM or bad arguments, BF_ENOMEM. */
 int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
-                  unsigned long seed, double level, double *low,
-                  double *high, unsigned *open);
+                  unsigned long seed, double level, bf_interval *out);
 
 /* ---- information criteria, cross-validation (doc/methods.md §4-5) ---- */
 
@@ -1624,6 +1642,12 @@ typedef struct {
                                        (BF_CI_RESIDUAL_BOOTSTRAP; NONE if none) */
     double ci_robust[BF_MAX_PARAMS]; /* the robust factor of ci_low, ci_high
                                         (bf_interval.robust; NaN if none) */
+    double ci_gap_low[BF_MAX_PARAMS]; /* the gap of a split interval:
+                                         ci_low..ci_gap_low and
+                                         ci_gap_high..ci_high
+                                         (bf_interval.gap_low, gap_high;
+                                         NaN if none) */
+    double ci_gap_high[BF_MAX_PARAMS];
 } bf_fit_stats;
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
@@ -1917,6 +1941,8 @@ typedef struct {
     int ci_open;             /* -1: none */
     double ci_robust;        /* the threshold's robust factor
                                 (bf_fit_stats.ci_robust); NaN: none */
+    double ci_gap_low, ci_gap_high; /* a split interval's gap
+                                (bf_fit_stats.ci_gap_low); NaN: none */
     double boot_low, boot_high;
     long n_params;           /* -1: none */
     double aic, bic, cv;

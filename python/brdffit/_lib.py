@@ -303,6 +303,8 @@ typedef struct {
     unsigned not_identified;
     bf_ci_method boot_method;
     double ci_robust[8];
+    double ci_gap_low[8];
+    double ci_gap_high[8];
 } bf_fit_stats;
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
@@ -427,6 +429,7 @@ typedef struct {
     const char *ci_method;
     int ci_open;
     double ci_robust;
+    double ci_gap_low, ci_gap_high;
     double boot_low, boot_high;
     long n_params;
     double aic, bic, cv;

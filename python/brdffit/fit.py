@@ -55,6 +55,10 @@ class FitResult:
         intervals: dict name -> (low, high), the profile interval at level.
         intervals_open: dict name -> (low_open, high_open): True where the
             interval reaches the search range.
+        interval_gaps: dict name -> (gap_low, gap_high) for the parameters
+            whose interval is split in two regions (fits.csv's ci_gap_low,
+            ci_gap_high): the set is [low, gap_low] and [gap_high, high];
+            the values in between are outside. Empty where none is.
         bootstrap: dict name -> (low, high) with bootstrap=N (else empty):
             the residual bootstrap under the noise model (doc/methods.md
             §3; bootstrap_method "residual-bootstrap").
@@ -142,6 +146,7 @@ class FitResult:
             a.flags.writeable = False
         self.grid = self.refined = self.grid_objective = None
         self.refined_objective = self.intervals = self.intervals_open = None
+        self.interval_gaps = None
         self.bootstrap = self.n_params = self.aic = self.bic = None
         self.rho_d = None
         self.cv = self.flags = self.reduces_to = self.not_identified = None
@@ -173,7 +178,8 @@ class FitResult:
         self.scales = {r.channel: {k: v for k, v in r.parameters.items()
                                    if k in linear} for r in per}
         for name in ("parameters", "bound", "grid", "refined", "intervals",
-                     "intervals_open", "bootstrap", "ml_estimate"):
+                     "intervals_open", "interval_gaps", "bootstrap",
+                     "ml_estimate"):
             d = getattr(self, name)
             if d is not None:
                 setattr(self, name, {k: v for k, v in d.items()
@@ -191,6 +197,7 @@ class FitResult:
         self.refined_objective = float(st.refined.lse)
         self.intervals = {}
         self.intervals_open = {}
+        self.interval_gaps = {}
         self.bootstrap = {}
         for j, q in enumerate(m.parameters):
             if not mask & (1 << j):
@@ -204,6 +211,9 @@ class FitResult:
                                       float(st.ci_high[j]))
             bits = (int(st.ci_open) >> (2 * j)) & 3
             self.intervals_open[q.name] = (bool(bits & 1), bool(bits & 2))
+            gap = (float(st.ci_gap_low[j]), float(st.ci_gap_high[j]))
+            if gap[0] == gap[0] and gap[1] == gap[1]:  # not NaN: split
+                self.interval_gaps[q.name] = gap
         if lib.bf_objective_keeps_scale(st.objective):
             self.rho_d = float(st.scale)  # SPEC §9.4: the free scale
         self.ci_method = ffi.string(lib.bf_ci_method_name(

@@ -59,11 +59,13 @@ def expected_row(r, param):
         row.update(parameter="", unit="", value="", bound_hit="0",
                    grid_value="", refined_value="", ci_low="", ci_high="",
                    ml_value="",
-                   ci_method="", ci_open="", ci_robust="")
+                   ci_method="", ci_open="", ci_robust="", ci_gap_low="",
+                   ci_gap_high="")
         return row
     (p,) = [q for q in r.model.parameters if q.name == param]
     lo, hi = r.intervals[param]
     lo_open, hi_open = r.intervals_open[param]
+    gap = r.interval_gaps.get(param)
     row.update(parameter=param, unit=p.unit, value=g(r.parameters[param]),
                bound_hit=str(int(r.bound[param])),
                grid_value=g(r.grid[param]),
@@ -71,7 +73,9 @@ def expected_row(r, param):
                ci_high=g(hi), ml_value=g(r.ml_estimate[param]),
                ci_method=r.ci_method,
                ci_open=str(int(lo_open) + 2 * int(hi_open)),
-               ci_robust=g_or_empty(r.ci_robust[param]))
+               ci_robust=g_or_empty(r.ci_robust[param]),
+               ci_gap_low=g(gap[0]) if gap else "",
+               ci_gap_high=g(gap[1]) if gap else "")
     return row
 
 

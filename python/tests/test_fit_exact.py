@@ -250,6 +250,28 @@ def test_profiles_cross_their_threshold_at_the_interval_ends(curet):
         brdffit.fit(curet, "FC-E", material=44, stats=False).profiles()
 
 
+def test_a_split_interval_has_its_gap_where_the_profile_is_above(curet):
+    # Felt (1), VH-G: its m's profile rises above the threshold inside the
+    # interval and comes back below (the normalising maximum moves); the
+    # set is two segments, interval_gaps names the gap, and the profile the
+    # report draws is above the threshold across it and below either side.
+    import numpy as np
+    r = brdffit.fit(curet, "VH-G", material=1, fit="exact", folds=0)
+    assert set(r.interval_gaps) == {"m"} and "m" in r.not_identified
+    lo, hi = r.intervals["m"]
+    g_lo, g_hi = r.interval_gaps["m"]
+    assert lo < g_lo < g_hi < hi
+    theta, dev, thr = r.profiles(n=401)["m"]
+    inside_gap = (theta > g_lo + 1e-3) & (theta < g_hi - 1e-3)
+    segments = ((theta > lo + 1e-3) & (theta < g_lo - 1e-3)) | (
+        (theta > g_hi + 1e-3) & (theta < hi - 1e-3))
+    assert inside_gap.any() and np.all(dev[inside_gap] > thr)
+    assert np.all(dev[segments] <= thr)
+    # a one-region interval has no gap
+    e = brdffit.fit(curet, "VH-E", material=1, fit="exact", folds=0)
+    assert e.interval_gaps == {}
+
+
 def test_without_intervals_the_fit_is_the_same_and_has_none():
     """intervals=False (the CLI's --intervals none): the same fit, AIC,
     BIC and CV as the default run, no interval, noise model or ML

@@ -60,6 +60,8 @@ static void stats_clear(bf_fit_stats *st)
         st->boot_high[j] = NAN;
         st->ml_param[j] = NAN;
         st->ci_robust[j] = NAN;
+        st->ci_gap_low[j] = NAN;
+        st->ci_gap_high[j] = NAN;
     }
     st->noise_power = NAN;
     st->noise_sigma = NAN;
@@ -188,22 +190,22 @@ static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                   const bf_analysis_opts *opts, bf_fit_stats *st)
 {
     const bf_problem *pb = fc->pb;
-    double lo[BF_MAX_PARAMS];
-    double hi[BF_MAX_PARAMS];
-    unsigned open = 0;
+    bf_interval ny;
     unsigned failed = 0;
     size_t j;
     int rc = bf__neyman(fc, iv, gr, opts->n_neyman, opts->seed, opts->level,
-                        lo, hi, &open, &failed);
+                        &ny, &failed);
     if (rc == BF_ENOMEM) {
         return rc;
     }
     for (j = 0; j < pb->type->p; j++) {
         if (((pb->free_mask & ~failed) >> j) & 1u) {
-            st->ci_low[j] = lo[j];
-            st->ci_high[j] = hi[j];
+            st->ci_low[j] = ny.low[j];
+            st->ci_high[j] = ny.high[j];
+            st->ci_gap_low[j] = ny.gap_low[j];
+            st->ci_gap_high[j] = ny.gap_high[j];
             st->ci_open = (st->ci_open & ~(3u << (2 * j))) |
-                          (open & (3u << (2 * j)));
+                          (ny.open & (3u << (2 * j)));
         }
     }
     if (failed != 0) {
@@ -244,6 +246,8 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                 st->ci_high[j] = iv.high[j];
                 st->ml_param[j] = iv.ml.param[j];
                 st->ci_robust[j] = iv.robust[j];
+                st->ci_gap_low[j] = iv.gap_low[j];
+                st->ci_gap_high[j] = iv.gap_high[j];
             }
         }
         st->ci_open = iv.open;

@@ -224,8 +224,7 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         bf_interval iv;
         double blo[BF_MAX_PARAMS];
         double bhi[BF_MAX_PARAMS];
-        double nlo[BF_MAX_PARAMS];
-        double nhi[BF_MAX_PARAMS];
+        bf_interval ny;
         int st;
         if (r > 0 && tick != NULL) {
             tick->fn(tick->ctx); /* the previous simulation's */
@@ -244,10 +243,9 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
         }
         if (st == BF_OK && n_neyman > 0) {
-            unsigned op;
             unsigned failed;
             st = bf__neyman(&so.fc, &iv, gr, n_neyman, seed + 1 + n_sim + r,
-                            level, nlo, nhi, &op, &failed);
+                            level, &ny, &failed);
         }
         if (st == BF_OK && n_boot >= 2) {
             st = bf__bootstrap(&so.fc, &iv, n_boot, seed + 1 + r, level, NULL,
@@ -267,16 +265,16 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
             }
             t.est[j * n_sim + m] = best.param[j];
             t.ml[j * n_sim + m] = iv.ml.param[j];
-            t.width[j * n_sim + m] = iv.high[j] - iv.low[j];
-            cover[j] += iv.low[j] <= truth[j] && truth[j] <= iv.high[j];
+            t.width[j * n_sim + m] = bf_interval_length(&iv, j);
+            cover[j] += bf_interval_holds(&iv, j, truth[j]);
             flag[j] += (iv.not_identified >> j) & 1u;
             if (t.boot_width != NULL) {
                 t.boot_width[j * n_sim + m] = bhi[j] - blo[j];
                 boot_cover[j] += blo[j] <= truth[j] && truth[j] <= bhi[j];
             }
             if (t.ny_width != NULL) {
-                t.ny_width[j * n_sim + m] = nhi[j] - nlo[j];
-                ny_cover[j] += nlo[j] <= truth[j] && truth[j] <= nhi[j];
+                t.ny_width[j * n_sim + m] = bf_interval_length(&ny, j);
+                ny_cover[j] += bf_interval_holds(&ny, j, truth[j]);
             }
         }
         m++;

@@ -584,10 +584,13 @@ double bf__profile_step(const bf_problem *pb, size_t j, double est);
 int bf__profile_steps(bf__fitctx *fc, const bf_fit_result *best, double thr,
                       double *d0);
 /* bf__profile_ci with the criterion n ln(S_p / S_min) <= thr and the
- * first outward step d0 (bf__profile_steps). */
+ * first outward step d0 (bf__profile_steps); gap (NULL: not wanted; else
+ * 2 doubles) gets the gap of a split set of two regions, gap[0] < gap[1]
+ * (the set is [low, gap[0]] and [gap[1], high]), NaN when the set is one
+ * region or more than two. */
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double d0, double *low, double *high,
-                       unsigned *open);
+                       unsigned *open, double *gap);
 /* The curve of that criterion, dev[k] = n ln(S_p(theta[k]) / S_min) (n
  * values, increasing; NaN where the inner fit fails), with the inner fits
  * the intervals take (profile.c) at every point: outward from best, the
@@ -653,13 +656,13 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
 /* bf_fit_neyman on fc around iv (bf__intervals of fc->pb, a diffuse
  * model's likelihood; neyman.c, doc/methods.md §3) for every free
  * parameter at once; gr: fc->pb's grid (the simulations' first fits), or
- * NULL to make one. low, high, *open start as iv's; *failed gets bit j when
- * parameter j's construction failed (its ends left at iv's), and the
- * first such failure's code is returned. BF_EDOM (every bit of *failed)
- * when iv has no noise model or for a specular model; BF_ENOMEM. */
+ * NULL to make one. *out starts as *iv; *failed gets bit j when parameter
+ * j's construction failed (its ends left at iv's), and the first such
+ * failure's code is returned. BF_EDOM (every bit of *failed) when iv has
+ * no noise model or for a specular model; BF_ENOMEM. */
 int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
-               size_t n_sim, unsigned long seed, double level, double *low,
-               double *high, unsigned *open, unsigned *failed);
+               size_t n_sim, unsigned long seed, double level,
+               bf_interval *out, unsigned *failed);
 /* A call after each unit of work (progress). */
 typedef struct {
     void (*fn)(void *ctx);

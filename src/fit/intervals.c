@@ -145,6 +145,8 @@ static void clear(bf_interval *out, bf_noise noise)
         out->low[j] = NAN;
         out->high[j] = NAN;
         out->robust[j] = NAN;
+        out->gap_low[j] = NAN;
+        out->gap_high[j] = NAN;
         out->ml.param[j] = NAN;
     }
 }
@@ -163,19 +165,22 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
     }
     for (j = 0; j < pb->type->p; j++) {
         unsigned open = 0;
+        double gap[2];
         double c; /* the robust factor */
         if (!((pb->free_mask >> j) & 1u)) {
             continue;
         }
         c = isfinite(out->robust[j]) ? out->robust[j] : 1.0;
         rc = bf__profile_ci_thr(fc, &out->ml, j, c * thr, d0[j], &out->low[j],
-                                &out->high[j], &open);
+                                &out->high[j], &open, gap);
         if (rc != BF_OK) {
             out->low[j] = NAN;
             out->high[j] = NAN;
             return rc;
         }
         out->open |= (open & 3u) << (2 * j);
+        out->gap_low[j] = gap[0];
+        out->gap_high[j] = gap[1];
         /* open where the estimate is not on the bound: the profile stays
          * below the threshold all the way there; or split: below it in a
          * region apart from the estimate's too (the interval their hull) */
@@ -414,4 +419,26 @@ int bf_fit_intervals(const bf_problem *pb, const bf_fit_result *best,
     rc = bf__intervals(&so.fc, best, noise, level, out);
     bf__solo_free(&so);
     return rc;
+}
+
+int bf_interval_holds(const bf_interval *iv, size_t j, double x)
+{
+    if (iv == NULL || j >= BF_MAX_PARAMS ||
+        !(iv->low[j] <= x && x <= iv->high[j])) {
+        return 0;
+    }
+    return !(iv->gap_low[j] < x && x < iv->gap_high[j]);
+}
+
+double bf_interval_length(const bf_interval *iv, size_t j)
+{
+    double len;
+    if (iv == NULL || j >= BF_MAX_PARAMS) {
+        return NAN;
+    }
+    len = iv->high[j] - iv->low[j];
+    if (isfinite(iv->gap_low[j]) && isfinite(iv->gap_high[j])) {
+        len -= iv->gap_high[j] - iv->gap_low[j];
+    }
+    return len;
 }

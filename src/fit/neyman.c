@@ -113,9 +113,12 @@ static int threshold_at(neyman_t *t, double theta, double *c, double *dev)
 }
 
 /* One end (side 0 low, 1 high) of parameter j's interval: from the F
- * threshold's end x, x -> the profile interval's end under c(x). */
+ * threshold's end x, x -> the profile interval's end under c(x). gap (2
+ * doubles, NaN: none) gets the gap of a split set on this side from the
+ * last profile under c(x): its two regions' ends, each thresholded at the
+ * outer end's c (not at the gap's own). */
 static int one_end(neyman_t *t, int side, double d0, double *x,
-                   unsigned *open)
+                   unsigned *open, double *gap)
 {
     const bf_problem *pb = t->pb;
     double bound = side ? pb->hi[t->j] : pb->lo[t->j];
@@ -129,6 +132,7 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
         double dev;
         double lo;
         double hi;
+        double g[2];
         unsigned op = 0;
         double x_new;
         rc = threshold_at(t, *x, &c, &dev);
@@ -140,10 +144,18 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
         }
         bf__fitctx_use(t->fc, &t->lik);
         rc = bf__profile_ci_thr(t->fc, &t->iv->ml, t->j, c, d0, &lo, &hi,
-                                &op);
+                                &op, g);
         bf__fitctx_use(t->fc, pb);
         if (rc != BF_OK) {
             break;
+        }
+        if (isfinite(g[0]) &&
+            (side ? g[0] > t->iv->ml.param[t->j]
+                  : g[1] < t->iv->ml.param[t->j])) {
+            gap[0] = g[0];
+            gap[1] = g[1];
+        } else {
+            gap[0] = gap[1] = NAN;
         }
         x_new = side ? hi : lo;
         if (fabs(x_new - *x) < NY_TOL * (pb->hi[t->j] - pb->lo[t->j])) {
@@ -162,37 +174,52 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
 }
 
 
-/* Parameter t->j's two ends, from iv's (d0: its profile's first step);
- * on failure they are iv's again. */
-static int one_param(neyman_t *t, double d0, double *low, double *high,
-                     unsigned *open)
+/* Parameter t->j's two ends and gap into out (from iv's; d0: its
+ * profile's first step); on failure they are iv's again. */
+static int one_param(neyman_t *t, double d0, bf_interval *out)
 {
     const bf_interval *iv = t->iv;
     size_t j = t->j;
+    double theta = iv->ml.param[j];
     unsigned op_lo = (iv->open >> (2 * j)) & 1u;
     unsigned op_hi = (iv->open >> (2 * j)) & 2u;
+    /* iv's gap, on the side it lies */
+    double g_lo[2] = {NAN, NAN};
+    double g_hi[2] = {NAN, NAN};
+    double *g = iv->gap_high[j] < theta ? g_lo : g_hi;
     int rc = isfinite(iv->low[j]) && isfinite(iv->high[j]) ? BF_OK
                                                            : BF_EDOM;
-    *low = iv->low[j];
-    *high = iv->high[j];
-    if (rc == BF_OK) {
-        rc = one_end(t, 0, d0, low, &op_lo);
+    if (isfinite(iv->gap_low[j])) {
+        g[0] = iv->gap_low[j];
+        g[1] = iv->gap_high[j];
     }
     if (rc == BF_OK) {
-        rc = one_end(t, 1, d0, high, &op_hi);
+        rc = one_end(t, 0, d0, &out->low[j], &op_lo, g_lo);
+    }
+    if (rc == BF_OK) {
+        rc = one_end(t, 1, d0, &out->high[j], &op_hi, g_hi);
     }
     if (rc != BF_OK) {
-        *low = iv->low[j];
-        *high = iv->high[j];
+        out->low[j] = iv->low[j];
+        out->high[j] = iv->high[j];
         return rc;
     }
-    *open = (*open & ~(3u << (2 * j))) | ((op_lo | op_hi) << (2 * j));
+    out->open = (out->open & ~(3u << (2 * j))) | ((op_lo | op_hi) << (2 * j));
+    /* one gap inside the ends, or none (the hull) */
+    g = isfinite(g_lo[0]) == isfinite(g_hi[0]) ? NULL
+        : isfinite(g_lo[0])                    ? g_lo
+                                               : g_hi;
+    out->gap_low[j] = out->gap_high[j] = NAN;
+    if (g != NULL && g[0] > out->low[j] && g[1] < out->high[j]) {
+        out->gap_low[j] = g[0];
+        out->gap_high[j] = g[1];
+    }
     return BF_OK;
 }
 
 int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
-               size_t n_sim, unsigned long seed, double level, double *low,
-               double *high, unsigned *open, unsigned *failed)
+               size_t n_sim, unsigned long seed, double level,
+               bf_interval *out, unsigned *failed)
 {
     const bf_problem *pb = fc->pb;
     neyman_t t;
@@ -204,9 +231,7 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     size_t j;
     int rc = BF_OK;
 
-    memcpy(low, iv->low, BF_MAX_PARAMS * sizeof *low);
-    memcpy(high, iv->high, BF_MAX_PARAMS * sizeof *high);
-    *open = iv->open;
+    *out = *iv;
     *failed = pb->free_mask;
     if (iv->method != BF_CI_PROFILE_LIK ||
         pb->type->kind == BF_MODEL_SPECULAR) {
@@ -256,13 +281,16 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
             continue;
         }
         t.j = j;
-        st = one_param(&t, d0[j], &low[j], &high[j], open);
+        st = one_param(&t, d0[j], out);
         if (st == BF_ENOMEM) {
             rc = st;
         } else if (st != BF_OK) {
             *failed |= 1u << j;
             first = first == BF_OK ? st : first;
         }
+    }
+    if (rc == BF_OK && *failed == 0) {
+        out->method = BF_CI_NEYMAN;
     }
     bf__grid_free(own);
     gsl_rng_free(t.rng);
@@ -271,22 +299,20 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
 }
 
 int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
-                  unsigned long seed, double level, double *low,
-                  double *high, unsigned *open)
+                  unsigned long seed, double level, bf_interval *out)
 {
     bf__solo so;
     unsigned failed = 0;
     int rc;
-    if (pb == NULL || iv == NULL || low == NULL || high == NULL ||
-        open == NULL || pb->type == NULL || pb->data == NULL ||
-        pb->weight != NULL || n_sim < BF_NEYMAN_MIN_SIM ||
-        !(level > 0.0 && level < 1.0)) {
+    if (pb == NULL || iv == NULL || out == NULL || pb->type == NULL ||
+        pb->data == NULL || pb->weight != NULL ||
+        n_sim < BF_NEYMAN_MIN_SIM || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
     }
+    *out = *iv;
     rc = bf__solo_init(&so, pb);
     if (rc == BF_OK) {
-        rc = bf__neyman(&so.fc, iv, NULL, n_sim, seed, level, low, high,
-                        open, &failed);
+        rc = bf__neyman(&so.fc, iv, NULL, n_sim, seed, level, out, &failed);
         bf__solo_free(&so);
     }
     return rc;

@@ -85,6 +85,9 @@
 /* Points of the scan for regions below the threshold apart from the
  * optimum's (scan_side), evenly spaced over the search range. */
 #define SCAN_N 13
+/* Points per side at which the region found from the optimum is checked
+ * for a ridge the outward walk stepped over (ridge). */
+#define RIDGE_N 8
 /* The scan's grid fits take every s-th point of a nuisance grid, at most
  * this many (FC's 501 values of m: every 8th), then refine from its
  * lowest local minima as every grid fit does: a region is found wherever
@@ -670,7 +673,7 @@ int bf__profile_ci(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     int rc = bf__profile_steps(fc, best, thr, d0);
     return rc != BF_OK ? rc
                        : bf__profile_ci_thr(fc, best, j, thr, d0[j], low,
-                                            high, open);
+                                            high, open, NULL);
 }
 
 /* The profile of fc->pb's parameter j about best under the threshold
@@ -816,6 +819,114 @@ static int dip(profile_t *p, double a, double m, double b, double ca,
     return BF_OK;
 }
 
+/* A ridge inside the region the walk found from the optimum to its end
+ * (a profile that rises above the threshold and comes back below between
+ * two of the walk's doubling steps, as at a kink where the normalising
+ * maximum moves to another configuration): the criterion (outward fits,
+ * warm-started from point to point) at RIDGE_N - 1 points evenly spaced
+ * strictly between theta_hat and end. Where it rises above the threshold
+ * and comes back below once, *gap_a, *gap_b get the ridge's two roots
+ * (root, each from its inside neighbour's nuisance; nearer theta_hat
+ * first); left as they are when there is no ridge, more than one, or a
+ * root is not found (the region stands whole). p->start is the optimum's
+ * nuisance on return. */
+static int ridge(profile_t *p, double theta_hat, double end, double *gap_a,
+                 double *gap_b)
+{
+    double in_x = theta_hat;  /* the last point inside */
+    double in_nu[BF_MAX_PARAMS];
+    double out_x = NAN;       /* the ridge's first and last points */
+    double last_out = NAN;
+    double back_x = NAN;      /* the first point inside beyond it */
+    double back_nu[BF_MAX_PARAMS];
+    double ra;
+    double rb;
+    int ridges = 0;
+    size_t i;
+    int rc;
+    memcpy(p->start, p->est, sizeof p->start);
+    memcpy(in_nu, p->est, sizeof in_nu);
+    for (i = 1; i < RIDGE_N && ridges < 2; i++) {
+        double x = theta_hat + (end - theta_hat) * (double)i / RIDGE_N;
+        int improved;
+        double c = crit_at(p, x, FIT_OUTWARD, &improved);
+        if (p->status == BF_ENOMEM) {
+            return BF_ENOMEM;
+        }
+        if (p->status != BF_OK) { /* not defined: no ridge to speak of */
+            p->status = BF_OK;
+            ridges = 2;
+            break;
+        }
+        if (c > 0.0) {
+            if (isnan(out_x)) {
+                ridges++;
+                out_x = x;
+            } else if (!isnan(back_x)) {
+                ridges++; /* a second ridge */
+            }
+            last_out = x;
+        } else if (isnan(out_x)) {
+            in_x = x;
+            memcpy(in_nu, p->start, sizeof in_nu);
+        } else if (isnan(back_x)) {
+            back_x = x;
+            memcpy(back_nu, p->start, sizeof back_nu);
+        }
+    }
+    memcpy(p->start, p->est, sizeof p->start);
+    if (ridges != 1 || isnan(back_x)) {
+        return BF_OK; /* none, more than one, or open to the end */
+    }
+    memcpy(p->anchor, in_nu, sizeof in_nu);
+    rc = root(p, in_x, out_x, &ra);
+    if (rc == BF_OK && p->status == BF_OK) {
+        memcpy(p->anchor, back_nu, sizeof back_nu);
+        rc = root(p, back_x, last_out, &rb);
+    }
+    memcpy(p->start, p->est, sizeof p->start);
+    if (rc == BF_ENOMEM || p->status == BF_ENOMEM) {
+        return BF_ENOMEM;
+    }
+    p->status = BF_OK;
+    if (rc == BF_OK && (ra - theta_hat) * (rb - ra) > 0.0) {
+        *gap_a = ra;
+        *gap_b = rb;
+    }
+    return BF_OK;
+}
+
+/* The gap between the region found from the optimum (its end near) and
+ * the region apart from it that holds far_x (criterion far_c, p->start
+ * its nuisance): the far region's inner end by one_side from far_x towards
+ * near; *gap_a = near, *gap_b = that end, unless the walk reaches near,
+ * fails (the hull stands; BF_ENOMEM returned), or one of the m scanned
+ * points t (criterion c) strictly inside the gap is below the threshold. */
+static int gap_of(profile_t *p, double far_x, double far_c, double near,
+                  double d0, const double *t, const double *c, size_t m,
+                  double *gap_a, double *gap_b)
+{
+    double inner = NAN;
+    int reached = 0;
+    size_t i;
+    int rc = one_side(p, far_x, far_x, far_c, near, d0, &inner, &reached);
+    if (rc == BF_ENOMEM || p->status == BF_ENOMEM) {
+        return BF_ENOMEM;
+    }
+    p->status = BF_OK;
+    if (rc != BF_OK || reached || !isfinite(inner)) {
+        return BF_OK;
+    }
+    for (i = 1; i < m; i++) {
+        if (c[i] <= 0.0 && (t[i] - near) * (t[i] - inner) < 0.0) {
+            return BF_OK;
+        }
+    }
+    *gap_a = near;
+    *gap_b = inner;
+    return BF_OK;
+}
+
 /* The scan beyond the end *end of the interval found from the optimum,
  * towards limit: the thorough criterion (its grid fit on a coarser grid,
  * SCAN_GRID) at the points of SCAN_N evenly spaced over the search range
@@ -826,10 +937,16 @@ static int dip(profile_t *p, double a, double m, double b, double ca,
  * optimum's: a profile with two minima, as the Fresnel index's of FC-E,
  * FC-G, WNO and WNO-R, whose normalised shapes fold over n), the end is
  * found again from the farthest (one_side) and *split set: the interval
- * is the hull of the regions, which holds the whole set. p->start is the
- * optimum's nuisance on return. */
+ * is the hull of the regions, which holds the whole set. The far region's
+ * inner end is found too (one_side from the far point back towards the
+ * end found first): *gap_a, *gap_b get the gap between the two regions
+ * (the end found first, that inner end), left as they are when the walk
+ * back reaches the first end (one region after all), fails, or a scanned
+ * point inside the gap is below the threshold (a third region: the hull
+ * stands). p->start is the optimum's nuisance on return. */
 static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
-                     double *end, int *at_limit, int *split)
+                     double *end, int *at_limit, int *split, double *gap_a,
+                     double *gap_b)
 {
     const double lo = p->fc->pb->lo[p->j];
     const double hi = p->fc->pb->hi[p->j];
@@ -899,9 +1016,14 @@ static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
         }
     }
     if (!isnan(far_x)) {
+        double near = *end;
         *split = 1;
         memcpy(p->start, far_start, sizeof far_start);
         rc = one_side(p, theta_hat, far_x, far_c, limit, d0, end, at_limit);
+        if (rc == BF_OK) {
+            memcpy(p->start, far_start, sizeof far_start);
+            rc = gap_of(p, far_x, far_c, near, d0, t, c, m, gap_a, gap_b);
+        }
     }
     memcpy(p->start, p->est, sizeof p->start);
     return rc;
@@ -909,11 +1031,15 @@ static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
 
 int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                        double thr, double d0, double *low, double *high,
-                       unsigned *open)
+                       unsigned *open, double *gap)
 {
     const bf_problem *pb = fc->pb;
     profile_t p;
     double theta_hat = best->param[j];
+    /* the gaps: ridges below, above; regions apart below, above */
+    double g[8] = {NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+    size_t k;
+    size_t n_gaps = 0;
     int at_lo = 0;
     int at_hi = 0;
     int split = 0;
@@ -927,15 +1053,35 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
                           high, &at_hi);
         }
         if (rc == BF_OK && scan) {
-            rc = scan_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo, &split);
+            rc = ridge(&p, theta_hat, *low, &g[1], &g[0]);
+        }
+        if (rc == BF_OK && scan) {
+            rc = ridge(&p, theta_hat, *high, &g[2], &g[3]);
+        }
+        if (rc == BF_OK && scan) {
+            rc = scan_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo, &split,
+                           &g[5], &g[4]);
         }
         if (rc == BF_OK && scan) {
             rc = scan_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi,
-                           &split);
+                           &split, &g[6], &g[7]);
         }
         profile_end(fc, pb);
     }
+    for (k = 0; k < 8; k += 2) {
+        n_gaps += isfinite(g[k]);
+    }
+    split = split || n_gaps > 0;
     *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u) | (split ? 4u : 0u);
+    if (gap != NULL) { /* one gap, or none: three regions keep the hull */
+        gap[0] = gap[1] = NAN;
+        for (k = 0; k < 8 && n_gaps == 1; k += 2) {
+            if (isfinite(g[k])) {
+                gap[0] = g[k];
+                gap[1] = g[k + 1];
+            }
+        }
+    }
     return rc;
 }
 

@@ -44,6 +44,7 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
     l->ci_low = l->ci_high = l->boot_low = l->boot_high = NAN;
     l->ml_value = NAN;
     l->ci_robust = NAN;
+    l->ci_gap_low = l->ci_gap_high = NAN;
     l->aic = l->bic = l->cv = NAN;
     l->ci_open = -1;
     l->n_params = -1;
@@ -61,6 +62,8 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
                          ? (int)((s->ci_open >> (2 * j)) & 3u)
                          : -1; /* no interval: --intervals none */
         l->ci_robust = has ? s->ci_robust[j] : NAN;
+        l->ci_gap_low = has ? s->ci_gap_low[j] : NAN;
+        l->ci_gap_high = has ? s->ci_gap_high[j] : NAN;
         l->boot_low = has ? s->boot_low[j] : NAN;
         l->boot_high = has ? s->boot_high[j] : NAN;
         l->n_params = (long)s->k;
@@ -175,7 +178,7 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
     fprintf(fp, ",%.10g,%d,%zu,%s,%s", l->lse, l->bound_hit, l->k,
             l->objective, l->fit);
     if (!l->analysed) {
-        fputs(",,,,,,,,,,,,,,,,,", fp);
+        fputs(",,,,,,,,,,,,,,,,,,,", fp);
     } else {
         bf__csv_num(fp, l->grid_value);
         bf__csv_num(fp, l->grid_lse);
@@ -187,6 +190,8 @@ static void write_line(FILE *fp, const bf_study_spec *spec,
         fprintf(fp, ",%s", l->ci_method != NULL ? l->ci_method : "");
         csv_int(fp, l->ci_open);
         bf__csv_num(fp, l->ci_robust);
+        bf__csv_num(fp, l->ci_gap_low);
+        bf__csv_num(fp, l->ci_gap_high);
         bf__csv_num(fp, l->boot_low);
         bf__csv_num(fp, l->boot_high);
         csv_int(fp, l->n_params);
@@ -228,8 +233,8 @@ int bf_fits_csv_write(FILE *fp, const bf_study_spec *spec,
     (void)bf_fits_lines(spec, rows, stats, opts, lines);
     fputs("sample,name,channel,model,parameter,unit,value,lse,bound_hit,k,"
           "objective,fit,grid_value,grid_lse,refined_value,refined_lse,"
-          "ci_low,ci_high,ml_value,ci_method,ci_open,ci_robust,boot_low,"
-          "boot_high,n_params,aic,bic,cv,flags,ndf,masking,fresnel,"
+          "ci_low,ci_high,ml_value,ci_method,ci_open,ci_robust,ci_gap_low,"
+          "ci_gap_high,boot_low,boot_high,n_params,aic,bic,cv,flags,ndf,masking,fresnel,"
           "albedo_0,albedo_30,albedo_60,albedo_80,albedo_over_1\n",
           fp);
     for (i = 0; i < n; i++) {

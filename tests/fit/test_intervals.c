@@ -365,6 +365,168 @@ Test(intervals, a_nearly_flat_profile_is_open_to_its_bounds)
 
 /* ==== bad input ============================================================ */
 
+/* ==== split sets ========================================================= */
+
+/* One parameter a, L = cos(theta_i)^e(a). SPLIT_FOLD: e = 0.5 + (a - 2)^2,
+ * so a and 4 - a give one shape (two regions apart, the fold at 2 between
+ * them). SPLIT_RIDGE: e = 1 + 0.05 a + 0.3 max(0, 1 - |a - c| / 0.005), a
+ * rise far narrower than the outward walk's steps from the estimate, at c
+ * five eighths of the way from the estimate to the upper end the slope
+ * alone gives (ridge_at, 0: no rise). */
+enum { SPLIT_FOLD, SPLIT_RIDGE };
+static int split_mode;
+static double ridge_at;
+
+static double split_exponent(double a)
+{
+    if (split_mode == SPLIT_FOLD) {
+        return 0.5 + (a - 2.0) * (a - 2.0);
+    }
+    return 1.0 + 0.05 * a +
+           (ridge_at > 0.0 ? 0.3 * fmax(0.0, 1.0 - fabs(a - ridge_at) / 0.005)
+                           : 0.0);
+}
+
+static int split_eval(const double *param, size_t n, const bf_geom *geom,
+                      double *out, void *work)
+{
+    double e = split_exponent(param[0]);
+    size_t k;
+    (void)work;
+    for (k = 0; k < n; k++) {
+        out[k] = pow(cos(geom[k].theta_i), e);
+    }
+    return BF_OK;
+}
+
+static const bf_param split_params[1] = {
+    {.name = "a", .label = "a", .unit = "1", .min = 0.0, .max = 4.0,
+     .value = 1.3, .fitted = 1, .grid_lo = 0.0, .grid_step = 0.05,
+     .grid_n = 81, .input = BF_INPUT_DEFAULT},
+};
+
+static const bf_model_type split_type = {
+    .name = "SPLIT", .title = "test: a split profile", .reference = "test",
+    .p = 1, .param = split_params, .eval = split_eval,
+};
+
+/* The intervals of a (truth 1.3, a fixed deterministic 2% "noise") under
+ * mode; the gap's ends on the threshold, its middle above it, the two
+ * segments' insides below it (the criterion's curve). */
+static void split_fit(int mode, bf_interval *iv, bf_problem *pb,
+                      bf_fit_result *best, double *data, bf_geom *geom)
+{
+    double truth[1] = {1.3};
+    size_t n = bf_test_curet_geometry(geom, STRIDE);
+    size_t k;
+    bf_curves *c;
+    bf_fit_result g;
+    int st;
+    split_mode = mode;
+    cr_assert_eq(split_eval(truth, n, geom, data, NULL), BF_OK);
+    cr_assert_eq(bf_normalise(n, data, data), BF_OK);
+    for (k = 0; k < n; k++) {
+        data[k] *= 1.0 + 0.02 * sin(12.9898 * (double)k);
+    }
+    cr_assert_eq(bf_problem_init(pb, &split_type, truth, n, geom, data),
+                 BF_OK);
+    c = bf_curves_alloc(pb, &st);
+    cr_assert_not_null(c);
+    cr_assert_eq(bf_curves_best(c, pb, &g), BF_OK);
+    st = bf_fit_refine(pb, &g, best);
+    cr_assert(st == BF_OK || st == BF_ENOCONV);
+    bf_curves_free(c);
+    cr_assert_eq(bf_fit_intervals(pb, best, BF_NOISE_AUTO, LEVEL, iv),
+                 BF_OK);
+}
+
+static void split_case(int mode, bf_interval *iv)
+{
+    static bf_geom geom[BF_CURET_NCONF];
+    static double data[BF_CURET_NCONF];
+    bf_problem pb;
+    bf_fit_result best;
+    double theta[5];
+    double dev[5];
+    double thr;
+    ridge_at = 0.0;
+    if (mode == SPLIT_RIDGE) { /* where the end is without the rise */
+        split_fit(mode, iv, &pb, &best, data, geom);
+        cr_assert(isnan(iv->gap_low[0]), "no rise, no gap");
+        ridge_at = iv->ml.param[0] + 0.625 * (iv->high[0] - iv->ml.param[0]);
+    }
+    split_fit(mode, iv, &pb, &best, data, geom);
+    cr_log_info("a in [%.6f, %.6f], gap (%.6f, %.6f), estimate %.6f",
+                iv->low[0], iv->high[0], iv->gap_low[0], iv->gap_high[0],
+                iv->ml.param[0]);
+    cr_assert(isfinite(iv->gap_low[0]) && isfinite(iv->gap_high[0]),
+              "a split set has its gap");
+    cr_assert(iv->low[0] < iv->gap_low[0] && iv->gap_low[0] < iv->gap_high[0]
+              && iv->gap_high[0] < iv->high[0]);
+    cr_expect_eq(iv->not_identified & 1u, 1u, "split: flagged");
+    theta[0] = 0.5 * (iv->low[0] + iv->gap_low[0]);   /* inside */
+    theta[1] = iv->gap_low[0];                         /* on it */
+    theta[2] = 0.5 * (iv->gap_low[0] + iv->gap_high[0]); /* outside */
+    theta[3] = iv->gap_high[0];
+    theta[4] = 0.5 * (iv->gap_high[0] + iv->high[0]);
+    cr_assert_eq(bf_fit_interval_curve(&pb, &best, BF_NOISE_AUTO, LEVEL, 0,
+                                       5, theta, dev, &thr, NULL),
+                 BF_OK);
+    cr_expect_leq(dev[0], thr, "below segment: %g vs %g", dev[0], thr);
+    cr_expect_leq(dev[4], thr, "above segment: %g vs %g", dev[4], thr);
+    cr_expect_gt(dev[2], thr, "the gap: %g vs %g", dev[2], thr);
+    cr_expect_float_eq(dev[1], thr, 1e-3 * thr, "gap low end: %g", dev[1]);
+    cr_expect_float_eq(dev[3], thr, 1e-3 * thr, "gap high end: %g", dev[3]);
+    /* what a caller asks of the set */
+    cr_expect(bf_interval_holds(iv, 0, iv->ml.param[0]));
+    cr_expect(bf_interval_holds(iv, 0, theta[0]));
+    cr_expect(bf_interval_holds(iv, 0, theta[4]));
+    cr_expect(!bf_interval_holds(iv, 0, theta[2]), "the gap is outside");
+    cr_expect(!bf_interval_holds(iv, 0, iv->high[0] + 1e-3));
+    cr_expect_float_eq(bf_interval_length(iv, 0),
+                       (iv->high[0] - iv->low[0]) -
+                           (iv->gap_high[0] - iv->gap_low[0]),
+                       1e-12);
+}
+
+/* The profile's two branches (a, 4 - a) are reported as two segments, not
+ * their hull across the fold. */
+Test(intervals, a_set_in_two_regions_apart_is_two_segments)
+{
+    bf_interval iv;
+    split_case(SPLIT_FOLD, &iv);
+    cr_expect(bf_interval_holds(&iv, 0, 4.0 - iv.ml.param[0]),
+              "the mirror branch is inside");
+    cr_expect(!bf_interval_holds(&iv, 0, 2.0), "the fold is outside");
+}
+
+/* A narrow rise above the threshold between the estimate and its end, which
+ * the outward walk steps over, splits the set too. */
+Test(intervals, a_ridge_inside_the_interval_splits_it)
+{
+    bf_interval iv;
+    split_case(SPLIT_RIDGE, &iv);
+    cr_expect(!bf_interval_holds(&iv, 0, ridge_at), "the ridge is outside");
+    cr_expect_lt(iv.gap_high[0] - iv.gap_low[0], 0.1, "a narrow gap");
+}
+
+/* A parameter without a split has no gap: its set is one segment. */
+Test(intervals, one_region_has_no_gap)
+{
+    bf_interval iv;
+    memset(&iv, 0, sizeof iv);
+    iv.low[0] = 1.0;
+    iv.high[0] = 2.0;
+    iv.gap_low[0] = iv.gap_high[0] = NAN;
+    cr_expect(bf_interval_holds(&iv, 0, 1.5));
+    cr_expect(bf_interval_holds(&iv, 0, 1.0) && bf_interval_holds(&iv, 0, 2.0));
+    cr_expect(!bf_interval_holds(&iv, 0, 2.5));
+    cr_expect_float_eq(bf_interval_length(&iv, 0), 1.0, 1e-15);
+    iv.low[0] = NAN;
+    cr_expect(!bf_interval_holds(&iv, 0, 1.5), "no interval holds nothing");
+    cr_expect(isnan(bf_interval_length(&iv, 0)));
+}
+
 Test(intervals, an_unknown_noise_word_is_not_found)
 {
     bf_noise nz = BF_NOISE_RELATIVE;

@@ -603,7 +603,7 @@ Test(spec_intervals, a_profile_stays_inside_where_the_model_overflows,
     cr_assert_eq(bf__varpro_fit(&so.fc, NULL, &fit, NULL), BF_OK);
     cr_assert_eq(bf__profile_ci_thr(&so.fc, &fit, 1, 1e6,
                                     bf__profile_step(&pb, 1, fit.param[1]),
-                                    &lo, &hi, &open),
+                                    &lo, &hi, &open, NULL),
                  BF_OK);
     /* Cxy's upper end short of its bound 2, where the lobe is still a
      * double, and open */
