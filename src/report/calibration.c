@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "calibration.h"
+#include "ranking.h"
 
 int bf_rep_calibrate_check(const char *hint, const bf_report_options *o)
 {
@@ -93,8 +94,9 @@ static void pair_rows(bf_tt *t, const bf_rep_study *st, size_t i)
         bf_tt_set(t, C_PARAM, "%s", r->type->param[j].name);
         bf_tt_set(t, C_VALUE, "%.4g", c->truth[j]);
         if (isfinite(f->ci_low[j]) && isfinite(f->ci_high[j])) {
-            bf_tt_set(t, C_INTERVAL, "[%.4g, %.4g]", f->ci_low[j],
-                      f->ci_high[j]);
+            char iv[96];
+            bf_rep_interval_text(iv, sizeof iv, f, j);
+            bf_tt_set(t, C_INTERVAL, "%s", iv);
         } else {
             bf_tt_set(t, C_INTERVAL, "\xe2\x80\x93");
         }

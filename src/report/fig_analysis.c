@@ -198,7 +198,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
     const char **names = sample_names(st, d);
     bf_plot_panel *panel = bf_fig_alloc(d, nj * sizeof *panel);
     bf_plot_series *ser = bf_fig_alloc(d, 4 * nj * sizeof *ser);
-    double *v = bf_fig_alloc(d, 8 * N * nj * sizeof *v);
+    double *v = bf_fig_alloc(d, 10 * N * nj * sizeof *v);
     unsigned *open = bf_fig_alloc(d, N * nj * sizeof *open);
     char (*xl)[128] = bf_fig_alloc(d, nj * sizeof *xl);
     char each[48];
@@ -213,7 +213,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         return nj == 0 ? BF_EINVAL : BF_ENOMEM;
     }
     for (j = 0; j < t->p; j++) {
-        double *est = &v[8 * N * q];
+        double *est = &v[10 * N * q];
         double *lo = est + N;
         double *hi = lo + N;
         double *blo = hi + N;
@@ -221,6 +221,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         double *y = bhi + N;
         double *yb = y + N;
         double *ml = yb + N; /* the estimate the interval is about */
+        double *gl = ml + N; /* a split interval's gap */
+        double *gh = gl + N;
         double xmin = HUGE_VAL;
         double xmax = -HUGE_VAL;
         bf_plot_series *sq = &ser[4 * q];
@@ -234,6 +236,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             lo[s] = ok ? f->ci_low[j] : NAN;
             hi[s] = ok ? f->ci_high[j] : NAN;
             ml[s] = ok ? f->ml_param[j] : NAN;
+            gl[s] = ok ? f->ci_gap_low[j] : NAN;
+            gh[s] = ok ? f->ci_gap_high[j] : NAN;
             blo[s] = ok ? f->boot_low[j] : NAN;
             bhi[s] = ok ? f->boot_high[j] : NAN;
             y[s] = (double)(N - s);
@@ -260,6 +264,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[0].x2 = hi;
         sq[0].y = y;
         sq[0].open = &open[q * N];
+        sq[0].gap_lo = gl;
+        sq[0].gap_hi = gh;
         sq[0].n = N;
         sq[0].style = bf_report_model_style(t);
         sq[0].dash = BF_DASH_SOLID;
@@ -272,6 +278,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[1].x2 = bhi;
         sq[1].y = yb;
         sq[1].open = NULL;
+        sq[1].gap_lo = sq[1].gap_hi = NULL;
         sq[1].n = boot ? N : 0;
         sq[1].dash = BF_DASH_DOTTED;
         sq[1].weight = 0.9;
@@ -326,7 +333,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "weights the residuals that estimate can differ from the "
              "optimum, and the interval need not hold the optimum%s. An "
              "interval that reaches the search range is cut there and drawn "
-             "without an end tick.",
+             "without an end tick; one in two regions apart is drawn as its "
+             "two segments (fits.csv ci_gap_low, ci_gap_high).",
              bf_fig_each_sample(N, each, sizeof each), t->name,
              bf_objective_name(st->opts.objective),
              st->opts.n_neyman > 0 && t->kind != BF_MODEL_SPECULAR
@@ -602,6 +610,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
             sq[2].open = &open[q];
             sq[2].x = &ci[0];
             sq[2].x2 = &ci[1];
+            sq[2].gap_lo = &f->ci_gap_low[j];
+            sq[2].gap_hi = &f->ci_gap_high[j];
             sq[2].y = &ci[2];
             sq[2].n = 1;
             sq[2].style = sq[1].style;
@@ -672,9 +682,10 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "the estimated parameters (about 3.84); the thick segment, "
                  "where the curve lies below it, is the parameter's "
                  "reported 95%% interval (fits.csv ci_low, ci_high); where "
-                 "the curve lies below it in separate regions, the segment "
-                 "spans them all, across the ridge between (flags "
-                 "not_identified).%s",
+                 "the curve lies below it in two separate regions, two "
+                 "segments, the ridge between them outside (fits.csv "
+                 "ci_gap_low, ci_gap_high; flags not_identified; more than "
+                 "two: one segment across them all).%s",
                  bf_noise_name(st->analysis.noise),
                  bf_noise_variance(st->analysis.noise),
                  bf_objective_keeps_scale(st->opts.objective)
@@ -695,8 +706,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                  "configurations; doc/methods.md §3) around the exact "
                  "optimum (point); the 95%% profile interval is where the "
                  "curve lies below the dashed threshold 3.84 (thick "
-                 "segment; across the ridge between separate regions, "
-                 "flagged not_identified).",
+                 "segment; two segments where it lies below in two "
+                 "separate regions, flagged not_identified).",
                  bf_objective_name(st->opts.objective), D->smp[s].K);
     }
     snprintf(e->alt, sizeof e->alt,

@@ -96,6 +96,7 @@ static void series(bf_plot_series *s, bf_series_kind kind, const double *x,
 typedef struct {
     double *x;      /* n_sim estimates */
     double *y;      /* their jittered heights */
+    double gap[2];  /* the interval's gap (NaN: none) */
     double v[12];   /* range low, high, y; interval low, high, y; truth x
                        twice, y twice; the interval's estimate */
     unsigned open;  /* the interval's open ends */
@@ -113,6 +114,8 @@ static void fill_series(bf_plot_series *ser, panel_data *q, size_t n)
     series(&ser[2], BF_SERIES_INTERVALS, &q->v[3], &q->v[4], &q->v[5], 1,
            BF_PLOT_INK, "the fit's 95% interval");
     ser[2].open = &q->open;
+    ser[2].gap_lo = &q->gap[0];
+    ser[2].gap_hi = &q->gap[1];
     ser[2].weight = 1.6;
     series(&ser[3], BF_SERIES_LINE, &q->v[6], NULL, &q->v[8], 2, BF_PLOT_REF,
            "value simulated");
@@ -154,6 +157,8 @@ static void fill(const bf_rep_study *st, size_t i, size_t j, panel_data *q,
     q->v[2] = RANGE_Y;
     q->v[3] = f->ci_low[j];
     q->v[4] = f->ci_high[j];
+    q->gap[0] = f->ci_gap_low[j];
+    q->gap[1] = f->ci_gap_high[j];
     q->v[5] = BAR_Y;
     q->v[6] = q->v[7] = c->truth[j];
     q->v[8] = 0.4;

@@ -548,19 +548,48 @@ static void series_bars(ctx_t *c, const view_t *v, const bf_plot_series *s)
     }
 }
 
-/* INTERVALS (horizontal, from x to x2 at y) and ERRORBARS (vertical,
- * from y to y2 at x): segments with end ticks across them. */
+/* One segment of series_intervals from (wx[0], wy[0]) to (wx[1], wy[1])
+ * (window coordinates), with an end tick at end e unless bit e of open. */
+static void interval_segment(ctx_t *c, const view_t *v,
+                             const bf_plot_series *s, const double *wx,
+                             const double *wy, unsigned open)
+{
+    int vertical = s->kind == BF_SERIES_ERRORBARS;
+    int e;
+    double x[2] = {wx[0], wx[1]};
+    double y[2] = {wy[0], wy[1]};
+    line_run(c, v, 2, x, y, bf__series_dash(s), line_width(s));
+    for (e = 0; e < 2; e++) { /* end ticks, where the end is shown */
+        double px;
+        double py;
+        double tx[2];
+        double ty[2];
+        if (wx[e] < v->wx0 || wx[e] > v->wx1 || wy[e] < v->wy0 ||
+            wy[e] > v->wy1 || ((open >> e) & 1u)) {
+            continue;
+        }
+        to_page(v, wx[e], wy[e], &px, &py);
+        to_window(v, px - (vertical ? CAP : 0.0),
+                  py - (vertical ? 0.0 : CAP), &tx[0], &ty[0]);
+        to_window(v, px + (vertical ? CAP : 0.0),
+                  py + (vertical ? 0.0 : CAP), &tx[1], &ty[1]);
+        plline(2, tx, ty);
+    }
+}
+
+/* INTERVALS (horizontal, from x to x2 at y; a split one as two segments
+ * either side of its gap) and ERRORBARS (vertical, from y to y2 at x):
+ * segments with end ticks across them. */
 static void series_intervals(ctx_t *c, const view_t *v,
                              const bf_plot_series *s)
 {
-    const bf__dash *d = bf__series_dash(s);
     int vertical = s->kind == BF_SERIES_ERRORBARS;
     size_t i;
     lines_begin(c, s);
     for (i = 0; i < s->n; i++) {
         double wx[2];
         double wy[2];
-        int e;
+        unsigned open = s->open != NULL ? s->open[i] & 3u : 0u;
         to_win(v->p, s->x[i], s->y[i], &wx[0], &wy[0]);
         to_win(v->p, vertical ? s->x[i] : s->x2[i],
                vertical ? s->y2[i] : s->y[i], &wx[1], &wy[1]);
@@ -568,24 +597,21 @@ static void series_intervals(ctx_t *c, const view_t *v,
             !isfinite(wy[1])) {
             continue;
         }
-        line_run(c, v, 2, wx, wy, d, line_width(s));
-        for (e = 0; e < 2; e++) { /* end ticks, where the end is shown */
-            double px;
-            double py;
-            double tx[2];
-            double ty[2];
-            if (wx[e] < v->wx0 || wx[e] > v->wx1 || wy[e] < v->wy0 ||
-                wy[e] > v->wy1 ||
-                (s->open != NULL && ((s->open[i] >> e) & 1u))) {
+        if (!vertical && s->gap_lo != NULL && s->gap_hi != NULL &&
+            isfinite(s->gap_lo[i]) && isfinite(s->gap_hi[i])) {
+            double gx[2];
+            double gy[2];
+            to_win(v->p, s->gap_lo[i], s->y[i], &gx[0], &gy[0]);
+            to_win(v->p, s->gap_hi[i], s->y[i], &gx[1], &gy[1]);
+            if (isfinite(gx[0]) && isfinite(gx[1])) {
+                double ax[2] = {wx[0], gx[0]};
+                double bx[2] = {gx[1], wx[1]};
+                interval_segment(c, v, s, ax, wy, open & 1u);
+                interval_segment(c, v, s, bx, wy, open & 2u);
                 continue;
             }
-            to_page(v, wx[e], wy[e], &px, &py);
-            to_window(v, px - (vertical ? CAP : 0.0),
-                      py - (vertical ? 0.0 : CAP), &tx[0], &ty[0]);
-            to_window(v, px + (vertical ? CAP : 0.0),
-                      py + (vertical ? 0.0 : CAP), &tx[1], &ty[1]);
-            plline(2, tx, ty);
         }
+        interval_segment(c, v, s, wx, wy, open);
     }
     lines_end(c, v);
 }

@@ -91,6 +91,9 @@ typedef struct {
                              (right) end -- the lower (upper) -- is open:
                              cut at a bound, drawn without its end tick;
                              NULL: all closed */
+    const double *gap_lo; /* INTERVALS: the n gaps of split intervals, */
+    const double *gap_hi; /* drawn as x..gap_lo and gap_hi..x2 (NaN or
+                             NULL: none) */
     size_t n;
     unsigned style;     /* style slot (< BF_PLOT_NSTYLES, or BF_PLOT_INK,
                            BF_PLOT_REF) */

@@ -144,17 +144,30 @@ bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit)
     return complete(t);
 }
 
-int bf_rep_estimate_text(char *buf, size_t n, double value, double ml,
-                         double lo, double hi)
+int bf_rep_interval_text(char *buf, size_t n, const bf_fit_stats *f,
+                         size_t j)
+{
+    if (isfinite(f->ci_gap_low[j]) && isfinite(f->ci_gap_high[j])) {
+        return snprintf(buf, n, "[%.4g, %.4g] \xe2\x88\xaa [%.4g, %.4g]",
+                        f->ci_low[j], f->ci_gap_low[j], f->ci_gap_high[j],
+                        f->ci_high[j]); /* U+222A, the union */
+    }
+    return snprintf(buf, n, "[%.4g, %.4g]", f->ci_low[j], f->ci_high[j]);
+}
+
+int bf_rep_estimate_text(char *buf, size_t n, double value,
+                         const bf_fit_stats *f, size_t j)
 {
     char v[32];
-    char m[32];
+    char m[40] = "";
+    char iv[96];
     snprintf(v, sizeof v, "%.4g", value);
-    snprintf(m, sizeof m, "%.4g", ml);
-    if (!isfinite(ml) || strcmp(v, m) == 0) {
-        return snprintf(buf, n, "%s [%.4g, %.4g]", v, lo, hi);
+    snprintf(m, sizeof m, "%.4g", f->ml_param[j]);
+    bf_rep_interval_text(iv, sizeof iv, f, j);
+    if (!isfinite(f->ml_param[j]) || strcmp(v, m) == 0) {
+        return snprintf(buf, n, "%s %s", v, iv);
     }
-    return snprintf(buf, n, "%s (ML %s) [%.4g, %.4g]", v, m, lo, hi);
+    return snprintf(buf, n, "%s (ML %s) %s", v, m, iv);
 }
 
 /* bf_rep_estimate_text's cell, with " {1.21, 1.29}" for the bootstrap
@@ -172,8 +185,7 @@ static void param_cell(bf_tt *t, size_t col, const bf_fit_stats *f,
         snprintf(boot, sizeof boot, " {%.4g, %.4g}", f->boot_low[j],
                  f->boot_high[j]);
     }
-    bf_rep_estimate_text(est, sizeof est, r->fit.param[j], f->ml_param[j],
-                         f->ci_low[j], f->ci_high[j]);
+    bf_rep_estimate_text(est, sizeof est, r->fit.param[j], f, j);
     bf_tt_set(t, col, "%s%s", est, boot);
 }
 
@@ -264,8 +276,7 @@ bf_tt *bf_rep_best_table(const bf_rep_study *st, int crit)
             size_t j = idx[q];
             char est[128];
             bf_rep_estimate_text(est, sizeof est, st->rows[i].fit.param[j],
-                                 f->ml_param[j], f->ci_low[j],
-                                 f->ci_high[j]);
+                                 f, j);
             at += (size_t)snprintf(cell + at, sizeof cell - at, "%s%s %s",
                                    q > 0 ? "; " : "",
                                    st->models[b]->param[j].name, est);

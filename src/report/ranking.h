@@ -24,14 +24,19 @@ size_t bf_rep_rank_of(const bf_rep_study *st, size_t s, size_t m, int c);
 size_t bf_rep_rank_best(const bf_rep_study *st, size_t s, int c);
 /* The per-sample table of criterion crit (caller frees), NULL on ENOMEM. */
 struct bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit);
-/* "2.345 [1.78, 2.084]": a fitted value and its interval, or "2.345 (ML
- * 1.923) [1.78, 2.084]" where the estimate the interval is about (the
- * noise model's maximum-likelihood one, bf_fit_stats.ml_param) differs
- * from it in the 4 digits shown -- the paper protocol's estimate need not
- * lie inside the likelihood's interval. Into buf (n bytes); returns what
- * snprintf does. */
-int bf_rep_estimate_text(char *buf, size_t n, double value, double ml,
-                         double lo, double hi);
+/* "2.345 [1.78, 2.084]": a fitted value and parameter j's interval of f,
+ * or "2.345 (ML 1.923) [1.78, 2.084]" where the estimate the interval is
+ * about (the noise model's maximum-likelihood one, bf_fit_stats.ml_param)
+ * differs from it in the 4 digits shown -- the paper protocol's estimate
+ * need not lie inside the likelihood's interval; a split interval as
+ * "[1.2, 1.311] \u222a [2.351, 2.5]" (bf_fit_stats.ci_gap_low). Into buf
+ * (n bytes); returns what snprintf does. */
+int bf_rep_estimate_text(char *buf, size_t n, double value,
+                         const bf_fit_stats *f, size_t j);
+/* Parameter j's interval of f alone: "[1.78, 2.084]", or a split one
+ * "[1.2, 1.311] \u222a [2.351, 2.5]". */
+int bf_rep_interval_text(char *buf, size_t n, const bf_fit_stats *f,
+                         size_t j);
 /* The fitted parameters with their 95% profile intervals (and bootstrap
  * intervals when run) of model m for every sample into *out (caller
  * frees; NULL when m fits nothing). Returns BF_REPORT_OK, or

@@ -149,14 +149,25 @@ void bf_report_selection(FILE *fp, const bf_rep_study *st)
 }
 
 /* "[0.123, 0.456]" with the open ends marked, or "–" when not computed. */
-static void interval(FILE *fp, double lo, double hi, unsigned open)
+/* "[lo, hi]" (" (bound)" after an end at the search range's bound); a
+ * split interval, gap (gl, gh), as "[lo, gl] \u222a [gh, hi]". */
+static void interval(FILE *fp, double lo, double hi, unsigned open,
+                     double gl, double gh)
 {
+    const char *b0 = (open & 1u) ? " (bound)" : "";
+    const char *b1 = (open & 2u) ? " (bound)" : "";
     if (!isfinite(lo) || !isfinite(hi)) {
         fputs("<td class=\"n\">\xe2\x80\x93</td>", fp);
         return;
     }
-    fprintf(fp, "<td class=\"n\">[%.4g%s, %.4g%s]</td>", lo,
-            (open & 1u) ? " (bound)" : "", hi, (open & 2u) ? " (bound)" : "");
+    if (isfinite(gl) && isfinite(gh)) {
+        fprintf(fp,
+                "<td class=\"n\">[%.4g%s, %.4g] \xe2\x88\xaa [%.4g, "
+                "%.4g%s]</td>",
+                lo, b0, gl, gh, hi, b1);
+        return;
+    }
+    fprintf(fp, "<td class=\"n\">[%.4g%s, %.4g%s]</td>", lo, b0, hi, b1);
 }
 
 void bf_report_intervals(FILE *fp, const bf_rep_study *st)
@@ -196,9 +207,11 @@ void bf_report_intervals(FILE *fp, const bf_rep_study *st)
                         f->grid.param[j], f->refined.param[j],
                         f->ml_param[j]);
                 interval(fp, f->ci_low[j], f->ci_high[j],
-                         (f->ci_open >> (2 * j)) & 3u);
+                         (f->ci_open >> (2 * j)) & 3u, f->ci_gap_low[j],
+                         f->ci_gap_high[j]);
                 if (boot) {
-                    interval(fp, f->boot_low[j], f->boot_high[j], 0);
+                    interval(fp, f->boot_low[j], f->boot_high[j], 0, NAN,
+                             NAN);
                 }
                 fputs("</tr>\n", fp);
             }

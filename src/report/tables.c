@@ -695,12 +695,10 @@ static void on_compare(const bf_rep_study *st, FILE *fp)
         }
         bf_tt_set(t, 0, "%d", st->samples[s]);
         bf_tt_set(t, 1, "%s", bf_rep_sample_name(st, s));
-        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[0],
-                             f->ml_param[0], f->ci_low[0], f->ci_high[0]);
+        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[0], f, 0);
         bf_tt_set(t, 2, "%s", cell);
         bf_tt_set(t, 3, "%.2f", rho);
-        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[1],
-                             f->ml_param[1], f->ci_low[1], f->ci_high[1]);
+        bf_rep_estimate_text(cell, sizeof cell, f->refined.param[1], f, 1);
         bf_tt_set(t, 4, "%s", cell);
         bf_tt_set(t, 5, "%.2f", sigma);
     }

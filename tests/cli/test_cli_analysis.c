@@ -472,3 +472,56 @@ Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
         }
     }
 }
+
+/* ==== split intervals ==================================================== */
+
+/* A set in two regions reaches the user as two: fits.csv's ci_gap_low,
+ * ci_gap_high inside the hull (empty for the one-region intervals) and the
+ * flag, the report's table as a union. On Felt (1) WNO-R's n has two
+ * branches apart (near 1.2 and near 2.5), and VH-G's m a rise above the
+ * threshold inside its interval (where the normalising maximum moves). */
+Test(cli_analysis, a_split_interval_is_written_as_two_segments)
+{
+    static const char *const split[][2] = {{"WNO-R", "n"}, {"VH-G", "m"}};
+    const char *dir = bf_test_tmpdir();
+    const char *argv[] = {"report", "--data", "DATA", "--samples", "1",
+                          "--models", "VH-E,VH-G,WNO-R", "--fit", "exact",
+                          "--stats", "--folds", "0", "--format", "png",
+                          "--out", dir, "-q", NULL};
+    const char *html;
+    size_t n_rows;
+    size_t r;
+    size_t i;
+    size_t n_split = 0;
+    cr_assert_eq(run(argv), 0);
+    n_rows = bf_test_csv_load(dir, "fits.csv");
+    for (i = 0; i < 2; i++) {
+        double lo;
+        double hi;
+        double gl;
+        double gh;
+        char flag[64];
+        r = bf_test_csv_find("1", split[i][0], split[i][1]);
+        lo = bf_test_csv_num(r, "ci_low");
+        hi = bf_test_csv_num(r, "ci_high");
+        gl = bf_test_csv_num(r, "ci_gap_low");
+        gh = bf_test_csv_num(r, "ci_gap_high");
+        cr_assert(lo < gl && gl < gh && gh < hi,
+                  "%s %s: [%g, %g] gap (%g, %g)", split[i][0], split[i][1],
+                  lo, hi, gl, gh);
+        cr_assert(lo <= bf_test_csv_num(r, "ml_value") &&
+                      bf_test_csv_num(r, "ml_value") <= hi);
+        snprintf(flag, sizeof flag, "not_identified=%s", split[i][1]);
+        cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"), flag),
+                           "%s", bf_test_csv_cell(r, "flags"));
+    }
+    for (r = 1; r < n_rows; r++) { /* the others: one region, empty cells */
+        int gap = bf_test_csv_cell(r, "ci_gap_low")[0] != '\0';
+        cr_assert_eq(gap, bf_test_csv_cell(r, "ci_gap_high")[0] != '\0');
+        n_split += gap;
+    }
+    cr_assert_eq(n_split, 2u, "only the two split intervals have a gap");
+    html = bf_test_slurp(bf_test_join(dir, "report.html"), NULL);
+    cr_assert_not_null(html, "no report.html in %s", dir);
+    cr_assert_not_null(strstr(html, "] \xe2\x88\xaa ["), "the union shown");
+}
