@@ -1265,8 +1265,11 @@ int bf_study_row_albedo_over_1(const bf_study_row *row);
  * clipped to [lo_j, hi_j]; *open gets bit 0 (low end) and bit 1 (high end)
  * when it reaches the search range there, and bit 2 when that set is
  * split: besides the optimum's region the profile is below the threshold
- * in another (found by a scan of the search range; a diffuse model's
- * only), and the interval is the hull of them all (doc/methods.md §3). */
+ * in another, apart from it or behind a ridge inside it (found by a scan
+ * of the search range and a check between the estimate and each end; a
+ * diffuse model's only); low and high are then the hull of them all
+ * (bf_fit_intervals reports the gap of a set in two regions,
+ * bf_interval.gap_low; doc/methods.md §3). */
 int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
                       size_t j, double level, double *low, double *high,
                       unsigned *open);
@@ -1349,8 +1352,10 @@ typedef struct {
                                  on a side where the estimate is not on
                                  that bound (the end is the bound), or is
                                  below it in a region apart from the
-                                 estimate's too (the interval their hull;
-                                 bf_fit_profile_ci's split) */
+                                 estimate's too (bf_fit_profile_ci's
+                                 split: two segments, gap_low and
+                                 gap_high; more: the interval their
+                                 hull) */
     double robust[BF_MAX_PARAMS]; /* BF_CI_PROFILE_LIK: the factor >= 1
                                  parameter j's threshold was multiplied by,
                                  its variance from the residuals (sandwich)
