@@ -2057,6 +2057,9 @@ typedef struct {
     double boot_low[BF_MAX_PARAMS], boot_high[BF_MAX_PARAMS];
     double ml[BF_MAX_PARAMS]; /* the estimate the interval is about
                                  (bf_fit_stats.ml_param) */
+    double ci_gap_low[BF_MAX_PARAMS], ci_gap_high[BF_MAX_PARAMS]; /* a
+                                 split interval's gap
+                                 (bf_fit_stats.ci_gap_low); NaN: none */
 } bf_ranking_line;
 
 /* The number P of parameter slots of ranking.csv for a study's rows: the
@@ -2078,10 +2081,11 @@ int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,
  * best model after the tie-break), counts_as (the model its wins count for,
  * bf_criterion_winner), flags (bf_fit_flags_format), then for each of the
  * study's P fitted-parameter slots (P = the most fitted parameters of any
- * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_boot_low,
- * pJ_boot_high, pJ_ml (J = 1..P: the model's J-th fitted parameter, its
- * value, profile and bootstrap interval and the estimate the interval is
- * about; empty beyond the model's own): the
+ * of its models) pJ, pJ_value, pJ_ci_low, pJ_ci_high, pJ_ci_gap_low,
+ * pJ_ci_gap_high, pJ_boot_low, pJ_boot_high, pJ_ml (J = 1..P: the model's
+ * J-th fitted parameter, its value, profile interval with the gap of a
+ * split one (empty: none), bootstrap interval and the estimate the
+ * interval is about; empty beyond the model's own): the
  * lines of bf_ranking_lines, P of bf_ranking_slots. Formats and errors as
  * bf_fits_csv_write; stats is required. */
 int bf_ranking_csv_write(FILE *fp, const bf_study_spec *spec,

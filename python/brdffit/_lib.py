@@ -460,6 +460,7 @@ typedef struct {
     double ci_low[8], ci_high[8];
     double boot_low[8], boot_high[8];
     double ml[8];
+    double ci_gap_low[8], ci_gap_high[8];
 } bf_ranking_line;
 size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows);
 int bf_ranking_lines(const bf_study_spec *spec, const bf_study_row *rows,

@@ -603,7 +603,8 @@ class Study:
                                    n))
         crit = [c.lower() for c in CRITERIA]
         slot = {"": "param", "_value": "value", "_ci_low": "ci_low",
-                "_ci_high": "ci_high", "_boot_low": "boot_low",
+                "_ci_high": "ci_high", "_ci_gap_low": "ci_gap_low",
+                "_ci_gap_high": "ci_gap_high", "_boot_low": "boot_low",
                 "_boot_high": "boot_high", "_ml": "ml"}
 
         def value(ln, c):

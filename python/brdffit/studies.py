@@ -122,7 +122,8 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
         ranking.csv (sample, name, channel, model, objective, fit, k, n,
         objective_value, aic, bic, cv, rank_aic, rank_bic, rank_cv,
         best_aic, best_bic, best_cv, counts_as, flags, then pJ, pJ_value,
-        pJ_ci_low, pJ_ci_high, pJ_boot_low, pJ_boot_high, pJ_ml per
+        pJ_ci_low, pJ_ci_high, pJ_ci_gap_low, pJ_ci_gap_high, pJ_boot_low,
+        pJ_boot_high, pJ_ml per
         fitted parameter; README) from the library's structs (bf_ranking_lines:
         numbers at full precision, an empty field None), .columns, .text
         (the CSV as the library wrote it, %.10g), .to_dataframe(), and .wins:

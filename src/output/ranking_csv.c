@@ -9,8 +9,9 @@
 
 #include "output/output.h"
 
-static const char *const slot_cols[] = {"", "_value", "_ci_low", "_ci_high",
-                                        "_boot_low", "_boot_high", "_ml"};
+static const char *const slot_cols[] = {
+    "", "_value", "_ci_low", "_ci_high", "_ci_gap_low", "_ci_gap_high",
+    "_boot_low", "_boot_high", "_ml"};
 
 size_t bf_ranking_slots(const bf_study_spec *spec, const bf_study_row *rows)
 {
@@ -74,6 +75,8 @@ static void fill_line(bf_ranking_line *l, const bf_study_spec *spec,
         l->value[q] = r->fit.param[j];
         l->ci_low[q] = f->ci_low[j];
         l->ci_high[q] = f->ci_high[j];
+        l->ci_gap_low[q] = f->ci_gap_low[j];
+        l->ci_gap_high[q] = f->ci_gap_high[j];
         l->boot_low[q] = f->boot_low[j];
         l->boot_high[q] = f->boot_high[j];
         l->ml[q] = f->ml_param[j];
@@ -131,12 +134,14 @@ static void slots(FILE *fp, const bf_ranking_line *l, size_t n_par)
         bf__csv_num(fp, l->value[q]);
         bf__csv_num(fp, l->ci_low[q]);
         bf__csv_num(fp, l->ci_high[q]);
+        bf__csv_num(fp, l->ci_gap_low[q]);
+        bf__csv_num(fp, l->ci_gap_high[q]);
         bf__csv_num(fp, l->boot_low[q]);
         bf__csv_num(fp, l->boot_high[q]);
         bf__csv_num(fp, l->ml[q]);
     }
     for (; q < n_par; q++) {
-        fputs(",,,,,,,", fp);
+        fputs(",,,,,,,,,", fp);
     }
 }
 

@@ -477,7 +477,8 @@ Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
 
 /* A set in two regions reaches the user as two: fits.csv's ci_gap_low,
  * ci_gap_high inside the hull (empty for the one-region intervals) and the
- * flag, the report's table as a union. On Felt (1) WNO-R's n has two
+ * flag, the report's table as a union, ranking.csv's pJ_ci_gap_low,
+ * pJ_ci_gap_high the same gap. On Felt (1) WNO-R's n has two
  * branches apart (near 1.2 and near 2.5), and VH-G's m a rise above the
  * threshold inside its interval (where the normalising maximum moves). */
 Test(cli_analysis, a_split_interval_is_written_as_two_segments)
@@ -525,4 +526,22 @@ Test(cli_analysis, a_split_interval_is_written_as_two_segments)
     html = bf_test_slurp(bf_test_join(dir, "report.html"), NULL);
     cr_assert_not_null(html, "no report.html in %s", dir);
     cr_assert_not_null(strstr(html, "] \xe2\x88\xaa ["), "the union shown");
+    {
+        const char *rdir = bf_test_tmpdir();
+        const char *rank[] = {"rank", "--data", "DATA", "--samples", "1",
+                              "--models", "WNO-R", "--folds", "0", "--out",
+                              rdir, "-q", NULL};
+        char gl[2][64];
+        r = bf_test_csv_find("1", "WNO-R", "n");
+        snprintf(gl[0], sizeof gl[0], "%s", bf_test_csv_cell(r, "ci_gap_low"));
+        snprintf(gl[1], sizeof gl[1], "%s",
+                 bf_test_csv_cell(r, "ci_gap_high"));
+        cr_assert_eq(run(rank), 0);
+        bf_test_csv_load(rdir, "ranking.csv");
+        r = bf_test_csv_find("1", "WNO-R", NULL);
+        cr_assert_str_eq(bf_test_csv_cell(r, "p2"), "n");
+        cr_assert_str_eq(bf_test_csv_cell(r, "p2_ci_gap_low"), gl[0]);
+        cr_assert_str_eq(bf_test_csv_cell(r, "p2_ci_gap_high"), gl[1]);
+        cr_assert_str_empty(bf_test_csv_cell(r, "p1_ci_gap_low"), "sigma");
+    }
 }
