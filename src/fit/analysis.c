@@ -183,9 +183,9 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
 }
 
 /* The Neyman construction's intervals in place of iv's (bf__neyman, on
- * the grid gr): a parameter whose construction fails keeps iv's, and the
- * fit is flagged BF_STAT_CI_FAIL; ci_method says "neyman" when every one
- * succeeded. */
+ * the grid gr, which leaves a failed parameter's as iv's): a fit where one
+ * failed is flagged BF_STAT_CI_FAIL; ci_method says "neyman" when every
+ * one succeeded. */
 static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                   const bf_analysis_opts *opts, bf_fit_stats *st)
 {
@@ -199,7 +199,7 @@ static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
         return rc;
     }
     for (j = 0; j < pb->type->p; j++) {
-        if (((pb->free_mask & ~failed) >> j) & 1u) {
+        if ((pb->free_mask >> j) & 1u) {
             st->ci_low[j] = ny.low[j];
             st->ci_high[j] = ny.high[j];
             st->ci_gap_low[j] = ny.gap_low[j];

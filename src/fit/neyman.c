@@ -173,7 +173,6 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
     return rc;
 }
 
-
 /* Parameter t->j's two ends and gap into out (from iv's; d0: its
  * profile's first step); on failure they are iv's again. */
 static int one_param(neyman_t *t, double d0, bf_interval *out)
