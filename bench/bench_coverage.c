@@ -18,9 +18,13 @@
  * GEOMETRY = all, or one geometry's name: CURET, Cornell or random;
  * TRUTHS = default, or name=value pairs separated by commas: a diffuse
  * model's parameters simulated at value instead of 37 % of their range,
- * and "at=f" for every other at f of its range; NEYMAN = 0, else the
- * Neyman construction's simulations per threshold: two more columns, its
- * coverage and width over the spread, a diffuse model's only).
+ * and "at=f" for every other at f of its range; NEYMAN = auto, the
+ * default intervals: the Neyman construction (BF_NEYMAN_AUTO_SIM) where a
+ * second minimum of the profile competes; 0: the profile threshold
+ * alone; N: every parameter's construction with N simulations per
+ * threshold, a diffuse model's only; with a construction, three more
+ * columns: the profile threshold's coverage and width over the spread
+ * before it, and the share of simulations whose profile competes).
  * Prints one Markdown
  * row per (model, parameter, geometry, noise, objective): coverage, the
  * median width over the spread of the maximum-likelihood estimates
@@ -121,8 +125,8 @@ static void print_row(const char *model, const char *param, const char *geom,
                cal->boot_width[j] / spread);
     }
     if (n_ny > 0) {
-        printf(" %.3f | %.2f |", cal->ny_coverage[j],
-               cal->ny_width[j] / spread);
+        printf(" %.3f | %.2f | %.3f |", cal->f_coverage[j],
+               cal->f_width[j] / spread, cal->competing[j]);
     }
     printf("\n");
     fflush(stdout);
@@ -215,7 +219,7 @@ static void specular_rows(const char *models, const char *cornell,
                                 NULL);
                 pb.objective = BF_OBJ_NGAN;
                 rc = bf_fit_calibrate(&pb, spec[i].truth, npow[q], nsd[q], noise,
-                                  reps, n_boot, 0, seed0 + 10 * g + q,
+                                  reps, n_boot, 0, 0, seed0 + 10 * g + q,
                                   0.95, &cal);
                 for (j = 0; j < t->p; j++) {
                     if (rc != BF_OK) {
@@ -253,7 +257,10 @@ int main(int argc, char **argv)
                  : "../shared/data/cornell-pbrt-v2/krylon_blue.brdf";
     const char *geometry = argc > 9 ? argv[9] : "all";
     const char *truths = argc > 10 ? argv[10] : "default";
-    size_t n_ny = argc > 11 ? (size_t)atol(argv[11]) : 0;
+    /* the default intervals' construction, where a second minimum
+     * competes; a number: every parameter's, with that many simulations */
+    int ny_every = argc > 11 && strcmp(argv[11], "auto") != 0;
+    size_t n_ny = ny_every ? (size_t)atol(argv[11]) : BF_NEYMAN_AUTO_SIM;
     size_t i;
     gsl_set_error_handler_off();
     if (argc > 2 && bf_noise_find(argv[2], &noise) != BF_OK) {
@@ -267,8 +274,8 @@ int main(int argc, char **argv)
            "|---|---|---|---|---|---|---|---|---|%s%s\n",
            n_boot >= 2 ? " bootstrap covered | bootstrap width / spread |"
                        : "",
-           n_ny > 0 ? " neyman covered | neyman width / spread |" : "",
-           n_boot >= 2 ? "---|---|" : "", n_ny > 0 ? "---|---|" : "");
+           n_ny > 0 ? " F covered | F width / spread | competing |" : "",
+           n_boot >= 2 ? "---|---|" : "", n_ny > 0 ? "---|---|---|" : "");
     specular_rows(models, cornell, geometry, reps, noise, seed0, n_boot);
     for (i = 0; i < bf_model_count(); i++) {
         bf_model_variant v;
@@ -310,7 +317,8 @@ int main(int argc, char **argv)
                         pb.fixed[j] = truth[j];
                     }
                     rc = bf_fit_calibrate(&pb, truth, npow[q], nsd[q], noise,
-                                          reps, n_boot, n_ny, seed0 + 10 * g + q, 0.95, &cal);
+                                          reps, n_boot, n_ny, ny_every,
+                                          seed0 + 10 * g + q, 0.95, &cal);
                     if (rc != BF_OK) {
                         printf("| %s | | %s | %s | %s | error %d | | | |\n",
                                v.type.name, gname[g], nname[q],

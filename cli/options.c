@@ -131,15 +131,18 @@ void bf_cli_opts_usage_defaults(FILE *fp, const bf_cli_defaults *d)
 "  --stats           with --fit paper, also the analysis beyond the paper:\n"
 "                    refined optima, 95% profile intervals, AIC, BIC, CV\n"
 "                    (the analysis columns of fits.csv; always on with\n"
-"                    --fit exact, --bootstrap and --neyman)\n", fp);
+"                    --fit exact, --bootstrap and --neyman N)\n", fp);
     }
     fputs(
 "  --bootstrap N     also a residual-bootstrap interval under the noise\n"
 "                    model, N refits (default 0: profile intervals only)\n"
-"  --neyman N        a diffuse model's intervals by the Neyman construction:\n"
-"                    each end's threshold the 95% quantile of N (>= 100)\n"
-"                    simulated refits there (ci_method neyman; about 4 N\n"
-"                    fits per parameter; default 0: the F threshold)\n"
+"  --neyman auto|off|N  a diffuse model's intervals by the Neyman\n"
+"                    construction: each end's threshold the 95% quantile of\n"
+"                    N (>= 100) simulated refits there (ci_method neyman;\n"
+"                    about 4 N fits per parameter). auto (default): 100, for\n"
+"                    a parameter whose profile has a second minimum that\n"
+"                    competes (flag competing); N: every parameter; off: the\n"
+"                    F threshold alone\n"
 "  --folds K         K-fold cross-validation (default 10; 0 for none)\n"
 "  --seed S          seed of the bootstrap, the Neyman construction and\n"
 "                    the folds (default 1)\n"
@@ -234,6 +237,8 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     bf_analysis_opts_init(&analysis); /* the library's defaults */
     o->folds = analysis.folds;
     o->seed = analysis.seed;
+    o->n_neyman = analysis.n_neyman;
+    o->neyman_every = analysis.neyman_every;
     o->threads = 0; /* one per core */
     o->samples = d->samples;
     o->defaults = d;
@@ -369,8 +374,15 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
             o->range[o->n_range++] = optarg;
             break;
         }
-        case O_BOOTSTRAP:
         case O_NEYMAN:
+            if (strcmp(optarg, "auto") == 0 || strcmp(optarg, "off") == 0) {
+                o->n_neyman = optarg[0] == 'a' ? BF_NEYMAN_AUTO_SIM : 0;
+                o->neyman_every = 0;
+                break;
+            }
+            /* N: every parameter's */
+            /* fall through */
+        case O_BOOTSTRAP:
         case O_FOLDS:
         case O_SEED: {
             int *list = NULL;
@@ -388,13 +400,16 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
                           strchr(optarg, '-') != NULL)) {
                 free(list);
                 return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "%s: '%s' is not a "
-                                          "non-negative integer",
-                                          argv[optind - 2], optarg);
+                                          "non-negative integer%s",
+                                          argv[optind - 2], optarg,
+                                          c == O_NEYMAN ? " (nor auto, off)"
+                                                        : "");
             }
             if (c == O_BOOTSTRAP) {
                 o->n_boot = zero ? 0 : (size_t)list[0];
             } else if (c == O_NEYMAN) {
                 o->n_neyman = zero ? 0 : (size_t)list[0];
+                o->neyman_every = !zero;
             } else if (c == O_FOLDS) {
                 o->folds = zero ? 0 : (size_t)list[0];
             } else {
@@ -447,7 +462,8 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint, "--bootstrap and --folds need at "
                                   "least 2 (or 0 for none)");
     }
-    if (o->n_neyman > 0 && o->noise == BF_NOISE_OBJECTIVE) {
+    if (o->n_neyman > 0 && o->neyman_every &&
+        o->noise == BF_NOISE_OBJECTIVE) {
         return bf_cli_usage_fail(BF_EXIT_CONFLICT, hint,
                                  "--neyman simulates the noise model: not "
                                  "with --noise objective");
@@ -455,7 +471,7 @@ int bf_cli_opts_parse_defaults(const char *cmd, int argc, char **argv,
     if (o->n_neyman > 0 && o->n_neyman < BF_NEYMAN_MIN_SIM) {
         return bf_cli_usage_fail(BF_EXIT_BADVALUE, hint,
                                  "--neyman needs at least %d simulations "
-                                 "(or 0 for none)", BF_NEYMAN_MIN_SIM);
+                                 "(or auto, or off)", BF_NEYMAN_MIN_SIM);
     }
     return 0;
 }

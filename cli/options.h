@@ -41,7 +41,8 @@ typedef struct {
     const char *range[BF_CLI_MAX_RANGES]; /* --range NAME=LO:HI */
     size_t n_range;
     size_t n_boot;            /* --bootstrap N */
-    size_t n_neyman;          /* --neyman N */
+    size_t n_neyman;          /* --neyman auto|off|N: its simulations */
+    int neyman_every;         /*   1 with N: every parameter's */
     int no_intervals;         /* --intervals none */
     size_t folds;             /* --folds K (0: no cross-validation) */
     unsigned long seed;       /* --seed S */

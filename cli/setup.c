@@ -86,6 +86,7 @@ void bf_cli_report_options(bf_cli_run *r, bf_report_options *ro,
     }
     ro->n_boot = o->n_boot;
     ro->n_neyman = o->n_neyman;
+    ro->neyman_every = o->neyman_every;
     ro->no_intervals = o->no_intervals;
     ro->folds = o->folds;
     ro->seed = o->seed;

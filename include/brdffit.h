@@ -1269,7 +1269,10 @@ int bf_study_row_albedo_over_1(const bf_study_row *row);
  * of the search range and a check between the estimate and each end; a
  * diffuse model's only); low and high are then the hull of them all
  * (bf_fit_intervals reports the gap of a set in two regions,
- * bf_interval.gap_low; doc/methods.md §3). */
+ * bf_interval.gap_low; doc/methods.md §3). Bit 3 when a second minimum
+ * competes with the estimate's: the set is split, or the scan found
+ * another minimum of the profile whose criterion is at most 4
+ * chi2_1(level) (bf_interval.competing). */
 int bf_fit_profile_ci(const bf_problem *pb, const bf_fit_result *best,
                       size_t j, double level, double *low, double *high,
                       unsigned *open);
@@ -1367,6 +1370,19 @@ typedef struct {
                                  outside; NaN when the set is one region
                                  (or more than two: the hull stands) */
     double gap_high[BF_MAX_PARAMS];
+    unsigned competing;       /* bit j: a second minimum of parameter j's
+                                 profile competes with the estimate's (bit
+                                 3 of bf_fit_profile_ci's open): the set
+                                 is split, or the profile has another
+                                 minimum whose criterion is at most 4
+                                 times the threshold (look-elsewhere: a
+                                 measurement's optimum can fall into it;
+                                 doc/methods.md §3) */
+    unsigned neyman;          /* bit j: parameter j's interval is the
+                                 Neyman construction's (bf_fit_neyman);
+                                 method is
+                                 BF_CI_NEYMAN when every free parameter's
+                                 is */
 } bf_interval;
 
 /* 1 when x lies in parameter j's interval of iv: in [low, high] and not
@@ -1393,7 +1409,9 @@ typedef struct {
     double truth[BF_MAX_PARAMS];     /* the parameters simulated */
     double coverage[BF_MAX_PARAMS];  /* share of intervals with the truth
                                         (bf_interval_holds: a split one's
-                                        gap is outside) */
+                                        gap is outside): the intervals the
+                                        analysis gives with the same
+                                        noise, n_neyman and neyman_every */
     double bias[BF_MAX_PARAMS];      /* mean estimate - truth (the
                                         objective's estimate) */
     double sd[BF_MAX_PARAMS];        /* sd of those estimates */
@@ -1407,10 +1425,14 @@ typedef struct {
                                             bootstrap's intervals (NaN
                                             without n_boot) */
     double boot_width[BF_MAX_PARAMS];    /* their median width */
-    double ny_coverage[BF_MAX_PARAMS];   /* the same share for the Neyman
-                                            construction's intervals (NaN
-                                            without n_neyman) */
-    double ny_width[BF_MAX_PARAMS];      /* their median width */
+    double f_coverage[BF_MAX_PARAMS];    /* the same share for the
+                                            profile threshold's intervals
+                                            before any Neyman construction
+                                            (coverage when none is made) */
+    double f_width[BF_MAX_PARAMS];       /* their median width */
+    double competing[BF_MAX_PARAMS];     /* share whose profile has a
+                                            competing second minimum
+                                            (bf_interval.competing) */
 } bf_calibration;
 
 /* Fewest simulations bf_fit_calibrate accepts. */
@@ -1420,6 +1442,10 @@ typedef struct {
  * ends of WNO's n on CURET sample 1 swung between 1.25 and the range's
  * 2.5 from one pass to the next; at 200 they settle at 1.222). */
 #define BF_NEYMAN_MIN_SIM 100
+/* Simulations per threshold of the default intervals' construction, where
+ * a second minimum competes (bf_analysis_opts_init, BF_REPORT_OPTIONS_INIT,
+ * `--neyman auto`). */
+#define BF_NEYMAN_AUTO_SIM 100
 
 /* Simulates n_sim measurements of pb's model at truth on pb's
  * configurations -- D_k = L_k(truth) + sigma max(L_k, BF_LOG_FLOOR)^(p/2)
@@ -1432,16 +1458,21 @@ typedef struct {
  * width (NaN for the others); with n_boot >= 2 also the coverage and
  * median width of each simulation's bootstrap interval (bf_fit_bootstrap,
  * n_boot replicates, seed seed + 1 + the simulation's index; a simulation
- * whose bootstrap fails counts as failed); with n_neyman >= BF_NEYMAN_MIN_SIM
- * those of each simulation's Neyman construction (bf_fit_neyman, n_neyman
+ * whose bootstrap fails counts as failed). With n_neyman >=
+ * BF_NEYMAN_MIN_SIM each simulation's intervals are the analysis's
+ * (bf_analysis_opts): the Neyman construction (bf_fit_neyman, n_neyman
  * simulations per threshold, seed seed + 1 + n_sim + the simulation's
- * index; a diffuse model's only, n_neyman 0 for a specular one). BF_EINVAL for bad arguments or n_sim < 10,
- * BF_EDOM when pb's noise cannot be estimated (bf_fit_intervals),
- * BF_ENOMEM. */
+ * index) for every free parameter with neyman_every, else for those whose
+ * profile has a competing second minimum (none for a specular model, nor
+ * under BF_NOISE_OBJECTIVE); f_coverage, f_width are the profile
+ * threshold's before it. BF_EINVAL for bad arguments, n_sim < 10, or
+ * neyman_every with a specular model or BF_NOISE_OBJECTIVE; BF_EDOM when
+ * pb's noise cannot be estimated (bf_fit_intervals), BF_ENOMEM. */
 int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      double noise_power, double sigma, bf_noise noise,
                      size_t n_sim, size_t n_boot, size_t n_neyman,
-                     unsigned long seed, double level, bf_calibration *out);
+                     int neyman_every, unsigned long seed, double level,
+                     bf_calibration *out);
 
 /* The band of bf_calibration_summarise: the central share of the
  * coverages that calibrated intervals give by chance. */
@@ -1498,7 +1529,8 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
  * Feldman & Cousins 1998, the profile construction): iv from
  * bf_fit_intervals(pb, ...) (BF_EDOM unless iv->method is
  * BF_CI_PROFILE_LIK, or for a specular model); for every free parameter j
- * the set { theta_j : D(theta_j) <= c(theta_j) }, D the profile criterion
+ * of which (bits j; iv->competing: those of the analysis's default,
+ * bf_analysis_opts.neyman_every 0; pb->free_mask: every one) the set { theta_j : D(theta_j) <= c(theta_j) }, D the profile criterion
  * of iv's likelihood, c(theta_j) the level-quantile of D over n_sim
  * measurements simulated under iv's noise model (power, sigma) at theta_j
  * and the other parameters' constrained estimate there, each fitted as
@@ -1508,13 +1540,15 @@ int bf_fit_bootstrap(const bf_problem *pb, const bf_interval *iv,
  * threshold c(end), from iv's end. *out gets *iv with those ends (low,
  * high; open bits 2j, 2j+1 when the low/high end is the search range's),
  * the gap of a split set from the profile under its side's end's c
- * (gap_low, gap_high; NaN: none), and method BF_CI_NEYMAN when every
- * parameter's construction succeeded. It costs about 4 n_sim fits per
- * free parameter. A parameter whose construction fails keeps iv's ends,
+ * (gap_low, gap_high; NaN: none), bit j of neyman for each parameter
+ * constructed, and method BF_CI_NEYMAN when every free parameter's is. It
+ * costs about 4 n_sim fits per parameter constructed; none when which
+ * holds no free parameter. A parameter whose construction fails keeps iv's ends,
  * and the first such failure's code is returned (BF_EDOM). BF_EINVAL for
  * n_sim < BF_NEYMAN_MIN_SIM or bad arguments, BF_ENOMEM. */
-int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
-                  unsigned long seed, double level, bf_interval *out);
+int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, unsigned which,
+                  size_t n_sim, unsigned long seed, double level,
+                  bf_interval *out);
 
 /* ---- information criteria, cross-validation (doc/methods.md §4-5) ---- */
 
@@ -1567,22 +1601,35 @@ typedef struct {
                                noise_power stay NaN, ci_method
                                BF_CI_NONE); the fits, AIC, BIC and CV as
                                always. n_boot must then be 0. */
-    size_t n_neyman;        /* 0: none; else the intervals of a diffuse
-                               model's fits are the Neyman construction's
-                               with this many simulations per threshold
-                               (bf_fit_neyman, ci_method "neyman"; at least
-                               BF_NEYMAN_MIN_SIM; seeded with seed) */
+    size_t n_neyman;        /* 0: the profile intervals alone; else a
+                               diffuse model's intervals are the Neyman
+                               construction's, with this many simulations
+                               per threshold (bf_fit_neyman, ci_method
+                               "neyman"; at least BF_NEYMAN_MIN_SIM;
+                               seeded with seed), for the parameters
+                               neyman_every says */
+    int neyman_every;       /* 1: every free parameter's; 0: those whose
+                               profile has a second minimum that competes
+                               with the estimate's (bf_interval.competing:
+                               where the profile threshold's look-elsewhere
+                               makes it cover less than it says;
+                               doc/methods.md §3), and none under the
+                               objective's own noise model or without
+                               intervals */
 } bf_analysis_opts;
 
 /* Fills o with the defaults of the analysis (the CLI's): objective max
  * (the paper's), exact 0, level 0.95, no bootstrap, 10 folds, seed 1, no
- * progress callback, the intervals computed (no_intervals 0). */
+ * progress callback, the intervals computed (no_intervals 0), the
+ * construction where a second minimum competes (n_neyman
+ * BF_NEYMAN_AUTO_SIM, neyman_every 0). */
 void bf_analysis_opts_init(bf_analysis_opts *o);
 
 /* BF_OK when o is an analysis bf_study_analyse can run (a known objective
- * and noise model, level in (0, 1), no bootstrap nor Neyman construction
- * with no_intervals, n_neyman 0 or at least BF_NEYMAN_MIN_SIM, and not
- * with the objective's own noise model), else
+ * and noise model, level in (0, 1), no bootstrap nor every parameter's
+ * Neyman construction with no_intervals, n_neyman 0 or at least
+ * BF_NEYMAN_MIN_SIM, and not every parameter's construction with the
+ * objective's own noise model), else
  * BF_EINVAL with err (NULL allowed) saying which field is wrong. The
  * check bf_study_analyse makes first; a caller can make it before the
  * fits. */
@@ -1653,7 +1700,20 @@ typedef struct {
                                          (bf_interval.gap_low, gap_high;
                                          NaN if none) */
     double ci_gap_high[BF_MAX_PARAMS];
+    unsigned ci_competing;          /* bit j: a second minimum of param
+                                       j's profile competes with the
+                                       estimate's (bf_interval.competing) */
+    unsigned ci_neyman;             /* bit j: param j's interval is the
+                                       Neyman construction's
+                                       (bf_interval.neyman; fits.csv's
+                                       ci_method "neyman" on its row) */
 } bf_fit_stats;
+
+/* How parameter j's interval in st was computed: BF_CI_NEYMAN when it is
+ * the Neyman construction's (bit j of st->ci_neyman: the default
+ * construction where a second minimum competes, or every parameter's),
+ * else st->ci_method. */
+bf_ci_method bf_fit_stats_ci_method(const bf_fit_stats *st, size_t j);
 
 /* Analyses every (target, model) of spec under opts: grid optimum under
  * the objective, exact refinement, profile (and bootstrap) intervals,
@@ -1901,6 +1961,8 @@ int bf_geom_plane_incidences(size_t K, const bf_geom *g, double tol,
 /* What the analysis says about a fit, as words separated by spaces into
  * buf (len bytes, always terminated; "" for none): reduces_to=MODEL,
  * not_identified=PARAM (a flat direction of the refinement),
+ * competing=PARAM (a second minimum of its profile competes with the
+ * estimate's: its interval is the Neyman construction's by default),
  * clamped=COUNT (ON clamped at 0 on COUNT configurations), not_converged,
  * interval_failed, bootstrap_failed, bootstrap_split=PARAM (doc/methods.md
  * §2, §3, §8). type: the row's model. Returns the length of the full text
@@ -2205,7 +2267,9 @@ typedef struct {
     size_t n_boot;         /* bootstrap replicates (0: none) */
     size_t n_neyman;       /* the Neyman construction's simulations per
                               threshold (bf_analysis_opts.n_neyman; 0:
-                              none) */
+                              none; BF_NEYMAN_AUTO_SIM by default) */
+    int neyman_every;      /* 1: every parameter's (bf_analysis_opts);
+                              0: where a second minimum competes */
     size_t folds;          /* cross-validation folds (0: none) */
     unsigned long seed;
     int stats;             /* the analysis with the paper's fit */
@@ -2241,7 +2305,8 @@ enum { BF_REPORT_PNG = 0, BF_REPORT_SVG, BF_REPORT_PDF };
 
 #define BF_REPORT_OPTIONS_INIT                                            \
     {.cone = -1.0, .max_theta = 90.0, .n = BF_DEFAULT_N, .folds = 10,     \
-     .seed = 1, .formats = (1u << BF_REPORT_PNG) | (1u << BF_REPORT_PDF)}
+     .seed = 1, .n_neyman = BF_NEYMAN_AUTO_SIM,                           \
+     .formats = (1u << BF_REPORT_PNG) | (1u << BF_REPORT_PDF)}
 
 /* Runs the study of in's data with o and writes the report into out_dir
  * (created, one level, if missing): fits.csv, table2.md, table3.md,

@@ -271,6 +271,7 @@ typedef struct {
     bf_noise noise;
     int no_intervals;
     size_t n_neyman;
+    int neyman_every;
 } bf_analysis_opts;
 void bf_analysis_opts_init(bf_analysis_opts *o);
 int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err);
@@ -305,11 +306,15 @@ typedef struct {
     double ci_robust[8];
     double ci_gap_low[8];
     double ci_gap_high[8];
+    unsigned ci_competing;
+    unsigned ci_neyman;
 } bf_fit_stats;
+bf_ci_method bf_fit_stats_ci_method(const bf_fit_stats *st, size_t j);
 int bf_study_analyse(const bf_study_spec *spec, const bf_analysis_opts *opts,
                      bf_study_row *rows, bf_fit_stats *stats, bf_error *err);
 #define BF_CALIBRATE_MIN_SIM 10
 #define BF_NEYMAN_MIN_SIM 100
+#define BF_NEYMAN_AUTO_SIM 100
 typedef struct {
     size_t n_sim;
     size_t n_failed;
@@ -323,8 +328,9 @@ typedef struct {
     double not_identified[8];
     double boot_coverage[8];
     double boot_width[8];
-    double ny_coverage[8];
-    double ny_width[8];
+    double f_coverage[8];
+    double f_width[8];
+    double competing[8];
 } bf_calibration;
 typedef struct {
     size_t n;
@@ -544,6 +550,7 @@ typedef struct {
     size_t n_range;
     size_t n_boot;
     size_t n_neyman;
+    int neyman_every;
     size_t folds;
     unsigned long seed;
     int stats;

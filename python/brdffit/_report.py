@@ -17,7 +17,8 @@ from cffi import FFI
 from ._errors import InvalidArgumentError, error, new_error
 from ._lib import DEFAULT_N, ffi, lib
 from ._lib import path as _core_path
-from ._study import _fresnel, _noise, _objective, _sample_table, _smith
+from ._study import (_fresnel, _neyman, _noise, _objective, _sample_table,
+                     _smith)
 
 REPORT_CDEF = r"""
 int bf_report_write(bf_report_inputs *in, const bf_report_options *o,
@@ -132,7 +133,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
            on_params=None, exclude=None, max_theta=90.0,
            exclude_specular=None, ranges=None, threads=1, format="png,pdf",
            size="double", log=False, per_sample=False, incidence=None,
-           fresnel=None, smith=None, calibrate=0, neyman=0):
+           fresnel=None, smith=None, calibrate=0, neyman="auto"):
     """Runs the study of `brdffit report` on dataset and writes its report
     into folder out (created, one level, if missing): fits.csv, table2.md,
     table3.md, dispersion.csv (a fitted refractive index -- n with
@@ -148,9 +149,10 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         channel: a channel name, "mean", "each" or "joint" (--channel).
         fit: "paper" or "exact" (--fit); objective, noise: names
             (--objective, --noise); stats (--stats); bootstrap (--bootstrap
-            N); neyman (--neyman N: a diffuse model's intervals by the
-            Neyman construction, N >= 100 simulations per threshold, 0
-            none); folds, seed (--folds, --seed); calibrate: N simulated
+            N); neyman (--neyman: "auto", the default, the Neyman
+            construction where a second minimum of a diffuse model's
+            profile competes; N >= 100: every parameter's, N simulations
+            per threshold; "off": none); folds, seed (--folds, --seed); calibrate: N simulated
             measurements of every fit checking its intervals, 0 none,
             else at least 10; runs the analysis (--calibrate N: the
             report's calibrate.csv, table and calibration_sampleN
@@ -218,10 +220,7 @@ def report(dataset, out="out", models=None, samples=None, channel=None,
         o.range[i] = c("%s=%r:%r" % (name, float(lo), float(hi)))
     o.n_range = len(rng)
     o.n_boot = int(bootstrap)
-    if int(neyman) < 0:
-        raise InvalidArgumentError("neyman: %r is not a number of "
-                                   "simulations (0: none)" % (neyman,), 1)
-    o.n_neyman = int(neyman)
+    o.n_neyman, o.neyman_every = _neyman(neyman)
     o.folds = int(folds)
     o.seed = int(seed)
     o.stats = bool(stats)

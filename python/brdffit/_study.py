@@ -68,6 +68,24 @@ FRESNELS = ("schlick", "dielectric", "none")
 SMITHS = ("height", "separable")
 
 
+def _neyman(value):
+    """(n_neyman, neyman_every) of a neyman argument: "auto" (the
+    default: the construction where a second minimum of a diffuse
+    model's profile competes, BF_NEYMAN_AUTO_SIM simulations), "off" or 0
+    (the profile threshold alone), or N >= 100 (every parameter's, N
+    simulations per threshold; bf_analysis_opts)."""
+    if isinstance(value, str):
+        if value == "auto":
+            return lib.BF_NEYMAN_AUTO_SIM, 0
+        if value == "off":
+            return 0, 0
+    elif not isinstance(value, bool) and isinstance(value, int) and \
+            value >= 0:
+        return value, 1 if value > 0 else 0
+    raise InvalidArgumentError("neyman must be 'auto', 'off' or a number "
+                               "of simulations, got %r" % (value,), 1)
+
+
 def _option(what, names, find, ctype, value):
     """The bf_fresnel_kind or bf_smith_kind of value, a name of names
     (find: bf_fresnel_find, bf_smith_find), or 0 (each model's own) for
@@ -358,12 +376,11 @@ class Spec:
         return rows
 
     def analysis_opts(self, objective, exact, level, bootstrap, folds,
-                      seed, noise="auto", intervals=True, neyman=0):
+                      seed, noise="auto", intervals=True, neyman="auto"):
         """A bf_analysis_opts: the library's defaults
         (bf_analysis_opts_init), with the arguments that are not None;
         intervals=False: none (no_intervals, the CLI's --intervals none);
-        neyman: the Neyman construction's simulations per threshold (0:
-        none)."""
+        neyman: "auto", "off" or N (_neyman)."""
         opts = ffi.new("bf_analysis_opts *")
         lib.bf_analysis_opts_init(opts)
         opts.objective = _objective(objective)
@@ -380,9 +397,7 @@ class Spec:
                 raise InvalidArgumentError("bootstrap must be >= 0", 1)
             opts.n_boot = int(bootstrap)
         if neyman is not None:
-            if int(neyman) < 0:
-                raise InvalidArgumentError("neyman must be >= 0", 1)
-            opts.n_neyman = int(neyman)
+            opts.n_neyman, opts.neyman_every = _neyman(neyman)
         if folds is not None:
             if int(folds) < 0:
                 raise InvalidArgumentError("folds must be >= 0", 1)
@@ -494,8 +509,8 @@ class Study:
     """One run: the Spec, its rows (bf_study_row), the analysis (stats:
     bf_fit_stats, and its opts; None without the analysis) and the rows
     left out for lack of inputs (missing). Arguments as brdffit.compare's;
-    the analysis runs with fit="exact", stats, bootstrap or neyman, as in
-    the CLI."""
+    the analysis runs with fit="exact", stats, bootstrap or neyman=N, as
+    in the CLI."""
 
     def __init__(self, dataset, materials, models, channel="mean",
                  defaults="BF_MODELS_PAPER", fit="paper", objective="max", stats=False, bootstrap=0,
@@ -503,7 +518,7 @@ class Study:
                  on_params=None, exclude=(), max_theta=None, cone=None,
                  ranges=None, threads=1, progress=None, context="study",
                  noise="auto", fresnel=None, smith=None, intervals=True,
-                 neyman=0):
+                 neyman="auto"):
         if fit not in FITS:
             raise InvalidArgumentError("fit must be 'paper' or 'exact', got "
                                        "%r" % (fit,), 1)
@@ -527,7 +542,7 @@ class Study:
             self.rows = ffi.new("bf_study_row[]", self.spec.n_rows)
         else:
             self.rows = self.spec.run(context)
-        if exact or stats or bootstrap or neyman:
+        if exact or stats or bootstrap or _neyman(neyman)[1]:
             self.opts = self.spec.analysis_opts(objective, exact, level,
                                                 bootstrap, folds, seed,
                                                 noise, intervals, neyman)

@@ -12,8 +12,8 @@ from ._lib import ffi, lib
 
 # The per-parameter fields of bf_calibration, in Calibration's order.
 FIELDS = ("truth", "coverage", "bias", "sd", "ml_bias", "ml_sd", "width",
-          "not_identified", "boot_coverage", "boot_width", "ny_coverage",
-          "ny_width")
+          "not_identified", "boot_coverage", "boot_width", "f_coverage",
+          "f_width", "competing")
 
 
 class Calibration:
@@ -36,9 +36,12 @@ class Calibration:
         boot_coverage, boot_width: (P,) the same coverage and median width
             for the residual bootstrap's intervals with bootstrap=N (NaN
             without).
-        ny_coverage, ny_width: (P,) the same for the Neyman
-            construction's intervals with neyman=N (NaN without, and for a
-            specular model).
+        f_coverage, f_width: (P,) the same for the profile threshold's
+            intervals before any Neyman construction (coverage and width
+            when none is made: neyman="off", a specular model).
+        competing: (P,) share of the simulations whose profile has a
+            second minimum that competes with the estimate's (their
+            intervals are the construction's with neyman="auto").
         n_sim, n_failed: simulations fitted, and that could not be.
         level, seed: as given (level: the analysis's).
     """
@@ -81,7 +84,7 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
               level=None,
               noise="auto", n=None, n_file=None, on_params=None, exclude=(),
               max_theta=None, cone=None, ranges=None, threads=1,
-              fresnel=None, smith=None, neyman=0):
+              fresnel=None, smith=None, neyman="auto"):
     """Fits model to material as brdffit.fit does (the analysis on), then
     simulates n_sim measurements of the fitted model under the fitted
     noise model at the material's configurations, refits each and checks
@@ -91,11 +94,12 @@ def calibrate(dataset, model, material=None, n_sim=200, seed=1,
     Args as brdffit.fit's (fit="exact" by default); n_sim: simulations,
     at least 10 (BF_CALIBRATE_MIN_SIM); seed: of the simulations;
     bootstrap: N replicates to check the bootstrap's intervals too (each
-    simulation's; the fit's own bootstrap is run as well); neyman: N
-    simulations per threshold to check the Neyman construction's
-    intervals too (a diffuse model's: ny_coverage, ny_width; the fit's
-    own intervals are then the construction's; about 4 N fits per
-    parameter and simulation).
+    simulation's; the fit's own bootstrap is run as well); neyman: as in
+    brdffit.fit -- each simulation's intervals are made as the fit's are
+    ("auto": the Neyman construction where a second minimum competes;
+    N: every parameter's, about 4 N fits per parameter and simulation;
+    "off": the profile threshold alone), and f_coverage, f_width are the
+    profile threshold's before it.
     Returns a Calibration.
     Raises InvalidArgumentError (n_sim < 10, bad options; the library's
     message), DomainError (the noise cannot be estimated: K not above

@@ -95,6 +95,11 @@ class FitResult:
             ("profile-lik": the noise model's likelihood; "profile": the
             objective's own S, noise="objective"; "neyman": the
             likelihood's with each end's threshold simulated, neyman=N).
+        ci_methods: {parameter: method}, each parameter's own: "neyman"
+            where its interval is the construction's (neyman="auto": the
+            parameters in competing), else ci_method.
+        competing: names of the parameters whose profile has a second
+            minimum that competes with the estimate's (flag competing).
         noise_power: p of the noise model var ~ mu^p (0 absolute, 2
             relative; NaN for noise="objective").
         bootstrap_method: how bootstrap was computed ("residual-bootstrap";
@@ -152,7 +157,7 @@ class FitResult:
         self.cv = self.flags = self.reduces_to = self.not_identified = None
         self.clamped = self.not_converged = self.interval_failed = None
         self.ci_method = self.noise_power = self.ml_estimate = None
-        self.ci_robust = None
+        self.ci_robust = self.ci_methods = self.competing = None
         self.bootstrap_failed = self.bootstrap_split = None
         self.bootstrap_method = None
         self.scales = self.per_channel = None
@@ -179,7 +184,7 @@ class FitResult:
                                    if k in linear} for r in per}
         for name in ("parameters", "bound", "grid", "refined", "intervals",
                      "intervals_open", "interval_gaps", "bootstrap",
-                     "ml_estimate"):
+                     "ml_estimate", "ci_methods"):
             d = getattr(self, name)
             if d is not None:
                 setattr(self, name, {k: v for k, v in d.items()
@@ -237,6 +242,11 @@ class FitResult:
             f & lib.BF_STAT_REDUCED and st.reduces_to != ffi.NULL) else None
         self.not_identified = _names(m, int(st.refined.flat) |
                                      int(st.not_identified))
+        self.competing = _names(m, int(st.ci_competing))
+        self.ci_methods = {q.name: ffi.string(lib.bf_ci_method_name(
+            lib.bf_fit_stats_ci_method(ffi.addressof(st), j))).decode()
+            for j, q in enumerate(m.parameters)
+            if shown and (mask >> j) & 1}
         self.clamped = int(st.n_clamped) if f & lib.BF_STAT_CLAMPED else 0
         self.not_converged = bool(f & lib.BF_STAT_NOCONV)
         self.interval_failed = bool(f & lib.BF_STAT_CI_FAIL)
@@ -304,7 +314,8 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
         objective="max", stats=True, bootstrap=0, folds=None, seed=None,
         level=None, n=None, n_file=None, on_params=None, exclude=(),
         max_theta=None, cone=None, ranges=None, threads=1, progress=None,
-        noise="auto", fresnel=None, smith=None, intervals=True, neyman=0):
+        noise="auto", fresnel=None, smith=None, intervals=True,
+        neyman="auto"):
     """Fits one model to one material (the library's study on one target).
 
     Args:
@@ -361,12 +372,16 @@ def fit(dataset, model, material=None, channel="mean", fit="paper",
             intervals, intervals_open and ml_estimate empty, noise_power
             NaN -- the fit, AIC, BIC and CV in a fraction of the time (not
             with bootstrap).
-        neyman: N >= 100 (BF_NEYMAN_MIN_SIM) for a diffuse model's
-            intervals by the Neyman construction (the CLI's --neyman N):
-            each end's threshold the 95% quantile of the profile criterion
-            over N measurements simulated there and refitted
-            (ci_method "neyman"; about 4 N fits per parameter;
-            doc/methods.md §3); 0 (default): the F threshold.
+        neyman: the Neyman construction (the CLI's --neyman; ci_method
+            "neyman"; doc/methods.md §3): each end's threshold the 95%
+            quantile of the profile criterion over N measurements
+            simulated there and refitted, about 4 N fits per parameter.
+            "auto" (default): N = 100 (BF_NEYMAN_AUTO_SIM) for a diffuse
+            model's parameters whose profile has a second minimum that
+            competes with the estimate's (competing), where the F
+            threshold covers less than it says; N >= 100
+            (BF_NEYMAN_MIN_SIM): every parameter's; "off": the F
+            threshold alone.
         fresnel, smith: the specular models' options (SPEC §9.2, the CLI's
             --fresnel, --smith; None: each model's own, Schlick's F0 and
             height-correlated Smith): fresnel "schlick", "dielectric" (a

@@ -59,7 +59,7 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
             seed=None, level=None, n=None, n_file=None, on_params=None,
             exclude=(), max_theta=None, cone=None, ranges=None, threads=1,
             progress=None, fresnel=None, smith=None, intervals=True,
-            neyman=0):
+            neyman="auto"):
     """Fits every model to every sample, as `brdffit compare` does, and
     returns the rows of its fits.csv.
 
@@ -83,7 +83,7 @@ def compare(dataset, models=None, samples=None, channel="mean", fit="paper",
             --exclude-specular in radians, --range, --threads, --fresnel,
             --smith, --intervals, --neyman; the records'
             ndf, masking and fresnel name the variant fitted). The analysis (the columns after k) runs
-            with fit="exact", stats=True, bootstrap or neyman > 0; otherwise
+            with fit="exact", stats=True, bootstrap or neyman=N; otherwise
             those columns are empty.
     Returns:
         Records: one dict per fits.csv row (sample, name, channel, model,
@@ -110,7 +110,7 @@ def rank(dataset, models=None, samples="all", channel="mean", fit="exact",
          objective="max", bootstrap=0, folds=None, seed=None, level=None,
          n=None, n_file=None, on_params=None, exclude=(), max_theta=None,
          cone=None, ranges=None, threads=1, progress=None, fresnel=None,
-         smith=None, intervals=True, neyman=0):
+         smith=None, intervals=True, neyman="auto"):
     """Ranks models per sample by AIC, BIC and cross-validated error, as
     `brdffit rank` does, and returns the rows of its ranking.csv.
 

@@ -55,7 +55,11 @@ def test_calibrate_is_deterministic_for_a_seed():
     for f in FIELDS:
         np.testing.assert_array_equal(getattr(a, f), getattr(b, f))
     assert np.isnan(a.boot_coverage).all()  # no bootstrap asked for
-    assert np.isnan(a.ny_coverage).all()  # nor the Neyman construction
+    # VH-E's m has one minimum: the default made no construction, and the
+    # intervals are the F threshold's
+    assert (a.competing == 0.0).all()
+    np.testing.assert_array_equal(a.coverage, a.f_coverage)
+    np.testing.assert_array_equal(a.width, a.f_width)
 
 
 def test_calibrate_checks_the_bootstrap_when_asked():
@@ -66,7 +70,12 @@ def test_calibrate_checks_the_bootstrap_when_asked():
 
 def test_calibrate_checks_the_neyman_construction_when_asked():
     c = brdffit.calibrate(material(), "VH-E", n_sim=10, seed=3, neyman=100)
-    assert 0.0 <= c.ny_coverage[0] <= 1.0 and c.ny_width[0] > 0.0
+    a = brdffit.calibrate(material(), "VH-E", n_sim=10, seed=3)
+    # each simulation's intervals are the construction's; the F
+    # threshold's beside them are the default's (the same simulations)
+    assert 0.0 <= c.coverage[0] <= 1.0 and c.width[0] > 0.0
+    assert c.width[0] != a.width[0]
+    assert c.f_width[0] == a.width[0] and c.f_coverage[0] == a.coverage[0]
     assert c.fit.ci_method == "neyman"  # the fit's own intervals too
 
 

@@ -123,6 +123,26 @@ def test_neyman_intervals_are_named_and_hold_the_estimate():
         brdffit.fit(data, "FC-E", fit="exact", neyman=99)
     with pytest.raises(brdffit.InvalidArgumentError):
         brdffit.fit(data, "FC-E", fit="exact", neyman=-1)
+    with pytest.raises(brdffit.InvalidArgumentError, match="'auto', 'off'"):
+        brdffit.fit(data, "FC-E", fit="exact", neyman="sometimes")
+
+
+def test_the_default_constructs_where_a_second_minimum_competes(curet):
+    # Felt (1): VH-G's m is split by a rise inside its interval, two
+    # minima; by default (neyman="auto") its interval is the
+    # construction's, as the CLI's; neyman="off" keeps the F threshold's
+    r = brdffit.fit(curet, "VH-G", material=1, fit="exact", folds=0)
+    assert r.competing == ("m",) and "competing=m" in r.flags
+    assert r.ci_methods == {"m": "neyman"} and r.ci_method == "neyman"
+    off = brdffit.fit(curet, "VH-G", material=1, fit="exact", folds=0,
+                      neyman="off")
+    assert off.competing == ("m",) and off.ci_methods == {"m": "profile-lik"}
+    assert off.intervals["m"] != r.intervals["m"]
+    # WNO-R: n's two branches compete, sigma's profile does not
+    w = brdffit.fit(curet, "WNO-R", material=1, fit="exact", folds=0)
+    assert w.competing == ("n",)
+    assert w.ci_methods == {"sigma": "profile-lik", "n": "neyman"}
+    assert w.ci_method == "profile-lik"  # not every parameter's
 
 
 def test_a_range_moves_the_search_and_flags_the_bound():
@@ -254,9 +274,12 @@ def test_a_split_interval_has_its_gap_where_the_profile_is_above(curet):
     # Felt (1), VH-G: its m's profile rises above the threshold inside the
     # interval and comes back below (the normalising maximum moves); the
     # set is two segments, interval_gaps names the gap, and the profile the
-    # report draws is above the threshold across it and below either side.
+    # report draws is above the threshold across it and below either side
+    # (the F threshold's segments: by default this interval, whose minima
+    # compete, is the Neyman construction's, each end at its own threshold).
     import numpy as np
-    r = brdffit.fit(curet, "VH-G", material=1, fit="exact", folds=0)
+    r = brdffit.fit(curet, "VH-G", material=1, fit="exact", folds=0,
+                    neyman="off")
     assert set(r.interval_gaps) == {"m"} and "m" in r.not_identified
     lo, hi = r.intervals["m"]
     g_lo, g_hi = r.interval_gaps["m"]

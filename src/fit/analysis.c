@@ -182,10 +182,11 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
     }
 }
 
-/* The Neyman construction's intervals in place of iv's (bf__neyman, on
- * the grid gr, which leaves a failed parameter's as iv's): a fit where one
- * failed is flagged BF_STAT_CI_FAIL; ci_method says "neyman" when every
- * one succeeded. */
+/* The Neyman construction's intervals in place of iv's for the
+ * parameters opts->neyman_every says (bf__neyman, on the grid gr, which
+ * leaves a failed parameter's as iv's): a fit where one failed is flagged
+ * BF_STAT_CI_FAIL; ci_neyman gets the parameters constructed, and
+ * ci_method says "neyman" when they are every free one. */
 static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                   const bf_analysis_opts *opts, bf_fit_stats *st)
 {
@@ -193,8 +194,10 @@ static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     bf_interval ny;
     unsigned failed = 0;
     size_t j;
-    int rc = bf__neyman(fc, iv, gr, opts->n_neyman, opts->seed, opts->level,
-                        &ny, &failed);
+    int rc = bf__neyman(fc, iv, gr,
+                        opts->neyman_every ? pb->free_mask : iv->competing,
+                        opts->n_neyman, opts->seed, opts->level, &ny,
+                        &failed);
     if (rc == BF_ENOMEM) {
         return rc;
     }
@@ -210,9 +213,9 @@ static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     }
     if (failed != 0) {
         st->flags |= BF_STAT_CI_FAIL;
-    } else {
-        st->ci_method = BF_CI_NEYMAN;
     }
+    st->ci_neyman = ny.neyman;
+    st->ci_method = ny.method;
     return BF_OK;
 }
 
@@ -255,7 +258,9 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         st->noise_power = iv.noise_power;
         st->noise_sigma = iv.sigma;
         st->not_identified = iv.not_identified;
+        st->ci_competing = iv.competing;
         if (rc == BF_OK && opts->n_neyman > 0 &&
+            iv.method == BF_CI_PROFILE_LIK &&
             pb->type->kind != BF_MODEL_SPECULAR) {
             rc = neyman(fc, &iv, gr, opts, st);
             if (rc == BF_ENOMEM) {
@@ -717,13 +722,14 @@ int bf_analysis_opts_check(const bf_analysis_opts *o, bf_error *err)
     } else if (o->no_intervals && o->n_boot > 0) {
         why = "no_intervals is set: a bootstrap interval is an interval "
               "too; drop the bootstrap or keep the intervals";
-    } else if (o->no_intervals && o->n_neyman > 0) {
+    } else if (o->no_intervals && o->n_neyman > 0 && o->neyman_every) {
         why = "no_intervals is set: the Neyman construction is an interval "
               "too; drop it or keep the intervals";
     } else if (o->n_neyman > 0 && o->n_neyman < BF_NEYMAN_MIN_SIM) {
         why = "the Neyman construction needs at least " NY_STR(
             BF_NEYMAN_MIN_SIM) " simulations per threshold";
-    } else if (o->n_neyman > 0 && o->noise == BF_NOISE_OBJECTIVE) {
+    } else if (o->n_neyman > 0 && o->neyman_every &&
+               o->noise == BF_NOISE_OBJECTIVE) {
         why = "the Neyman construction simulates a noise model: not with "
               "the objective's own (noise 'objective')";
     }
@@ -742,4 +748,5 @@ void bf_analysis_opts_init(bf_analysis_opts *o)
     o->folds = 10;
     o->seed = 1;
     o->noise = BF_NOISE_AUTO;
+    o->n_neyman = BF_NEYMAN_AUTO_SIM; /* where a second minimum competes */
 }

@@ -8,7 +8,8 @@
  * eps_k ~ N(0, 1), divided by max_k D_k [1] (so the value that sets the
  * scale is as noisy as a measurement's); the fit under pb's objective
  * (grid optimum on stored curves, refinement) and its intervals
- * (bf__intervals) and, with n_boot, its bootstrap interval
+ * (bf__intervals; with n_neyman, the Neyman construction's where the
+ * analysis makes it, neyman.c) and, with n_boot, its bootstrap interval
  * (bf__bootstrap); the truth inside or not. Coverage is the share of
  * simulations whose interval holds the truth; bias and sd are those of
  * the objective's estimates and of the maximum-likelihood ones.
@@ -57,11 +58,12 @@ typedef struct {
     double *ml;
     double *width;
     double *boot_width; /* NULL without the bootstrap */
-    double *ny_width;   /* NULL without the Neyman construction */
+    double *f_width;    /* the profile threshold's, before the construction */
     size_t *cover; /* BF_MAX_PARAMS */
     size_t *flag;
     size_t *boot_cover;
-    size_t *ny_cover;
+    size_t *f_cover;
+    size_t *competing;
 } tally_t;
 
 static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
@@ -89,11 +91,12 @@ static void summarise(const bf_problem *pb, const tally_t *t, size_t m,
             gsl_sort(bw, 1, m);
             out->boot_width[j] = gsl_stats_median_from_sorted_data(bw, 1, m);
         }
-        if (t->ny_width != NULL) {
-            double *nw = t->ny_width + j * n_sim;
-            out->ny_coverage[j] = (double)t->ny_cover[j] / (double)m;
-            gsl_sort(nw, 1, m);
-            out->ny_width[j] = gsl_stats_median_from_sorted_data(nw, 1, m);
+        {
+            double *fw = t->f_width + j * n_sim;
+            out->f_coverage[j] = (double)t->f_cover[j] / (double)m;
+            out->competing[j] = (double)t->competing[j] / (double)m;
+            gsl_sort(fw, 1, m);
+            out->f_width[j] = gsl_stats_median_from_sorted_data(fw, 1, m);
         }
     }
 }
@@ -108,7 +111,7 @@ static void clear(bf_calibration *out, const double *truth, size_t p)
         out->ml_bias[j] = out->ml_sd[j] = out->width[j] = NAN;
         out->not_identified[j] = NAN;
         out->boot_coverage[j] = out->boot_width[j] = NAN;
-        out->ny_coverage[j] = out->ny_width[j] = NAN;
+        out->f_coverage[j] = out->f_width[j] = out->competing[j] = NAN;
     }
 }
 
@@ -132,17 +135,20 @@ static void keep_estimates(const bf_problem *pb, const tally_t *t, size_t m,
 int bf_fit_calibrate(const bf_problem *pb, const double *truth,
                      double noise_power, double sigma, bf_noise noise,
                      size_t n_sim, size_t n_boot, size_t n_neyman,
-                     unsigned long seed, double level, bf_calibration *out)
+                     int neyman_every, unsigned long seed, double level,
+                     bf_calibration *out)
 {
     return bf__fit_calibrate(pb, truth, noise_power, sigma, noise, n_sim,
-                             n_boot, n_neyman, seed, level, NULL, NULL, out);
+                             n_boot, n_neyman, neyman_every, seed, level,
+                             NULL, NULL, out);
 }
 
 int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       double noise_power, double sigma, bf_noise noise,
                       size_t n_sim, size_t n_boot, size_t n_neyman,
-                      unsigned long seed, double level, double *ml_est,
-                      const bf__tick *tick, bf_calibration *out)
+                      int neyman_every, unsigned long seed, double level,
+                      double *ml_est, const bf__tick *tick,
+                      bf_calibration *out)
 {
     bf__solo so;
     bf__grid_layout_t lay;
@@ -153,8 +159,9 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
     size_t cover[BF_MAX_PARAMS] = {0};
     size_t flag[BF_MAX_PARAMS] = {0};
     size_t boot_cover[BF_MAX_PARAMS] = {0};
-    size_t ny_cover[BF_MAX_PARAMS] = {0};
-    size_t n_arr = 3 + (n_boot >= 2) + (n_neyman > 0);
+    size_t f_cover[BF_MAX_PARAMS] = {0};
+    size_t competing[BF_MAX_PARAMS] = {0};
+    size_t n_arr = 4 + (n_boot >= 2);
     double *curve = NULL;
     double *d = NULL;
     double top = 0.0; /* a specular model's maximum (simulate) */
@@ -167,9 +174,10 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
     if (pb == NULL || truth == NULL || out == NULL || pb->type == NULL ||
         pb->weight != NULL || n_sim < BF_CALIBRATE_MIN_SIM || !(sigma >= 0.0) ||
         !(noise_power >= 0.0 && noise_power <= BF_NOISE_PMAX) ||
-        (n_neyman > 0 && (n_neyman < BF_NEYMAN_MIN_SIM ||
-                          pb->type->kind == BF_MODEL_SPECULAR ||
-                          noise == BF_NOISE_OBJECTIVE)) ||
+        (n_neyman > 0 && n_neyman < BF_NEYMAN_MIN_SIM) ||
+        (n_neyman > 0 && neyman_every &&
+         (pb->type->kind == BF_MODEL_SPECULAR ||
+          noise == BF_NOISE_OBJECTIVE)) ||
         bf_noise_name(noise) == NULL || !(level > 0.0 && level < 1.0)) {
         return BF_EINVAL;
     }
@@ -193,9 +201,9 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         t.ml = t.est + n_sim * BF_MAX_PARAMS;
         t.width = t.ml + n_sim * BF_MAX_PARAMS;
         t.boot_width = n_boot >= 2 ? t.width + n_sim * BF_MAX_PARAMS : NULL;
-        t.ny_width = n_neyman > 0 ? t.est + (n_arr - 1) * n_sim * BF_MAX_PARAMS
-                                  : NULL;
-        t.ny_cover = ny_cover;
+        t.f_width = t.est + (n_arr - 1) * n_sim * BF_MAX_PARAMS;
+        t.f_cover = f_cover;
+        t.competing = competing;
         t.cover = cover;
         t.flag = flag;
         t.boot_cover = boot_cover;
@@ -226,6 +234,7 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         double bhi[BF_MAX_PARAMS];
         bf_interval ny;
         int st;
+        int made = 0;
         if (r > 0 && tick != NULL) {
             tick->fn(tick->ctx); /* the previous simulation's */
         }
@@ -242,10 +251,17 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
         }
-        if (st == BF_OK && n_neyman > 0) {
+        if (st == BF_OK && n_neyman > 0 && !spec &&
+            iv.method == BF_CI_PROFILE_LIK) { /* as the analysis's */
             unsigned failed;
-            st = bf__neyman(&so.fc, &iv, gr, n_neyman, seed + 1 + n_sim + r,
-                            level, &ny, &failed);
+            st = bf__neyman(&so.fc, &iv, gr,
+                            neyman_every ? pb->free_mask : iv.competing,
+                            n_neyman, seed + 1 + n_sim + r, level, &ny,
+                            &failed);
+            made = 1;
+            if (st == BF_EDOM) { /* the analysis keeps the profile's */
+                st = BF_OK;
+            }
         }
         if (st == BF_OK && n_boot >= 2) {
             st = bf__bootstrap(&so.fc, &iv, n_boot, seed + 1 + r, level, NULL,
@@ -265,16 +281,15 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
             }
             t.est[j * n_sim + m] = best.param[j];
             t.ml[j * n_sim + m] = iv.ml.param[j];
-            t.width[j * n_sim + m] = bf_interval_length(&iv, j);
-            cover[j] += bf_interval_holds(&iv, j, truth[j]);
+            t.f_width[j * n_sim + m] = bf_interval_length(&iv, j);
+            f_cover[j] += bf_interval_holds(&iv, j, truth[j]);
+            t.width[j * n_sim + m] = bf_interval_length(made ? &ny : &iv, j);
+            cover[j] += bf_interval_holds(made ? &ny : &iv, j, truth[j]);
             flag[j] += (iv.not_identified >> j) & 1u;
+            competing[j] += (iv.competing >> j) & 1u;
             if (t.boot_width != NULL) {
                 t.boot_width[j * n_sim + m] = bhi[j] - blo[j];
                 boot_cover[j] += blo[j] <= truth[j] && truth[j] <= bhi[j];
-            }
-            if (t.ny_width != NULL) {
-                t.ny_width[j * n_sim + m] = bf_interval_length(&ny, j);
-                ny_cover[j] += bf_interval_holds(&ny, j, truth[j]);
             }
         }
         m++;

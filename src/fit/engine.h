@@ -654,15 +654,16 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
                   unsigned long seed, double level, double *est,
                   size_t *n_est, double *low, double *high, unsigned *split);
 /* bf_fit_neyman on fc around iv (bf__intervals of fc->pb, a diffuse
- * model's likelihood; neyman.c, doc/methods.md §3) for every free
- * parameter at once; gr: fc->pb's grid (the simulations' first fits), or
- * NULL to make one. *out starts as *iv; *failed gets bit j when parameter
- * j's construction failed (its ends left at iv's), and the first such
- * failure's code is returned. BF_EDOM (every bit of *failed) when iv has
- * no noise model or for a specular model; BF_ENOMEM. */
+ * model's likelihood; neyman.c, doc/methods.md §3) for the free
+ * parameters of which at once; gr: fc->pb's grid (the simulations' first
+ * fits), or NULL to make one. *out starts as *iv; *failed gets bit j when
+ * parameter j's construction failed (its ends left at iv's), and the
+ * first such failure's code is returned. BF_OK at once when which has no
+ * free parameter; BF_EDOM (every bit of which in *failed) when iv has no
+ * noise model or for a specular model; BF_ENOMEM. */
 int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
-               size_t n_sim, unsigned long seed, double level,
-               bf_interval *out, unsigned *failed);
+               unsigned which, size_t n_sim, unsigned long seed,
+               double level, bf_interval *out, unsigned *failed);
 /* A call after each unit of work (progress). */
 typedef struct {
     void (*fn)(void *ctx);
@@ -676,8 +677,9 @@ typedef struct {
 int bf__fit_calibrate(const bf_problem *pb, const double *truth,
                       double noise_power, double sigma, bf_noise noise,
                       size_t n_sim, size_t n_boot, size_t n_neyman,
-                      unsigned long seed, double level, double *ml_est,
-                      const bf__tick *tick, bf_calibration *out);
+                      int neyman_every, unsigned long seed, double level,
+                      double *ml_est, const bf__tick *tick,
+                      bf_calibration *out);
 /* bf_fit_cv on fc with the grid gr and the folds fold (bf_fit_cv_folds);
  * fold_grid: the folds' grid optima (results 1.. of
  * bf__grid_optima_folds), or NULL to compute them; whole (NULL: none)

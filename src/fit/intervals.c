@@ -188,6 +188,9 @@ static int profiles(bf__fitctx *fc, double thr, bf_interval *out)
             ((open & 2u) && out->ml.param[j] < pb->hi[j]) || (open & 4u)) {
             out->not_identified |= 1u << j;
         }
+        if (open & 8u) {
+            out->competing |= 1u << j;
+        }
     }
     return BF_OK;
 }

@@ -217,8 +217,8 @@ static int one_param(neyman_t *t, double d0, bf_interval *out)
 }
 
 int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
-               size_t n_sim, unsigned long seed, double level,
-               bf_interval *out, unsigned *failed)
+               unsigned which, size_t n_sim, unsigned long seed,
+               double level, bf_interval *out, unsigned *failed)
 {
     const bf_problem *pb = fc->pb;
     neyman_t t;
@@ -231,7 +231,11 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     int rc = BF_OK;
 
     *out = *iv;
-    *failed = pb->free_mask;
+    which &= pb->free_mask;
+    *failed = which;
+    if (which == 0) {
+        return BF_OK;
+    }
     if (iv->method != BF_CI_PROFILE_LIK ||
         pb->type->kind == BF_MODEL_SPECULAR) {
         return BF_EDOM;
@@ -276,7 +280,7 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     }
     for (j = 0; rc == BF_OK && j < pb->type->p; j++) {
         int st;
-        if (!((pb->free_mask >> j) & 1u)) {
+        if (!((which >> j) & 1u)) {
             continue;
         }
         t.j = j;
@@ -286,9 +290,11 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
         } else if (st != BF_OK) {
             *failed |= 1u << j;
             first = first == BF_OK ? st : first;
+        } else {
+            out->neyman |= 1u << j;
         }
     }
-    if (rc == BF_OK && *failed == 0) {
+    if (rc == BF_OK && out->neyman == pb->free_mask) {
         out->method = BF_CI_NEYMAN;
     }
     bf__grid_free(own);
@@ -297,8 +303,9 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     return rc != BF_OK ? rc : first;
 }
 
-int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
-                  unsigned long seed, double level, bf_interval *out)
+int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, unsigned which,
+                  size_t n_sim, unsigned long seed, double level,
+                  bf_interval *out)
 {
     bf__solo so;
     unsigned failed = 0;
@@ -311,7 +318,8 @@ int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, size_t n_sim,
     *out = *iv;
     rc = bf__solo_init(&so, pb);
     if (rc == BF_OK) {
-        rc = bf__neyman(&so.fc, iv, NULL, n_sim, seed, level, out, &failed);
+        rc = bf__neyman(&so.fc, iv, NULL, which, n_sim, seed, level, out,
+                        &failed);
         bf__solo_free(&so);
     }
     return rc;

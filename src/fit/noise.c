@@ -251,3 +251,9 @@ const char *bf_ci_method_name(bf_ci_method m)
                                         "residual-bootstrap", "neyman"};
     return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : NULL;
 }
+
+bf_ci_method bf_fit_stats_ci_method(const bf_fit_stats *st, size_t j)
+{
+    return j < BF_MAX_PARAMS && ((st->ci_neyman >> j) & 1u) ? BF_CI_NEYMAN
+                                                            : st->ci_method;
+}

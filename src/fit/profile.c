@@ -95,6 +95,13 @@
 #define SCAN_GRID 64
 /* A dip's minimisation stops at a bracket this share of its width. */
 #define SCAN_TOL 1e-3
+/* A second minimum of the profile (a scan's dip, or its last point where
+ * the criterion still falls there: a basin at the range's bound) competes
+ * with the estimate's when its criterion is at most SCAN_COMPETE times
+ * the threshold: within twice the interval's half-width in the normal
+ * approximation (D = z^2), where a simulated measurement's optimum can
+ * fall into it (look-elsewhere; bf__profile_ci_thr's open bit 8). */
+#define SCAN_COMPETE 4.0
 /* Dense data (more than BF__DENSE_K configurations): the bracket is
  * narrowed by at most CI_NARROW predicted points while its outside end's
  * -2 ln Lambda exceeds CI_NARROW_Q times the threshold; each predicted
@@ -946,7 +953,7 @@ static int gap_of(profile_t *p, double far_x, double far_c, double near,
  * stands). p->start is the optimum's nuisance on return. */
 static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
                      double *end, int *at_limit, int *split, double *gap_a,
-                     double *gap_b)
+                     double *gap_b, double *second)
 {
     const double lo = p->fc->pb->lo[p->j];
     const double hi = p->fc->pb->hi[p->j];
@@ -991,6 +998,10 @@ static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
         }
         m++;
     }
+    if (m >= 3 && c[m - 1] > 0.0 && c[m - 1] < c[m - 2] &&
+        c[m - 1] + p->chi2 < *second) { /* still falling at the bound */
+        *second = c[m - 1] + p->chi2;
+    }
     for (i = m >= 2 ? m - 2 : 0; i >= 1; i--) { /* the farthest dip first */
         double x;
         double cx;
@@ -1007,6 +1018,9 @@ static int scan_side(profile_t *p, double theta_hat, double limit, double d0,
                  t[i - 1] < t[i + 1] ? c[i + 1] : c[i - 1], &x, &cx);
         if (rc != BF_OK) {
             return rc;
+        }
+        if (cx + p->chi2 < *second) {
+            *second = cx + p->chi2;
         }
         if (cx <= 0.0) {
             far_x = x;
@@ -1043,6 +1057,7 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
     int at_lo = 0;
     int at_hi = 0;
     int split = 0;
+    double second = HUGE_VAL; /* the least D of a second minimum outside */
     int scan = pb->type->kind != BF_MODEL_SPECULAR;
     int rc = profile_begin(&p, fc, best, j, thr);
     if (rc == BF_OK) {
@@ -1060,11 +1075,11 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
         }
         if (rc == BF_OK && scan) {
             rc = scan_side(&p, theta_hat, pb->lo[j], d0, low, &at_lo, &split,
-                           &g[5], &g[4]);
+                           &g[5], &g[4], &second);
         }
         if (rc == BF_OK && scan) {
             rc = scan_side(&p, theta_hat, pb->hi[j], d0, high, &at_hi,
-                           &split, &g[6], &g[7]);
+                           &split, &g[6], &g[7], &second);
         }
         profile_end(fc, pb);
     }
@@ -1072,7 +1087,8 @@ int bf__profile_ci_thr(bf__fitctx *fc, const bf_fit_result *best, size_t j,
         n_gaps += isfinite(g[k]);
     }
     split = split || n_gaps > 0;
-    *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u) | (split ? 4u : 0u);
+    *open = (at_lo ? 1u : 0u) | (at_hi ? 2u : 0u) | (split ? 4u : 0u) |
+            (split || second <= SCAN_COMPETE * thr ? 8u : 0u);
     if (gap != NULL) { /* one gap, or none: three regions keep the hull */
         gap[0] = gap[1] = NAN;
         for (k = 0; k < 8 && n_gaps == 1; k += 2) {

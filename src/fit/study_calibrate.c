@@ -87,8 +87,8 @@ static int calibrate_pair(const bf_study_spec *spec,
                                    pb.type->kind == BF_MODEL_SPECULAR
                                        ? 0
                                        : opts->n_neyman,
-                                   seed, opts->level, ml_est,
-                                   tick, out);
+                                   opts->neyman_every, seed, opts->level,
+                                   ml_est, tick, out);
         }
         break;
     }

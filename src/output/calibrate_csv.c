@@ -20,7 +20,8 @@ int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
     }
     fputs("sample,name,channel,model,parameter,value,objective,noise_power,"
           "noise_sd,n_sim,coverage,bias,sd,ml_bias,ml_sd,width,level,"
-          "not_identified,boot_coverage,boot_width,ny_coverage,ny_width\n",
+          "not_identified,boot_coverage,boot_width,f_coverage,f_width,"
+          "competing\n",
           fp);
     for (i = 0; i < n_pairs; i++) {
         const bf_study_row *r = &rows[pairs[i]];
@@ -50,8 +51,9 @@ int bf_calibration_csv_write(FILE *fp, const bf_study_spec *spec,
             bf__csv_num(fp, c->not_identified[j]);
             bf__csv_num(fp, c->boot_coverage[j]);
             bf__csv_num(fp, c->boot_width[j]);
-            bf__csv_num(fp, c->ny_coverage[j]);
-            bf__csv_num(fp, c->ny_width[j]);
+            bf__csv_num(fp, c->f_coverage[j]);
+            bf__csv_num(fp, c->f_width[j]);
+            bf__csv_num(fp, c->competing[j]);
             fputc('\n', fp);
         }
     }

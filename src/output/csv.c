@@ -126,6 +126,11 @@ size_t bf_fit_flags_format(const bf_model_type *type, const bf_fit_stats *st,
             word(buf, len, &at, "not_identified=%s", type->param[j].name);
         }
     }
+    for (j = 0; j < type->p; j++) {
+        if ((st->ci_competing >> j) & 1u) {
+            word(buf, len, &at, "competing=%s", type->param[j].name);
+        }
+    }
     if (st->flags & BF_STAT_CLAMPED) {
         word(buf, len, &at, "clamped=%zu", st->n_clamped);
     }

@@ -57,7 +57,8 @@ static void fill_line(bf_fits_line *l, size_t i, const bf_study_row *r,
         l->ci_low = has ? s->ci_low[j] : NAN;
         l->ci_high = has ? s->ci_high[j] : NAN;
         l->ml_value = has ? s->ml_param[j] : NAN;
-        l->ci_method = has ? bf_ci_method_name(s->ci_method) : NULL;
+        l->ci_method = has ? bf_ci_method_name(bf_fit_stats_ci_method(s, j))
+                           : NULL;
         l->ci_open = has && s->ci_method != BF_CI_NONE
                          ? (int)((s->ci_open >> (2 * j)) & 3u)
                          : -1; /* no interval: --intervals none */

@@ -270,7 +270,8 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[0].style = bf_report_model_style(t);
         sq[0].dash = BF_DASH_SOLID;
         sq[0].weight = 1.3;
-        sq[0].label = st->opts.n_neyman > 0 && t->kind != BF_MODEL_SPECULAR
+        sq[0].label = st->opts.n_neyman > 0 && st->opts.neyman_every &&
+                              t->kind != BF_MODEL_SPECULAR
                           ? "profile 95% interval (Neyman construction)"
                           : "profile 95% interval";
         sq[1] = sq[0];
@@ -337,10 +338,15 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "two segments (fits.csv ci_gap_low, ci_gap_high).",
              bf_fig_each_sample(N, each, sizeof each), t->name,
              bf_objective_name(st->opts.objective),
-             st->opts.n_neyman > 0 && t->kind != BF_MODEL_SPECULAR
+             st->opts.n_neyman == 0 || t->kind == BF_MODEL_SPECULAR
+                 ? ""
+             : st->opts.neyman_every
                  ? ", each end's threshold calibrated by simulation (the "
                    "Neyman construction)"
-                 : "",
+                 : "; where a second minimum of the profile competes "
+                   "with the estimate's (flag competing), each end's "
+                   "threshold calibrated by simulation (the Neyman "
+                   "construction, ci_method neyman)",
              boot ? "; dotted below it, the residual bootstrap's "
                     "percentile interval (residuals resampled under the "
                     "noise model and refitted, doc/methods.md §3)"
@@ -692,12 +698,18 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                      ? ""
                      : " and the scale",
                  D->smp[s].K,
-                 st->opts.n_neyman > 0
+                 st->opts.n_neyman == 0 ? ""
+                 : st->opts.neyman_every
                      ? " With --neyman, a diffuse model's segment ends "
                        "where its curve reaches that end's simulated "
                        "threshold (the Neyman construction, ci_method "
                        "neyman), above or below the dashed line."
-                     : "");
+                     : " Where a diffuse model's curve has a second "
+                       "minimum that competes with the estimate's (flag "
+                       "competing), its segment ends where the curve "
+                       "reaches that end's simulated threshold (the "
+                       "Neyman construction, ci_method neyman), above or "
+                       "below the dashed line.");
     } else {
         snprintf(e->caption, sizeof e->caption,
                  "For each fitted parameter of each model, the profile "

@@ -281,7 +281,7 @@ static int intervals_check(const char *hint, const bf_rep_study *st)
                                  "--intervals none: --bootstrap computes "
                                  "an interval too; drop one of them");
     }
-    if (o->n_neyman > 0) {
+    if (o->n_neyman > 0 && o->neyman_every) {
         return bf_rep_usage_fail(BF_REPORT_CONFLICT, hint,
                                  "--intervals none: --neyman computes "
                                  "the intervals; drop one of them");
@@ -498,6 +498,7 @@ static int run_analysis(bf_rep_study *st)
     st->analysis.exact = o->exact;
     st->analysis.n_boot = o->n_boot;
     st->analysis.n_neyman = o->n_neyman;
+    st->analysis.neyman_every = o->neyman_every;
     st->analysis.no_intervals = o->no_intervals;
     st->analysis.folds = o->folds;
     st->analysis.seed = o->seed;
@@ -523,7 +524,8 @@ int bf_rep_study_run_analysis(bf_rep_study *st)
      * compare and report. */
     int rc = BF_REPORT_OK;
     if (st->opts.exact || st->opts.stats || st->opts.n_boot > 0 ||
-        st->opts.n_neyman > 0 || st->opts.calibrate > 0) {
+        (st->opts.n_neyman > 0 && st->opts.neyman_every) ||
+        st->opts.calibrate > 0) {
         rc = run_analysis(st);
     }
     if (rc == BF_REPORT_OK && st->opts.exact) {

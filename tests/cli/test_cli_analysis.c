@@ -480,20 +480,27 @@ Test(cli_analysis, a_fit_whose_noise_cannot_be_estimated_has_no_interval)
  * flag, the report's table as a union, ranking.csv's pJ_ci_gap_low,
  * pJ_ci_gap_high the same gap. On Felt (1) WNO-R's n has two
  * branches apart (near 1.2 and near 2.5), and VH-G's m a rise above the
- * threshold inside its interval (where the normalising maximum moves). */
+ * threshold inside its interval (where the normalising maximum moves).
+ * Two regions are two minima that compete (flag competing): by default
+ * (--neyman auto) such an interval, and no other, is the Neyman
+ * construction's (ci_method neyman; VH-G's m, whose ends move), with
+ * --neyman off the F threshold's (profile-lik; the runs here, which
+ * leave WNO-R's construction, the costly one, to the suite's library
+ * tests). */
 Test(cli_analysis, a_split_interval_is_written_as_two_segments)
 {
     static const char *const split[][2] = {{"WNO-R", "n"}, {"VH-G", "m"}};
-    const char *dir = bf_test_tmpdir();
+    char dir[256]; /* bf_test_tmpdir's buffer is static */
     const char *argv[] = {"report", "--data", "DATA", "--samples", "1",
                           "--models", "VH-G,WNO-R", "--fit", "exact",
                           "--stats", "--folds", "0", "--format", "png",
-                          "--out", dir, "-q", NULL};
+                          "--neyman", "off", "--out", dir, "-q", NULL};
     const char *html;
     size_t n_rows;
     size_t r;
     size_t i;
     size_t n_split = 0;
+    snprintf(dir, sizeof dir, "%s", bf_test_tmpdir());
     cr_assert_eq(run(argv), 0);
     n_rows = bf_test_csv_load(dir, "fits.csv");
     for (i = 0; i < 2; i++) {
@@ -515,6 +522,32 @@ Test(cli_analysis, a_split_interval_is_written_as_two_segments)
         snprintf(flag, sizeof flag, "not_identified=%s", split[i][1]);
         cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"), flag),
                            "%s", bf_test_csv_cell(r, "flags"));
+        snprintf(flag, sizeof flag, "competing=%s", split[i][1]);
+        cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"), flag),
+                           "%s", bf_test_csv_cell(r, "flags"));
+        cr_assert_str_eq(bf_test_csv_cell(r, "ci_method"), "profile-lik",
+                         "%s %s", split[i][0], split[i][1]);
+    }
+    r = bf_test_csv_find("1", "WNO-R", "sigma");
+    cr_assert_null(strstr(bf_test_csv_cell(r, "flags"), "competing=sigma"));
+    r = bf_test_csv_find("1", "VH-G", "m");
+    {
+        const char *adir = bf_test_tmpdir();
+        const char *dflt[] = {"compare", "--data", "DATA", "--samples", "1",
+                              "--models", "VH-G", "--fit", "exact",
+                              "--folds", "0", "--out", adir, "-q", NULL};
+        double lo = bf_test_csv_num(r, "ci_low");
+        double hi = bf_test_csv_num(r, "ci_high");
+        cr_assert_eq(run(dflt), 0);
+        bf_test_csv_load(adir, "fits.csv");
+        r = bf_test_csv_find("1", "VH-G", "m");
+        cr_assert_str_eq(bf_test_csv_cell(r, "ci_method"), "neyman");
+        cr_assert_not_null(strstr(bf_test_csv_cell(r, "flags"), "competing=m"));
+        cr_assert(fabs(bf_test_csv_num(r, "ci_low") - lo) > 1e-3 ||
+                      fabs(bf_test_csv_num(r, "ci_high") - hi) > 1e-3,
+                  "the construction moved no end: [%g, %g]", lo, hi);
+        cr_assert(bf_test_csv_num(r, "ci_low") < bf_test_csv_num(r, "ci_gap_low"));
+        n_rows = bf_test_csv_load(dir, "fits.csv");
     }
     cr_assert_eq(n_rows, 4u, "header, VH-G m, WNO-R sigma and n");
     for (r = 1; r < n_rows; r++) { /* the others: one region, empty cells */
@@ -529,8 +562,8 @@ Test(cli_analysis, a_split_interval_is_written_as_two_segments)
     {
         const char *rdir = bf_test_tmpdir();
         const char *rank[] = {"rank", "--data", "DATA", "--samples", "1",
-                              "--models", "WNO-R", "--folds", "0", "--out",
-                              rdir, "-q", NULL};
+                              "--models", "WNO-R", "--folds", "0",
+                              "--neyman", "off", "--out", rdir, "-q", NULL};
         char gl[2][64];
         r = bf_test_csv_find("1", "WNO-R", "n");
         snprintf(gl[0], sizeof gl[0], "%s", bf_test_csv_cell(r, "ci_gap_low"));

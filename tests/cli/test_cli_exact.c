@@ -172,8 +172,9 @@ Test(cli_exact, bad_options_are_usage_errors)
                          NULL};
     const char *a13[] = {"compare", "--neyman", "100", "--noise", "objective",
                          NULL};
+    const char *a14[] = {"compare", "--neyman", "sometimes", NULL};
     const char **all[] = {a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12,
-                          a13};
+                          a13, a14};
     /* a1, a12 and a13 combine options that exclude each other; the others
      * give a value that is malformed or out of range (README: exit
      * statuses). */
@@ -181,7 +182,7 @@ Test(cli_exact, bad_options_are_usage_errors)
                                EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
                                EXIT_BADVALUE, EXIT_BADVALUE, EXIT_BADVALUE,
                                EXIT_BADVALUE, EXIT_BADVALUE,
-                               EXIT_CONFLICT, EXIT_CONFLICT};
+                               EXIT_CONFLICT, EXIT_CONFLICT, EXIT_BADVALUE};
     size_t i;
     for (i = 0; i < sizeof all / sizeof *all; i++) {
         cr_assert_eq(run(all[i]), code[i], "case %zu", i + 1);

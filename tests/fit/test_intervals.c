@@ -83,7 +83,7 @@ static void calibrated(const bf_model_type *base, double p, double sd,
     double truth[BF_MAX_PARAMS];
     problem(v, base, n, geom, obj, pb, truth);
     cr_assert_eq(bf_fit_calibrate(pb, truth, p, sd, BF_NOISE_AUTO, REPS, n_boot,
-                                  0, SEED, LEVEL, cal),
+                                  0, 0, SEED, LEVEL, cal),
                  BF_OK);
     cr_assert_geq(cal->n_sim, REPS - REPS / 50, "%s: %zu fitted", base->name,
                   cal->n_sim);
@@ -169,7 +169,7 @@ Test(intervals, the_objectives_own_profile_undercovers_under_max,
     double truth[BF_MAX_PARAMS];
     problem(&v, bf_model_fc_e, n, geom, BF_OBJ_MAX, &pb, truth);
     cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_OBJECTIVE,
-                                  REPS, 0, 0, SEED, LEVEL, &cal),
+                                  REPS, 0, 0, 0, SEED, LEVEL, &cal),
                  BF_OK);
     cr_log_info("FC-E old profile: m %.3f n %.3f", cal.coverage[0],
                 cal.coverage[1]);
@@ -265,7 +265,7 @@ Test(intervals, calibrate_reports_coverage_and_bias_of_a_known_material)
     size_t reps = REPS < 100 ? REPS : 100;
     problem(&v, bf_model_bk_e, n, geom, BF_OBJ_SCALE, &pb, truth);
     cr_assert_eq(bf_fit_calibrate(&pb, truth, 0.0, 0.02, BF_NOISE_ABSOLUTE,
-                                  reps, 0, 0, SEED, LEVEL, &cal),
+                                  reps, 0, 0, 0, SEED, LEVEL, &cal),
                  BF_OK);
     cr_assert_eq(cal.n_sim + cal.n_failed, reps);
     cr_assert_float_eq(cal.truth[0], truth[0], 0.0);
@@ -554,7 +554,7 @@ Test(intervals, calibrate_refuses_fewer_than_ten_simulations)
     double truth[BF_MAX_PARAMS];
     problem(&v, bf_model_bk_e, n, geom, BF_OBJ_MAX, &pb, truth);
     cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 9, 0,
-                                  0, SEED, LEVEL, &cal),
+                                  0, 0, SEED, LEVEL, &cal),
                  BF_EINVAL);
 }
 
@@ -582,7 +582,7 @@ Test(intervals, the_noise_of_too_few_configurations_cannot_be_estimated)
                  BF_EDOM);
     cr_assert(isnan(iv.low[0]) && isnan(iv.high[1]));
     cr_assert_eq(bf_fit_calibrate(&pb, truth, 2.0, 0.05, BF_NOISE_AUTO, 20, 0,
-                                  0, SEED, LEVEL, &cal),
+                                  0, 0, SEED, LEVEL, &cal),
                  BF_EDOM);
     /* with p fixed one degree of freedom is left: intervals exist */
     cr_assert_eq(bf_fit_intervals(&pb, &best, BF_NOISE_RELATIVE, LEVEL, &iv),

@@ -107,7 +107,7 @@ static void coverage_under(const char *model, const double *truth, size_t n,
     cr_assert_eq(bf_problem_init(&pb, t, truth, n, geom, NULL), BF_OK);
     pb.objective = BF_OBJ_NGAN;
     cr_assert_eq(bf_fit_calibrate(&pb, truth, p, sigma, noise, REPS, 0, 0,
-                                  SEED, LEVEL, &cal),
+                                  0, SEED, LEVEL, &cal),
                  BF_OK, "%s %s", model, what);
     cr_assert_geq(cal.n_sim, REPS - REPS / 20, "%s %s: %zu of %d fitted",
                   model, what, cal.n_sim, REPS);
