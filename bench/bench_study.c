@@ -655,6 +655,8 @@ static void analysis(const char *cli, const char *peer, const char *dir,
     double c_peer[16];
     double t_boot;
     double c_boot;
+    double t_auto;
+    double c_auto;
     int have_peer = peer != NULL && access("/usr/bin/python3", X_OK) == 0;
     int r;
     if (mkdtemp(tmpl) == NULL) {
@@ -662,12 +664,16 @@ static void analysis(const char *cli, const char *peer, const char *dir,
     }
     snprintf(peer_out, sizeof peer_out, "%s/peer.csv", tmpl);
     for (r = 0; r < reps && r < 16; r++) { /* alternating runs */
+        /* the F threshold's intervals, as before issue 18's default and
+         * as the peer's (its profile intervals at chi2_1) */
         char *a9[] = {arg(cli), arg("rank"), arg("--data"), arg(dir),
-                      arg("--out"), tmpl, arg("-q"), NULL};
+                      arg("--neyman"), arg("off"), arg("--out"), tmpl,
+                      arg("-q"), NULL};
         char *a8[] = {arg(cli), arg("rank"), arg("--data"), arg(dir),
                       arg("--models"),
                       arg("VH-G,VH-E,FC-G,FC-E,ON,LFTG,LAMBERT,WNO"),
-                      arg("--out"), tmpl, arg("-q"), NULL};
+                      arg("--neyman"), arg("off"), arg("--out"), tmpl,
+                      arg("-q"), NULL};
         /* without --peer, no peer command line (arg(NULL) would crash) */
         char *ap[] = {arg("/usr/bin/python3"), arg(have_peer ? peer : ""),
                       arg("--data"), arg(dir), arg("--out"), peer_out, NULL};
@@ -677,6 +683,14 @@ static void analysis(const char *cli, const char *peer, const char *dir,
         c_rank8[r] = last_cpu;
         t_peer[r] = have_peer ? time_process(ap) : -1.0;
         c_peer[r] = last_cpu;
+    }
+    {
+        /* rank's default: the Neyman construction where a second minimum
+         * competes (issue 18; doc/methods.md §3) */
+        char *aa[] = {arg(cli), arg("rank"), arg("--data"), arg(dir),
+                      arg("--out"), tmpl, arg("-q"), NULL};
+        t_auto = time_process(aa);
+        c_auto = last_cpu;
     }
     {
         char *ab[] = {arg(cli), arg("compare"), arg("--data"), arg(dir),
@@ -691,12 +705,12 @@ static void analysis(const char *cli, const char *peer, const char *dir,
            "all cores, median of %d alternating runs)\n\n", r);
     printf("| run | wall | CPU | before (issue 11) | ratio |\n"
            "|---|---|---|---|---|\n");
-    printf("| `brdffit rank` (61 samples, 9 default models) | %.2f s | "
-           "%.2f s | %.0f s | %.0fx faster |\n",
+    printf("| `brdffit rank` (61 samples, 9 default models), --neyman off "
+           "| %.2f s | %.2f s | %.0f s | %.0fx faster |\n",
            bf_bench_median(t_rank, r), bf_bench_median(c_rank, r), NOW_RANK,
            NOW_RANK / bf_bench_median(t_rank, r));
-    printf("| `brdffit rank` without WNO-R (8 models) | %.2f s | %.2f s | "
-           "%.0f s | %.0fx faster |\n",
+    printf("| `brdffit rank` without WNO-R (8 models), --neyman off | "
+           "%.2f s | %.2f s | %.0f s | %.0fx faster |\n",
            bf_bench_median(t_rank8, r), bf_bench_median(c_rank8, r), NOW_RANK8,
            NOW_RANK8 / bf_bench_median(t_rank8, r));
     if (have_peer && bf_bench_median(t_peer, r) > 0.0) {
@@ -706,6 +720,9 @@ static void analysis(const char *cli, const char *peer, const char *dir,
                bf_bench_median(t_peer, r), bf_bench_median(c_peer, r),
                bf_bench_median(t_peer, r) / bf_bench_median(t_rank8, r), NOW_PEER_RATIO);
     }
+    printf("| `brdffit rank` (9 models), its default --neyman auto (1 run) "
+           "| %.1f s | %.1f s | | %.0fx the F threshold's CPU |\n",
+           t_auto, c_auto, c_auto / bf_bench_median(c_rank, r));
     if (t_boot > 0.0) {
         printf("| `compare --fit exact --bootstrap 1000 --samples all "
                "--models all` (1 run) | %.1f s | %.1f s | about %.0f s | "

@@ -610,7 +610,10 @@ static void analysis(FILE *fp, const bf_rep_study *st, const bf_fig_set *figs)
         figures_of(fp, figs, BF_FIG_FOREST, m);
     }
     fputs("<details>\n<summary>The same as a table: each sample's grid and "
-          "exact optima with their 95% intervals</summary>\n",
+          "exact optima with their 95% intervals (\"(Neyman)\": the Neyman "
+          "construction's, each end's threshold simulated; by default where "
+          "two minima of the profile compete; fits.csv ci_method "
+          "neyman)</summary>\n",
           fp);
     bf_report_intervals(fp, st);
     fputs("</details>\n", fp);

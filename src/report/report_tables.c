@@ -150,9 +150,10 @@ void bf_report_selection(FILE *fp, const bf_rep_study *st)
 
 /* "[0.123, 0.456]" with the open ends marked, or "–" when not computed. */
 /* "[lo, hi]" (" (bound)" after an end at the search range's bound); a
- * split interval, gap (gl, gh), as "[lo, gl] \u222a [gh, hi]". */
+ * split interval, gap (gl, gh), as "[lo, gl] \u222a [gh, hi]"; then note
+ * (" (Neyman)": the construction's, or ""). */
 static void interval(FILE *fp, double lo, double hi, unsigned open,
-                     double gl, double gh)
+                     double gl, double gh, const char *note)
 {
     const char *b0 = (open & 1u) ? " (bound)" : "";
     const char *b1 = (open & 2u) ? " (bound)" : "";
@@ -163,11 +164,12 @@ static void interval(FILE *fp, double lo, double hi, unsigned open,
     if (isfinite(gl) && isfinite(gh)) {
         fprintf(fp,
                 "<td class=\"n\">[%.4g%s, %.4g] \xe2\x88\xaa [%.4g, "
-                "%.4g%s]</td>",
-                lo, b0, gl, gh, hi, b1);
+                "%.4g%s]%s</td>",
+                lo, b0, gl, gh, hi, b1, note);
         return;
     }
-    fprintf(fp, "<td class=\"n\">[%.4g%s, %.4g%s]</td>", lo, b0, hi, b1);
+    fprintf(fp, "<td class=\"n\">[%.4g%s, %.4g%s]%s</td>", lo, b0, hi, b1,
+            note);
 }
 
 void bf_report_intervals(FILE *fp, const bf_rep_study *st)
@@ -208,10 +210,13 @@ void bf_report_intervals(FILE *fp, const bf_rep_study *st)
                         f->ml_param[j]);
                 interval(fp, f->ci_low[j], f->ci_high[j],
                          (f->ci_open >> (2 * j)) & 3u, f->ci_gap_low[j],
-                         f->ci_gap_high[j]);
+                         f->ci_gap_high[j],
+                         bf_fit_stats_ci_method(f, j) == BF_CI_NEYMAN
+                             ? " (Neyman)"
+                             : "");
                 if (boot) {
                     interval(fp, f->boot_low[j], f->boot_high[j], 0, NAN,
-                             NAN);
+                             NAN, "");
                 }
                 fputs("</tr>\n", fp);
             }
