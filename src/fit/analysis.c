@@ -183,21 +183,20 @@ static void fit_flags(const bf__fitctx *fc, bf_fit_stats *st)
 }
 
 /* The Neyman construction's intervals in place of iv's for the
- * parameters opts->neyman_every says (bf__neyman, on the grid gr, which
+ * parameters which (bf__neyman_which; bf__neyman, on the grid gr, which
  * leaves a failed parameter's as iv's): a fit where one failed is flagged
  * BF_STAT_CI_FAIL; ci_neyman gets the parameters constructed, and
  * ci_method says "neyman" when they are every free one. */
 static int neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
-                  const bf_analysis_opts *opts, bf_fit_stats *st)
+                  unsigned which, const bf_analysis_opts *opts,
+                  bf_fit_stats *st)
 {
     const bf_problem *pb = fc->pb;
     bf_interval ny;
     unsigned failed = 0;
     size_t j;
-    int rc = bf__neyman(fc, iv, gr,
-                        opts->neyman_every ? pb->free_mask : iv->competing,
-                        opts->n_neyman, opts->seed, opts->level, &ny,
-                        &failed);
+    int rc = bf__neyman(fc, iv, gr, which, opts->n_neyman, opts->seed,
+                        opts->level, &ny, &failed);
     if (rc == BF_ENOMEM) {
         return rc;
     }
@@ -231,6 +230,7 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
                         const bf__vp_whole *whole, bf_fit_stats *st)
 {
     bf_interval iv;
+    unsigned which; /* the parameters the construction makes */
     size_t j;
     int rc;
     memset(&iv, 0, sizeof iv);
@@ -259,10 +259,11 @@ static int analyse_rest(bf__fitctx *fc, const bf_problem *pb,
         st->noise_sigma = iv.sigma;
         st->not_identified = iv.not_identified;
         st->ci_competing = iv.competing;
-        if (rc == BF_OK && opts->n_neyman > 0 &&
-            iv.method == BF_CI_PROFILE_LIK &&
-            pb->type->kind != BF_MODEL_SPECULAR) {
-            rc = neyman(fc, &iv, gr, opts, st);
+        which = rc == BF_OK ? bf__neyman_which(pb, &iv, opts->n_neyman,
+                                               opts->neyman_every)
+                            : 0;
+        if (which != 0) {
+            rc = neyman(fc, &iv, gr, which, opts, st);
             if (rc == BF_ENOMEM) {
                 return rc;
             }

@@ -233,8 +233,9 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         double blo[BF_MAX_PARAMS];
         double bhi[BF_MAX_PARAMS];
         bf_interval ny;
+        const bf_interval *dflt = &iv; /* the analysis's intervals */
+        unsigned which = 0;
         int st;
-        int made = 0;
         if (r > 0 && tick != NULL) {
             tick->fn(tick->ctx); /* the previous simulation's */
         }
@@ -251,14 +252,14 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
         if (st == BF_OK || st == BF_ENOCONV) {
             st = bf__intervals(&so.fc, &best, noise, level, &iv);
         }
-        if (st == BF_OK && n_neyman > 0 && !spec &&
-            iv.method == BF_CI_PROFILE_LIK) { /* as the analysis's */
+        if (st == BF_OK) {
+            which = bf__neyman_which(pb, &iv, n_neyman, neyman_every);
+        }
+        if (which != 0) { /* as the analysis's */
             unsigned failed;
-            st = bf__neyman(&so.fc, &iv, gr,
-                            neyman_every ? pb->free_mask : iv.competing,
-                            n_neyman, seed + 1 + n_sim + r, level, &ny,
-                            &failed);
-            made = 1;
+            st = bf__neyman(&so.fc, &iv, gr, which, n_neyman,
+                            seed + 1 + n_sim + r, level, &ny, &failed);
+            dflt = &ny;
             if (st == BF_EDOM) { /* the analysis keeps the profile's */
                 st = BF_OK;
             }
@@ -283,8 +284,8 @@ int bf__fit_calibrate(const bf_problem *pb, const double *truth,
             t.ml[j * n_sim + m] = iv.ml.param[j];
             t.f_width[j * n_sim + m] = bf_interval_length(&iv, j);
             f_cover[j] += bf_interval_holds(&iv, j, truth[j]);
-            t.width[j * n_sim + m] = bf_interval_length(made ? &ny : &iv, j);
-            cover[j] += bf_interval_holds(made ? &ny : &iv, j, truth[j]);
+            t.width[j * n_sim + m] = bf_interval_length(dflt, j);
+            cover[j] += bf_interval_holds(dflt, j, truth[j]);
             flag[j] += (iv.not_identified >> j) & 1u;
             competing[j] += (iv.competing >> j) & 1u;
             if (t.boot_width != NULL) {

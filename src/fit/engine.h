@@ -664,6 +664,13 @@ int bf__bootstrap(bf__fitctx *fc, const bf_interval *iv, size_t n_boot,
 int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
                unsigned which, size_t n_sim, unsigned long seed,
                double level, bf_interval *out, unsigned *failed);
+/* The parameters whose intervals the construction makes for iv, pb's
+ * intervals, under the analysis's n_neyman and neyman_every
+ * (bf_analysis_opts): every free one, or those that compete
+ * (iv->competing); none without n_neyman, for a specular model, or where
+ * iv is not the likelihood's (BF_NOISE_OBJECTIVE, a failed interval). */
+unsigned bf__neyman_which(const bf_problem *pb, const bf_interval *iv,
+                          size_t n_neyman, int every);
 /* A call after each unit of work (progress). */
 typedef struct {
     void (*fn)(void *ctx);

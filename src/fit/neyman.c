@@ -303,6 +303,16 @@ int bf__neyman(bf__fitctx *fc, const bf_interval *iv, const bf__grid *gr,
     return rc != BF_OK ? rc : first;
 }
 
+unsigned bf__neyman_which(const bf_problem *pb, const bf_interval *iv,
+                          size_t n_neyman, int every)
+{
+    if (n_neyman == 0 || pb->type->kind == BF_MODEL_SPECULAR ||
+        iv->method != BF_CI_PROFILE_LIK) {
+        return 0;
+    }
+    return every ? pb->free_mask : iv->competing & pb->free_mask;
+}
+
 int bf_fit_neyman(const bf_problem *pb, const bf_interval *iv, unsigned which,
                   size_t n_sim, unsigned long seed, double level,
                   bf_interval *out)

@@ -270,7 +270,7 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
         sq[0].style = bf_report_model_style(t);
         sq[0].dash = BF_DASH_SOLID;
         sq[0].weight = 1.3;
-        sq[0].label = st->opts.n_neyman > 0 && st->opts.neyman_every &&
+        sq[0].label = bf_rep_neyman_scope(st) == BF_REP_NEYMAN_EVERY &&
                               t->kind != BF_MODEL_SPECULAR
                           ? "profile 95% interval (Neyman construction)"
                           : "profile 95% interval";
@@ -338,9 +338,10 @@ int bf_fig_forest(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
              "two segments (fits.csv ci_gap_low, ci_gap_high).",
              bf_fig_each_sample(N, each, sizeof each), t->name,
              bf_objective_name(st->opts.objective),
-             st->opts.n_neyman == 0 || t->kind == BF_MODEL_SPECULAR
+             bf_rep_neyman_scope(st) == BF_REP_NEYMAN_NONE ||
+                     t->kind == BF_MODEL_SPECULAR
                  ? ""
-             : st->opts.neyman_every
+             : bf_rep_neyman_scope(st) == BF_REP_NEYMAN_EVERY
                  ? ", each end's threshold calibrated by simulation (the "
                    "Neyman construction)"
                  : "; where a second minimum of the profile competes "
@@ -698,8 +699,8 @@ int bf_fig_profile(const bf_fig_data *D, bf_fig_entry *e, bf_fig_desc *d,
                      ? ""
                      : " and the scale",
                  D->smp[s].K,
-                 st->opts.n_neyman == 0 ? ""
-                 : st->opts.neyman_every
+                 bf_rep_neyman_scope(st) == BF_REP_NEYMAN_NONE ? ""
+                 : bf_rep_neyman_scope(st) == BF_REP_NEYMAN_EVERY
                      ? " With --neyman, a diffuse model's segment ends "
                        "where its curve reaches that end's simulated "
                        "threshold (the Neyman construction, ci_method "

@@ -59,6 +59,13 @@ int bf_rep_study_run(bf_rep_study *st);
 int bf_rep_study_run_protocol(bf_rep_study *st);
 int bf_rep_study_run_analysis(bf_rep_study *st);
 
+/* Which diffuse intervals the Neyman construction makes in st's analysis:
+ * BF_REP_NEYMAN_NONE (no construction: --neyman off, no intervals, or the
+ * objective's own noise model), BF_REP_NEYMAN_COMPETING (the default:
+ * where a second minimum competes) or BF_REP_NEYMAN_EVERY (--neyman N). */
+enum { BF_REP_NEYMAN_NONE, BF_REP_NEYMAN_COMPETING, BF_REP_NEYMAN_EVERY };
+int bf_rep_neyman_scope(const bf_rep_study *st);
+
 /* Frees everything st owns. */
 void bf_rep_study_free(bf_rep_study *st);
 

@@ -517,6 +517,16 @@ static int run_analysis(bf_rep_study *st)
     return BF_REPORT_OK;
 }
 
+int bf_rep_neyman_scope(const bf_rep_study *st)
+{
+    const bf_report_options *o = &st->opts;
+    if (o->n_neyman == 0 || o->no_intervals ||
+        o->noise == BF_NOISE_OBJECTIVE) {
+        return BF_REP_NEYMAN_NONE;
+    }
+    return o->neyman_every ? BF_REP_NEYMAN_EVERY : BF_REP_NEYMAN_COMPETING;
+}
+
 int bf_rep_study_run_analysis(bf_rep_study *st)
 {
     /* The analysis runs with --fit exact, --stats, --bootstrap, --neyman

@@ -388,13 +388,12 @@ static void describe_fit(const bf_rep_study *st, FILE *fp)
                 bf_noise_name(st->analysis.noise),
                 bf_noise_variance(st->analysis.noise));
     }
-    if (o->n_neyman > 0 && o->neyman_every && !st->analysis.no_intervals) {
+    if (bf_rep_neyman_scope(st) == BF_REP_NEYMAN_EVERY) {
         fprintf(fp, "; a diffuse model's by the Neyman construction, each "
                     "end's threshold from %zu simulations, seed %lu "
                     "(fits.csv ci_method neyman)",
                 o->n_neyman, o->seed);
-    } else if (o->n_neyman > 0 && !st->analysis.no_intervals &&
-               st->analysis.noise != BF_NOISE_OBJECTIVE) {
+    } else if (bf_rep_neyman_scope(st) == BF_REP_NEYMAN_COMPETING) {
         fprintf(fp, "; where a second minimum of a diffuse model's profile "
                     "competes with the estimate's (flag competing), the "
                     "Neyman construction, each end's threshold from %zu "
