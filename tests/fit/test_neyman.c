@@ -246,3 +246,53 @@ Test(neyman, refuses_what_it_cannot_do)
                  BF_EINVAL);
     cr_assert_str_eq(bf_ci_method_name(BF_CI_NEYMAN), "neyman");
 }
+
+/* Which intervals the analysis constructs (bf__neyman_which, the one
+ * policy of the analysis and the calibration): by default those whose
+ * profile has a competing second minimum, and only those -- not a
+ * profile open to a bound (ON's rho at CURET's geometry: the construction
+ * there covered less than the F threshold, bench/RESULTS.md); every free
+ * one on request; none with --neyman off, without the likelihood's
+ * intervals, or for a parameter held fixed. */
+Test(neyman, the_default_constructs_where_a_minimum_competes)
+{
+    bf_model_variant v;
+    bf_problem pb;
+    bf_interval iv;
+    double truth[BF_MAX_PARAMS];
+    size_t jm;
+    unsigned m, n;
+    problem(&v, bf_model_fc_e, 2, &pb, truth);
+    jm = (size_t)bf_model_param_index(&v.type, "m");
+    m = 1u << jm;
+    n = 1u << bf_model_param_index(&v.type, "n");
+    cr_assert_eq(pb.free_mask, m | n);
+    memset(&iv, 0, sizeof iv);
+    iv.method = BF_CI_PROFILE_LIK;
+    memcpy(iv.ml.param, truth, sizeof truth);
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 0), 0u,
+                 "a regular profile keeps the F threshold");
+    iv.competing = n;
+    iv.not_identified = n; /* split */
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 0), n,
+                 "only the competing parameter");
+    iv.competing = 0;
+    iv.not_identified = m;
+    iv.open = 2u << (2 * jm); /* m's profile open to its high bound */
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 0), 0u,
+                 "an open profile keeps the F threshold");
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 1), m | n,
+                 "every parameter on request");
+    iv.competing = n;
+    cr_assert_eq(bf__neyman_which(&pb, &iv, 0, 0), 0u, "--neyman off");
+    cr_assert_eq(bf__neyman_which(&pb, &iv, 0, 1), 0u);
+    iv.method = BF_CI_PROFILE;
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 0), 0u,
+                 "no likelihood, no construction");
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 1), 0u);
+    /* a parameter held fixed is never constructed */
+    iv.method = BF_CI_PROFILE_LIK;
+    pb.free_mask = m;
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 0), 0u);
+    cr_assert_eq(bf__neyman_which(&pb, &iv, BF_NEYMAN_AUTO_SIM, 1), m);
+}
