@@ -144,15 +144,24 @@ bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit)
     return complete(t);
 }
 
+int bf_rep_interval_format(char *buf, size_t n, double lo, double hi,
+                           double gap_low, double gap_high, unsigned open)
+{
+    const char *b0 = (open & 1u) ? " (bound)" : "";
+    const char *b1 = (open & 2u) ? " (bound)" : "";
+    if (isfinite(gap_low) && isfinite(gap_high)) {
+        return snprintf(buf, n, "[%.4g%s, %.4g] \xe2\x88\xaa [%.4g, %.4g%s]",
+                        lo, b0, gap_low, gap_high, hi,
+                        b1); /* U+222A, the union */
+    }
+    return snprintf(buf, n, "[%.4g%s, %.4g%s]", lo, b0, hi, b1);
+}
+
 int bf_rep_interval_text(char *buf, size_t n, const bf_fit_stats *f,
                          size_t j)
 {
-    if (isfinite(f->ci_gap_low[j]) && isfinite(f->ci_gap_high[j])) {
-        return snprintf(buf, n, "[%.4g, %.4g] \xe2\x88\xaa [%.4g, %.4g]",
-                        f->ci_low[j], f->ci_gap_low[j], f->ci_gap_high[j],
-                        f->ci_high[j]); /* U+222A, the union */
-    }
-    return snprintf(buf, n, "[%.4g, %.4g]", f->ci_low[j], f->ci_high[j]);
+    return bf_rep_interval_format(buf, n, f->ci_low[j], f->ci_high[j],
+                                  f->ci_gap_low[j], f->ci_gap_high[j], 0);
 }
 
 int bf_rep_estimate_text(char *buf, size_t n, double value,

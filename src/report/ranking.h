@@ -33,6 +33,13 @@ struct bf_tt *bf_rep_rank_table(const bf_rep_study *st, int crit);
  * (n bytes); returns what snprintf does. */
 int bf_rep_estimate_text(char *buf, size_t n, double value,
                          const bf_fit_stats *f, size_t j);
+/* An interval as text into buf (n bytes; returns what snprintf does):
+ * "[lo, hi]", or a split one, gap (gap_low, gap_high) finite,
+ * "[lo, gap_low] \u222a [gap_high, hi]"; " (bound)" after the low end with
+ * bit 0 of open, after the high end with bit 1 (an end at the search
+ * range's bound). */
+int bf_rep_interval_format(char *buf, size_t n, double lo, double hi,
+                           double gap_low, double gap_high, unsigned open);
 /* Parameter j's interval of f alone: "[1.78, 2.084]", or a split one
  * "[1.2, 1.311] \u222a [2.351, 2.5]". */
 int bf_rep_interval_text(char *buf, size_t n, const bf_fit_stats *f,

@@ -148,28 +148,19 @@ void bf_report_selection(FILE *fp, const bf_rep_study *st)
     bf_tt_free(t);
 }
 
-/* "[0.123, 0.456]" with the open ends marked, or "–" when not computed. */
-/* "[lo, hi]" (" (bound)" after an end at the search range's bound); a
- * split interval, gap (gl, gh), as "[lo, gl] \u222a [gh, hi]"; then note
- * (" (Neyman)": the construction's, or ""). */
+/* A cell of the interval (bf_rep_interval_format: " (bound)" after an
+ * end at the search range's bound, a split one as two segments), then
+ * note (" (Neyman)": the construction's, or ""); "–" when not computed. */
 static void interval(FILE *fp, double lo, double hi, unsigned open,
                      double gl, double gh, const char *note)
 {
-    const char *b0 = (open & 1u) ? " (bound)" : "";
-    const char *b1 = (open & 2u) ? " (bound)" : "";
+    char text[160];
     if (!isfinite(lo) || !isfinite(hi)) {
         fputs("<td class=\"n\">\xe2\x80\x93</td>", fp);
         return;
     }
-    if (isfinite(gl) && isfinite(gh)) {
-        fprintf(fp,
-                "<td class=\"n\">[%.4g%s, %.4g] \xe2\x88\xaa [%.4g, "
-                "%.4g%s]%s</td>",
-                lo, b0, gl, gh, hi, b1, note);
-        return;
-    }
-    fprintf(fp, "<td class=\"n\">[%.4g%s, %.4g%s]%s</td>", lo, b0, hi, b1,
-            note);
+    bf_rep_interval_format(text, sizeof text, lo, hi, gl, gh, open);
+    fprintf(fp, "<td class=\"n\">%s%s</td>", text, note);
 }
 
 void bf_report_intervals(FILE *fp, const bf_rep_study *st)

@@ -3,7 +3,9 @@
  * recovered exactly (LSE 0 in fits.csv) and beats FC-E; every figure the
  * call counts is a PNG in figures/, the page names bf_report_write, the
  * description and tables go to the echo stream only; a bad option is an
- * option error (status, bf_error, message kind) and leaves no output. */
+ * option error (status, bf_error, message kind) and leaves no output; an
+ * interval's text (bf_rep_interval_format, the tables' one writer) marks
+ * an end at the range's bound and writes a split set as two segments. */
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <math.h>
@@ -11,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "cli_run.h"
+#include "ranking.h"
 #include "support.h"
 
 #define DEG (M_PI / 180.0)
@@ -164,4 +167,35 @@ Test(report_write, a_bad_option_is_an_option_error_and_writes_nothing)
                  BF_REPORT_BADVALUE);
     cr_expect_neq(stat(out, &sb), 0, "%s was created", out);
     bf_dataset_free(ds);
+}
+
+Test(report_write, an_interval_s_text_marks_bounds_and_segments)
+{
+    char buf[160];
+    bf_fit_stats f;
+    bf_rep_interval_format(buf, sizeof buf, 0.1, 0.2349, NAN, NAN, 1u);
+    cr_assert_str_eq(buf, "[0.1 (bound), 0.2349]");
+    bf_rep_interval_format(buf, sizeof buf, 3.373, 5.1, NAN, NAN, 2u);
+    cr_assert_str_eq(buf, "[3.373, 5.1 (bound)]");
+    bf_rep_interval_format(buf, sizeof buf, 1.2, 2.5, 1.311, 2.351, 3u);
+    cr_assert_str_eq(buf, "[1.2 (bound), 1.311] \xe2\x88\xaa [2.351, "
+                          "2.5 (bound)]");
+    /* a gap needs both ends */
+    bf_rep_interval_format(buf, sizeof buf, 1.2, 2.5, 1.311, NAN, 0u);
+    cr_assert_str_eq(buf, "[1.2, 2.5]");
+    /* a fit's interval: no bound marks */
+    memset(&f, 0, sizeof f);
+    f.ci_low[1] = 1.115296386;
+    f.ci_high[1] = 1.374602173;
+    f.ci_gap_low[1] = 1.156592411;
+    f.ci_gap_high[1] = 1.205522113;
+    bf_rep_interval_text(buf, sizeof buf, &f, 1);
+    cr_assert_str_eq(buf, "[1.115, 1.157] \xe2\x88\xaa [1.206, 1.375]");
+    f.ci_gap_low[1] = f.ci_gap_high[1] = NAN;
+    bf_rep_interval_text(buf, sizeof buf, &f, 1);
+    cr_assert_str_eq(buf, "[1.115, 1.375]");
+    /* a short buffer is cut, terminated */
+    cr_assert_eq(bf_rep_interval_format(buf, 6, 0.1, 0.2349, NAN, NAN, 0u),
+                 (int)strlen("[0.1, 0.2349]"));
+    cr_assert_str_eq(buf, "[0.1,");
 }
