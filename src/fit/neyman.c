@@ -112,6 +112,13 @@ static int threshold_at(neyman_t *t, double theta, double *c, double *dev)
     return rc;
 }
 
+/* The side of the estimate theta a gap g (its two ends) lies on: 1 above,
+ * 0 below. A gap never holds the estimate, whose D is 0. */
+static int gap_side(const double g[2], double theta)
+{
+    return g[0] > theta;
+}
+
 /* One end (side 0 low, 1 high) of parameter j's interval: from the F
  * threshold's end x, x -> the profile interval's end under c(x). gap (2
  * doubles, NaN: none) gets the gap of a split set on this side from the
@@ -149,9 +156,7 @@ static int one_end(neyman_t *t, int side, double d0, double *x,
         if (rc != BF_OK) {
             break;
         }
-        if (isfinite(g[0]) &&
-            (side ? g[0] > t->iv->ml.param[t->j]
-                  : g[1] < t->iv->ml.param[t->j])) {
+        if (isfinite(g[0]) && gap_side(g, t->iv->ml.param[t->j]) == side) {
             gap[0] = g[0];
             gap[1] = g[1];
         } else {
@@ -185,12 +190,13 @@ static int one_param(neyman_t *t, double d0, bf_interval *out)
     /* iv's gap, on the side it lies */
     double g_lo[2] = {NAN, NAN};
     double g_hi[2] = {NAN, NAN};
-    double *g = iv->gap_high[j] < theta ? g_lo : g_hi;
+    double g_iv[2] = {iv->gap_low[j], iv->gap_high[j]};
+    double *g = gap_side(g_iv, theta) ? g_hi : g_lo;
     int rc = isfinite(iv->low[j]) && isfinite(iv->high[j]) ? BF_OK
                                                            : BF_EDOM;
-    if (isfinite(iv->gap_low[j])) {
-        g[0] = iv->gap_low[j];
-        g[1] = iv->gap_high[j];
+    if (isfinite(g_iv[0])) {
+        g[0] = g_iv[0];
+        g[1] = g_iv[1];
     }
     if (rc == BF_OK) {
         rc = one_end(t, 0, d0, &out->low[j], &op_lo, g_lo);
