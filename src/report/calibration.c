@@ -64,6 +64,7 @@ enum {
     C_MODEL,
     C_PARAM,
     C_VALUE,
+    C_ML,
     C_INTERVAL,
     C_N,
     C_COVERED,
@@ -93,6 +94,11 @@ static void pair_rows(bf_tt *t, const bf_rep_study *st, size_t i)
         bf_tt_set(t, C_MODEL, "%s", r->type->name);
         bf_tt_set(t, C_PARAM, "%s", r->type->param[j].name);
         bf_tt_set(t, C_VALUE, "%.4g", c->truth[j]);
+        if (isfinite(f->ml_param[j])) {
+            bf_tt_set(t, C_ML, "%.4g", f->ml_param[j]);
+        } else {
+            bf_tt_set(t, C_ML, "\xe2\x80\x93");
+        }
         if (isfinite(f->ci_low[j]) && isfinite(f->ci_high[j])) {
             char iv[96];
             bf_rep_interval_text(iv, sizeof iv, f, j);
@@ -124,9 +130,9 @@ static void pair_rows(bf_tt *t, const bf_rep_study *st, size_t i)
 bf_tt *bf_rep_calibration_table(const bf_rep_study *st)
 {
     static const char *const head[C_NCOLS] = {
-        "sample",  "model",   "parameter", "value", "95% interval",
-        "n",       "covered", "band",      "check", "bias/sd",
-        "width/spread", "not identified"};
+        "sample",  "model",   "parameter", "value", "ML estimate",
+        "95% interval", "n",  "covered",   "band",  "check",
+        "bias/sd", "width/spread", "not identified"};
     bf_tt *t = bf_tt_alloc(C_NCOLS);
     size_t i;
     if (t == NULL) {
@@ -153,8 +159,13 @@ static void legend(const bf_rep_study *st, char *buf, size_t len)
 {
     double level = 100.0 * st->analysis.level;
     snprintf(buf, len,
-             "value: the fitted value, simulated as the truth; 95%% "
-             "interval: the fit's on the data; n: simulations fitted; "
+             "value: the fitted value (the objective's optimum), simulated "
+             "as the truth; ML estimate: the noise model's "
+             "maximum-likelihood estimate on the data, which the interval "
+             "is about (where the value lies far outside the interval, the "
+             "objective's fit and the likelihood's disagree, as where the "
+             "model does not fit the data); %.0f%% interval: the fit's on the data; "
+             "n: simulations fitted; "
              "covered: share of the simulations' %.0f%% intervals holding "
              "the value simulated, \xc2\xb1 the binomial sd of a calibrated "
              "interval's coverage over n simulations; band: the coverages "
@@ -167,7 +178,7 @@ static void legend(const bf_rep_study *st, char *buf, size_t len)
              "level)/2, 1.96 at 95%%; 1 is calibrated); not identified: "
              "share of the simulations whose interval reached a bound of "
              "the search range or spans two separate regions.",
-             level, 100.0 * BF_CALIBRATION_BAND);
+             level, level, 100.0 * BF_CALIBRATION_BAND);
 }
 
 /* The pairs whose noise power, estimated (--noise auto), sits on the bound

@@ -116,7 +116,7 @@ static void band(size_t N, double *lo, double *hi)
 
 /* The cells of the page's calibration table, row by row (at most 16 rows
  * of 12 cells), tags stripped; returns the number of rows. */
-static size_t table_cells(const char *page, char cells[16][12][64])
+static size_t table_cells(const char *page, char cells[16][13][64])
 {
     const char *t = strstr(page, "<table id=\"calibration\">");
     const char *end = t != NULL ? strstr(t, "</table>") : NULL;
@@ -127,7 +127,7 @@ static size_t table_cells(const char *page, char cells[16][12][64])
     while ((row = strstr(row, "<tr>")) != NULL && row < end && n < 16) {
         const char *p = row;
         size_t c;
-        for (c = 0; c < 12; c++) {
+        for (c = 0; c < 13; c++) {
             const char *q;
             size_t len;
             p = strstr(p, "<td");
@@ -172,7 +172,7 @@ Test(report_calibrate, covers_a_known_material_as_calibrate_says,
     char *b = strdup(bf_test_tmpdir());
     const char *input = write_materials(a);
     const char *err = NULL;
-    char cells[16][12][64];
+    char cells[16][13][64];
     char want[64];
     char *page;
     size_t len;
@@ -212,21 +212,28 @@ Test(report_calibrate, covers_a_known_material_as_calibrate_says,
     cr_expect_str_eq(cells[0][2], "m");
     snprintf(want, sizeof want, "%.4g", bf_test_csv_num(r, "value"));
     cr_expect_str_eq(cells[0][3], want);
+    /* the estimate the interval is about: fits.csv's ml_value */
+    bf_test_csv_load(bf_test_join(a, "rep"), "fits.csv");
+    snprintf(want, sizeof want, "%.4g",
+             bf_test_csv_num(bf_test_csv_find("1", "VH-E", "m"), "ml_value"));
+    bf_test_csv_load(bf_test_join(a, "rep"), "calibrate.csv");
+    r = bf_test_csv_find("1", "VH-E", "m");
+    cr_expect_str_eq(cells[0][4], want);
     snprintf(want, sizeof want, "%.0f", bf_test_csv_num(r, "n_sim"));
-    cr_expect_str_eq(cells[0][5], want);
+    cr_expect_str_eq(cells[0][6], want);
     snprintf(want, sizeof want, "%.3f \xc2\xb1 %.3f", cov,
              sqrt(0.95 * 0.05 / bf_test_csv_num(r, "n_sim")));
-    cr_expect_str_eq(cells[0][6], want);
-    snprintf(want, sizeof want, "[%.3f, %.3f]", lo, hi);
     cr_expect_str_eq(cells[0][7], want);
-    cr_expect_str_eq(cells[0][8], "ok");
+    snprintf(want, sizeof want, "[%.3f, %.3f]", lo, hi);
+    cr_expect_str_eq(cells[0][8], want);
+    cr_expect_str_eq(cells[0][9], "ok");
     snprintf(want, sizeof want, "%+.2f",
              bf_test_csv_num(r, "ml_bias") / bf_test_csv_num(r, "ml_sd"));
-    cr_expect_str_eq(cells[0][9], want);
+    cr_expect_str_eq(cells[0][10], want);
     snprintf(want, sizeof want, "%.2f",
              bf_test_csv_num(r, "width") /
                  (2.0 * 1.959963984540054 * bf_test_csv_num(r, "ml_sd")));
-    cr_expect_str_eq(cells[0][10], want);
+    cr_expect_str_eq(cells[0][11], want);
     /* issue 18: the median width within 1.3x of the spread */
     cr_expect(strtod(want, NULL) > 1.0 / 1.3 && strtod(want, NULL) < 1.3,
               "width/spread %s", want);
