@@ -145,6 +145,7 @@ bench: build
 # make bench-glossy: issue 17 item 11, the ten specular models on the five
 # Cornell paints (whole compare, CPU and wall) against the scipy peer
 bench-glossy: build
+	@scripts/install-deps.sh bench
 	OMP_WAIT_POLICY=passive $(BUILD)/bench/bench_glossy --cli $(BUILD)/brdffit \
 	    --data ../shared/data/cornell-pbrt-v2 --peer ../shared/peers/glossy_peer.py
 

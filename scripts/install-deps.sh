@@ -4,7 +4,8 @@
 #
 #   scripts/install-deps.sh          build + test dependencies
 #   scripts/install-deps.sh bench    also the benchmark's numpy baseline and
-#                                    the numpy/scipy peer of the analysis
+#                                    the numpy/scipy peers (make bench,
+#                                    make bench-glossy)
 #   scripts/install-deps.sh fuzz     also clang and libFuzzer (make fuzz)
 #   scripts/install-deps.sh valgrind also valgrind (make valgrind)
 #   scripts/install-deps.sh coverage also gcovr (make coverage)
@@ -26,7 +27,8 @@ plplot-driver-cairo fonts-dejavu-core zlib1g-dev nettle-dev python3-html5lib cur
 python3-numpy python3-cffi python3-pytest python3-pandas python3-pip"
 for group in "$@"; do
     case $group in
-    # bench/numpy_baseline.py; ../shared/peers/rank_baseline.py (scipy)
+    # bench/numpy_baseline.py; ../shared/peers/rank_baseline.py and
+    # glossy_peer.py (scipy)
     bench) PACKAGES="$PACKAGES python3-numpy python3-scipy" ;;
     fuzz) PACKAGES="$PACKAGES clang libclang-rt-14-dev" ;;
     valgrind) PACKAGES="$PACKAGES valgrind" ;;
