@@ -34,14 +34,12 @@
 #define SEED 20261206ul
 #if !BF_TEST_SANITIZED
 #define REPS 200
-#define NY 100
 #define NY_REGULAR 200
 #define COVER_LO 0.92
 #define COVER_HI 0.99
 #else
 /* The sanitizer build runs the same code on 10 simulations, no band. */
 #define REPS 10
-#define NY 100
 #define NY_REGULAR 200 /* the same check: one fit, 8 s plain */
 #define COVER_LO 0.0
 #define COVER_HI 1.0

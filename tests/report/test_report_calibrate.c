@@ -115,7 +115,7 @@ static void band(size_t N, double *lo, double *hi)
 }
 
 /* The cells of the page's calibration table, row by row (at most 16 rows
- * of 12 cells), tags stripped; returns the number of rows. */
+ * of 13 cells), tags stripped; returns the number of rows. */
 static size_t table_cells(const char *page, char cells[16][13][64])
 {
     const char *t = strstr(page, "<table id=\"calibration\">");
